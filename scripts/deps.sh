@@ -1,0 +1,27 @@
+#!/bin/sh
+# deps.sh PURPOSE: make sure the Debian packages PURPOSE needs are present.
+# As root on Debian it installs what is missing (apt-get update first);
+# otherwise it prints the exact apt-get line and fails.
+set -u
+purpose=${1:-build}
+case $purpose in
+build) pkgs="gcc make pkg-config libpng-dev zlib1g-dev" ;;
+check) pkgs="libpng-dev zlib1g-dev python3 imagemagick ghostscript" ;;
+bench) pkgs="plotutils povray python3-contourpy python3-numpy time imagemagick" ;;
+*) echo "deps.sh: unknown purpose '$purpose'" >&2; exit 64 ;;
+esac
+missing=""
+for p in $pkgs; do
+	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"
+done
+[ -z "$missing" ] && exit 0
+if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+	echo "deps.sh: installing$missing" >&2
+	export DEBIAN_FRONTEND=noninteractive
+	apt-get update -qq >&2 && apt-get install -y -qq --no-install-recommends $missing >&2 && exit 0
+	echo "deps.sh: apt-get failed for:$missing" >&2
+	exit 69
+fi
+echo "deps.sh: missing Debian packages for '$purpose'. Install them with:" >&2
+echo "  sudo apt-get install$missing" >&2
+exit 69
