@@ -1,3 +1,21 @@
 #!/bin/sh
-# demo.sh: placeholder until the drivers land.
-echo "demo: nothing to run yet" >&2
+# demo.sh: render the bundled default scene into out/default.meta and replay it
+# through every driver that locus-play lists, one output file per driver.
+set -eu
+: "${BIN:=bin}"
+mkdir -p out
+if [ -x "$BIN/locus-render" ] && [ -f fixtures/scenes/default.scene ]; then
+	echo "demo: rendering fixtures/scenes/default.scene"
+	"$BIN/locus-render" fixtures/scenes/default.scene -o out/default.meta
+else
+	echo "demo: no renderer yet; using the bundled fixtures/meta/f-test.meta"
+	cp fixtures/meta/f-test.meta out/default.meta
+fi
+"$BIN/locus-meta" info out/default.meta > out/default.info
+"$BIN/locus-play" -l | while read -r dev ext rest; do
+	[ -n "$dev" ] || continue
+	echo "demo: $dev -> out/default.$dev.$ext"
+	"$BIN/locus-play" -d "$dev" out/default.meta -o "out/default.$dev.$ext"
+done
+echo "demo: done; pictures are in out/"
+ls -l out
