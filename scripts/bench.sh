@@ -1,3 +1,328 @@
 #!/bin/sh
-# bench.sh: placeholder until the benchmarks land.
-echo "bench: nothing yet" >&2
+# bench.sh: run Locus and its anchors in the same run; print BENCH lines (also to out/bench.txt).
+#
+# Every comparison prints one line
+#   BENCH name=WORKLOAD locus_s=S anchor=TOOL anchor_s=S ratio=R locus_rss_mib=M anchor_rss_mib=M [key=value...]
+# with medians of several runs; ratio = anchor_s / locus_s, so ratio > 1 means Locus is faster.
+# A comparison whose Locus program (or scene, or bench source) is not there yet prints
+#   BENCH-SKIP name=WORKLOAD reason=...
+# and one that could not run (a crash, a missing anchor tool) prints BENCH-FAIL and makes the
+# script exit 1. A low ratio never fails: this is a measurement, not a test.
+# docs/benchmarks.md explains each workload. Environment: BIN (programs, default bin),
+# CC, BENCH_RUNS (runs per fast measurement, default 5), BENCH_ONLY (space-separated groups
+# to run: plot check pov contour voronoi; default all).
+set -u
+: "${BIN:=bin}" "${CC:=cc}" "${BENCH_RUNS:=5}" "${BENCH_ONLY:=plot check pov contour voronoi}"
+LIBDIR=build/native
+BB=build/bench
+W=$BB/work
+RESULTS=out/bench.txt
+mkdir -p "$BB" "$W" out || exit 74
+: > "$RESULTS.tmp" || exit 74
+FAILED=0
+SLOW_RUNS=3
+[ "$BENCH_RUNS" -lt "$SLOW_RUNS" ] && SLOW_RUNS=$BENCH_RUNS
+
+# ---- helpers -------------------------------------------------------------
+
+emit() { echo "$*"; echo "$*" >> "$RESULTS.tmp"; }
+words() { echo "$*" | tr ' =' '-:'; }
+skip() { n=$1; shift; emit "BENCH-SKIP name=$n reason=$(words "$*" | cut -c1-160)"; }
+fail() { n=$1; shift; emit "BENCH-FAIL name=$n reason=$(words "$*")"; FAILED=1; }
+want() { case " $BENCH_ONLY " in *" $1 "*) return 0 ;; esac; return 1; }
+
+# measure N OUT CMD...: run CMD N times with stdout to OUT (stderr of the last run in $W/err).
+# Sets M_S (median wall seconds, from the clock around /usr/bin/time) and M_MIB (median peak
+# RSS in MiB, from /usr/bin/time %M). Returns 1 (M_ERR set) if any run fails.
+measure() {
+	n=$1; mout=$2; shift 2
+	: > "$W/times"
+	i=0
+	while [ "$i" -lt "$n" ]; do
+		t0=$(date +%s%N)
+		if ! /usr/bin/time -f '%e %M' -o "$W/time1" "$@" > "$mout" 2> "$W/err"; then
+			M_ERR="$(basename "$1") failed: $(grep -v '^Command exited' "$W/err" | tail -1 | cut -c1-120)"
+			return 1
+		fi
+		t1=$(date +%s%N)
+		echo "$(( (t1 - t0) / 1000 )) $(tail -1 "$W/time1" | awk '{print $2}')" >> "$W/times"
+		i=$((i + 1))
+	done
+	M_S=$(sort -n -k1,1 "$W/times" | awk '{a[NR] = $1} END {printf "%.4f", a[int((NR + 1) / 2)] / 1e6}')
+	M_MIB=$(awk '{print $2}' "$W/times" | sort -n | awk '{a[NR] = $1} END {printf "%.1f", a[int((NR + 1) / 2)] / 1024}')
+	return 0
+}
+
+# ratio A L: A / L with 2 decimals
+ratio() { awk -v a="$1" -v l="$2" 'BEGIN {if (l > 0) printf "%.2f", a / l; else print "inf"}'; }
+# pass RATIO TARGET: yes when RATIO >= TARGET
+pass() { awk -v r="$1" -v t="$2" 'BEGIN {print (r != "inf" && r + 0 < t + 0) ? "no" : "yes"}'; }
+
+# line NAME LOCUS_S ANCHOR ANCHOR_S LOCUS_MIB ANCHOR_MIB [key=value...]
+line() {
+	ln=$1 ls=$2 an=$3 as=$4 lm=$5 am=$6
+	shift 6
+	emit "BENCH name=$ln locus_s=$ls anchor=$an anchor_s=$as ratio=$(ratio "$as" "$ls") locus_rss_mib=$lm anchor_rss_mib=$am${*:+ $*}"
+}
+
+# diffpct A B: percentage of pixels that differ between two same-size images (ImageMagick)
+diffpct() {
+	ae=$(compare -metric AE "$1" "$2" null: 2>&1 | awk '{print $1}')
+	awk -v d="$ae" 'BEGIN {if (d ~ /^[0-9.e+]+$/) printf "%.2f", 100 * d / (1024 * 768); else print "na"}'
+}
+
+# psnr A B: PSNR in dB (ImageMagick prints it on stderr; "inf" for identical images)
+psnr() { compare -metric PSNR "$1" "$2" null: 2>&1 | awk '{print $1}'; }
+
+# ---- building the bench programs ------------------------------------------
+
+VERSION=$(sed -n 's/^VERSION *:= *//p' Makefile)
+BCFLAGS="-std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -O2 -march=native -fno-math-errno -Wall -Wextra -Imeta -Icore -Idrivers $(pkg-config --cflags libpng zlib 2>/dev/null)"
+BLIBS=""
+for l in core drivers meta; do
+	[ -f "$LIBDIR/lib$l.a" ] && BLIBS="$BLIBS $LIBDIR/lib$l.a"
+done
+BLDLIBS="$(pkg-config --libs libpng zlib 2>/dev/null) -lpthread -lm"
+
+# build NAME SRC: compile tests/bench/SRC into build/bench/NAME; 1 when it does not build
+build() {
+	# shellcheck disable=SC2086
+	$CC $BCFLAGS "-DLOCUS_VERSION=\"$VERSION\"" "$2" $BLIBS $BLDLIBS -o "$BB/$1" 2> "$BB/$1.log" && return 0
+	B_ERR="$(grep -m1 -E 'error|undefined' "$BB/$1.log" | cut -c1-160)"
+	return 1
+}
+
+have() { command -v "$1" >/dev/null 2>&1; }
+have_bin() { [ -x "$BIN/$1" ]; }
+
+if ! [ -x /usr/bin/time ]; then
+	fail setup "/usr/bin/time missing (Debian package time)"
+	mv "$RESULTS.tmp" "$RESULTS"
+	exit 1
+fi
+echo "bench: $(date -u +%Y-%m-%dT%H:%M:%SZ) $(uname -m) $(nproc) cores, runs=$BENCH_RUNS (slow ones $SLOW_RUNS)" >&2
+
+# ---- issue 2: metafile replay, Locus meta vs plotutils #PLOT 2 ----------------
+
+# replay WL SUFFIX NAME: time locus-raster on $W/WL.SUFFIX against the plot run already measured
+replay_pair() {
+	wl=$1 in=$2 name=$3 ext=$4 ptime=$5 prss=$6 pout=$7
+	if measure "$BENCH_RUNS" /dev/null "$BIN/locus-raster" "$in" -o "$W/$name.$ext"; then
+		r=$(ratio "$ptime" "$M_S")
+		line "$name" "$M_S" "plot-T$ext" "$ptime" "$M_MIB" "$prss" \
+			"target=2 pass=$(pass "$r" 2) bytes=$(wc -c < "$in") diff_px_pct=$(diffpct "$W/$name.$ext" "$pout")"
+		# shellcheck disable=SC2034 # read through eval by the caller
+		L_S=$M_S L_MIB=$M_MIB
+		return 0
+	fi
+	fail "$name" "$M_ERR"
+	return 1
+}
+
+bench_plot() {
+	if ! have plot || ! have compare; then
+		fail plot "plot (Debian plotutils) or compare (imagemagick) missing"
+		return
+	fi
+	if ! build gen_workloads tests/bench/gen_workloads.c; then
+		for wl in a b c; do skip "$wl" "gen_workloads does not build yet: $B_ERR"; done
+		return
+	fi
+	for wl in a b c; do
+		for f in text:meta binary:lmb plot:plot; do
+			if ! "$BB/gen_workloads" "$wl" "${f%%:*}" -o "$W/$wl.${f#*:}" 2> "$W/gen.log"; then
+				fail "$wl" "gen_workloads $wl ${f%%:*}: $(tail -1 "$W/gen.log")"
+				continue 2
+			fi
+		done
+		echo "bench: $(tail -1 "$W/gen.log")" >&2
+		# the anchor, PPM-like and PNG
+		if ! measure "$BENCH_RUNS" "$W/$wl.pnm" plot -T pnm --bitmap-size 1024x768 "$W/$wl.plot"; then
+			fail "$wl" "$M_ERR"; continue
+		fi
+		pnm_s=$M_S pnm_mib=$M_MIB
+		if ! measure "$BENCH_RUNS" "$W/$wl.plot.png" plot -T png --bitmap-size 1024x768 "$W/$wl.plot"; then
+			fail "$wl-png" "$M_ERR"; continue
+		fi
+		png_s=$M_S png_mib=$M_MIB
+		if ! have_bin locus-raster; then
+			for n in "$wl" "$wl-binary" "$wl-png"; do
+				skip "$n" "$BIN/locus-raster not built yet (plot -T pnm $pnm_s s)"
+			done
+			continue
+		fi
+		replay_pair "$wl" "$W/$wl.meta" "$wl" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" && eval "RASTER_${wl}_S=\$L_S RASTER_${wl}_MIB=\$L_MIB"
+		replay_pair "$wl" "$W/$wl.lmb" "$wl-binary" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" && eval "RASTERB_${wl}_S=\$L_S"
+		replay_pair "$wl" "$W/$wl.meta" "$wl-png" png "$png_s" "$png_mib" "$W/$wl.plot.png"
+	done
+	# peak memory against input size: workload a at 4 times the polylines
+	if have_bin locus-raster && [ -n "${RASTER_a_MIB:-}" ]; then
+		if "$BB/gen_workloads" a text -s 4 -o "$W/a4.meta" 2> "$W/gen.log" &&
+			"$BB/gen_workloads" a plot -s 4 -o "$W/a4.plot" 2>> "$W/gen.log"; then
+			if measure "$SLOW_RUNS" "$W/a4.pnm" plot -T pnm --bitmap-size 1024x768 "$W/a4.plot"; then
+				ps=$M_S pm=$M_MIB
+				if measure "$SLOW_RUNS" /dev/null "$BIN/locus-raster" "$W/a4.meta" -o "$W/a4.ppm"; then
+					r=$(ratio "$ps" "$M_S")
+					line a-4x "$M_S" plot-Tppm "$ps" "$M_MIB" "$pm" "target=2 pass=$(pass "$r" 2)" \
+						"bytes=$(wc -c < "$W/a4.meta") locus_rss_mib_1x=$RASTER_a_MIB" \
+						"rss_growth=$(ratio "$M_MIB" "$RASTER_a_MIB")"
+				else
+					fail a-4x "$M_ERR"
+				fi
+			else
+				fail a-4x "$M_ERR"
+			fi
+		else
+			fail a-4x "gen_workloads: $(tail -1 "$W/gen.log")"
+		fi
+	fi
+}
+
+# ---- issue 2: locus-meta check must take < 1/3 of the replay ----------------
+
+bench_check() {
+	if ! have_bin locus-meta; then skip a-check "$BIN/locus-meta not built yet"; return; fi
+	if [ ! -f "$W/a.meta" ]; then skip a-check "needs the plot group (workload a files)"; return; fi
+	if [ -z "${RASTER_a_S:-}" ]; then skip a-check "no locus-raster time of workload a to compare with"; return; fi
+	for v in a:meta:RASTER_a_S a-binary:lmb:RASTERB_a_S; do
+		n=${v%%:*}-check; rest=${v#*:}; ext=${rest%%:*}; var=${rest#*:}
+		eval "rs=\${$var:-}"
+		[ -n "$rs" ] || continue
+		if measure "$BENCH_RUNS" /dev/null "$BIN/locus-meta" check "$W/a.$ext"; then
+			r=$(ratio "$rs" "$M_S")
+			line "$n" "$M_S" locus-raster "$rs" "$M_MIB" "${RASTER_a_MIB:-na}" "target=3 pass=$(pass "$r" 3)"
+		else
+			fail "$n" "$M_ERR"
+		fi
+	done
+}
+
+# ---- issue 3: implicit surfaces, Locus vs POV-Ray isosurface ---------------------
+
+# pov SCENE OUT.png [options]: one POV-Ray render at 1024x768, no anti-aliasing, linear file gamma
+POVOPTS="-D -V +W1024 +H768 -A +WT2 File_Gamma=1.0"
+
+bench_pov() {
+	for s in trifocal segpoint; do
+		pov=fixtures/bench/$s.pov
+		if ! have povray; then fail "$s" "povray missing (Debian povray)"; continue; fi
+		# shellcheck disable=SC2086
+		if ! measure "$SLOW_RUNS" /dev/null povray $POVOPTS +I"$pov" +O"$W/$s.pov.png"; then
+			fail "$s" "$M_ERR"; continue
+		fi
+		pv_s=$M_S pv_mib=$M_MIB
+		pv_trace=$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$W/err" | tail -1)
+		pv_calls=$(awk '/Function VM calls/ {print $NF}' "$W/err" | tail -1)
+		pv_epp=$(awk -v c="${pv_calls:-0}" 'BEGIN {printf "%.1f", c / (1024 * 768)}')
+		# POV-Ray's own accuracy: against its render at accuracy 1e-5
+		# shellcheck disable=SC2086
+		povray $POVOPTS Declare=Accuracy=0.00001 +I"$pov" +O"$W/$s.povref.png" > /dev/null 2>&1
+		pv_psnr=$(psnr "$W/$s.pov.png" "$W/$s.povref.png")
+		scene=fixtures/scenes/bench-$s.scene
+		if ! have_bin locus-render || ! have_bin locus-raster || [ ! -f "$scene" ]; then
+			emit "BENCH-SKIP name=$s reason=$(words "$BIN/locus-render, $BIN/locus-raster or $scene not there yet")" \
+				"anchor=povray anchor_s=$pv_s anchor_trace_s=${pv_trace:-na} anchor_calls_per_px=$pv_epp" \
+				"anchor_rss_mib=$pv_mib anchor_psnr_own_db=$pv_psnr"
+			continue
+		fi
+		if ! measure "$SLOW_RUNS" "$W/$s.stats" "$BIN/locus-render" "$scene" -o "$W/$s.meta" --stats; then
+			fail "$s" "$M_ERR"; continue
+		fi
+		lr_s=$M_S lr_mib=$M_MIB
+		cat "$W/err" >> "$W/$s.stats"
+		# evaluations per pixel, as locus-render --stats prints them ("evaluations per pixel: N",
+		# "evals/px=N" or similar): the first number on the first line that mentions it
+		l_epp=$(grep -i -m1 -E 'eval[a-z]*[ /_-]*(per[ _-]*)?(pixel|px)' "$W/$s.stats" |
+			sed 's/.*\(pixel\|px\)[^0-9]*//I' | grep -o -m1 -E '[0-9]+(\.[0-9]+)?' | head -1)
+		"$BIN/locus-raster" "$W/$s.meta" -o "$W/$s.locus.png" 2> "$W/raster.err" ||
+			{ fail "$s" "locus-raster: $(tail -1 "$W/raster.err")"; continue; }
+		# accuracy: both images against a Locus reference at high accuracy, when the
+		# renderer offers an accuracy option
+		l_psnr=na x_psnr=na
+		acc_opt=$("$BIN/locus-render" --help 2>&1 | grep -o -m1 -E -- '--(accuracy|epsilon|eps|tolerance)' | head -1)
+		if [ -n "$acc_opt" ] &&
+			"$BIN/locus-render" "$scene" -o "$W/$s.ref.meta" "$acc_opt" 0.00001 > /dev/null 2>&1 &&
+			"$BIN/locus-raster" "$W/$s.ref.meta" -o "$W/$s.ref.png" 2> /dev/null; then
+			l_psnr=$(psnr "$W/$s.locus.png" "$W/$s.ref.png")
+			x_psnr=$(psnr "$W/$s.pov.png" "$W/$s.ref.png")
+		fi
+		line "$s" "$lr_s" povray "$pv_s" "$lr_mib" "$pv_mib" \
+			"anchor_trace_s=${pv_trace:-na} ratio_trace=$(ratio "${pv_trace:-0}" "$lr_s")" \
+			"locus_evals_per_px=${l_epp:-na} anchor_calls_per_px=$pv_epp" \
+			"locus_psnr_db=$l_psnr anchor_psnr_own_db=$pv_psnr anchor_psnr_vs_locus_ref_db=$x_psnr"
+		# octree figures, if --stats prints them: pass them through as an info line
+		oct=$(grep -i -E 'octree|cells|leaves' "$W/$s.stats" | tr -s ' \t' ' ' | tr ' =' '_:' | tr '\n' ' ')
+		[ -n "$oct" ] && emit "BENCH-INFO name=$s-octree stats=$(echo "$oct" | sed 's/ *$//; s/ /,/g')"
+	done
+}
+
+# ---- issue 3: contours and Voronoi (programs by the 2D engineer) ----------------
+
+# own_line FILE TAG: from a program's "BENCH TAG SECONDS s k=v..." line, set O_S and O_KV
+own_line() {
+	O_S=$(awk -v t="$2" '$1 == "BENCH" && $2 == t {print $3; exit}' "$1")
+	O_KV=$(awk -v t="$2" '$1 == "BENCH" && $2 == t {for (i = 5; i <= NF; i++) printf "%s%s", (i > 5 ? " " : ""), $i; exit}' "$1")
+	[ -n "$O_S" ]
+}
+
+bench_contour() {
+	if [ ! -f tests/bench/bench_contour.c ]; then skip contour "tests/bench/bench_contour.c not there yet"; return; fi
+	if ! build bench_contour tests/bench/bench_contour.c; then
+		skip contour "bench_contour does not build yet: $B_ERR"; return
+	fi
+	if ! measure 1 "$W/contour.out" "$BB/bench_contour" -n 7 -o "$W/contour.meta" ||
+		! own_line "$W/contour.out" contour-locus; then
+		fail contour "bench_contour: ${M_ERR:-no BENCH contour-locus line}"; return
+	fi
+	l_s=$O_S l_kv=$O_KV l_mib=$M_MIB
+	if ! have python3 || [ ! -f tests/bench/contourpy_anchor.py ]; then
+		fail contour "python3 or tests/bench/contourpy_anchor.py missing"; return
+	fi
+	if ! measure 1 "$W/contourpy.out" python3 tests/bench/contourpy_anchor.py -n 7 ||
+		! own_line "$W/contourpy.out" contour-contourpy; then
+		fail contour "contourpy_anchor.py: ${M_ERR:-no BENCH contour-contourpy line}"; return
+	fi
+	# their lines give seconds with 6 decimals; keep 4 like the others
+	l_s=$(awk -v s="$l_s" 'BEGIN {printf "%.4f", s}') a_s=$(awk -v s="$O_S" 'BEGIN {printf "%.4f", s}')
+	line contour "$l_s" contourpy "$a_s" "$l_mib" "$M_MIB" \
+		"$(echo "$l_kv" | sed 's/\([a-z_]*\)=/locus_\1=/g')" "$(echo "$O_KV" | sed 's/\([a-z_]*\)=/anchor_\1=/g')" \
+		"rss_note=whole_process"
+}
+
+bench_voronoi() {
+	if ! have rbox || ! have qvoronoi; then fail voronoi "rbox/qvoronoi missing (Debian qhull-bin)"; return; fi
+	rbox 100000 D2 t1 > "$W/voronoi.pts" 2> /dev/null || { fail voronoi "rbox failed"; return; }
+	if ! measure "$SLOW_RUNS" /dev/null qvoronoi o TI "$W/voronoi.pts"; then fail voronoi "$M_ERR"; return; fi
+	q_s=$M_S q_mib=$M_MIB
+	if [ ! -f tests/bench/bench_voronoi.c ]; then
+		emit "BENCH-SKIP name=voronoi reason=tests/bench/bench_voronoi.c-not-there-yet anchor=qvoronoi" \
+			"anchor_s=$q_s anchor_rss_mib=$q_mib"; return
+	fi
+	if ! build bench_voronoi tests/bench/bench_voronoi.c; then
+		skip voronoi "bench_voronoi does not build yet: $B_ERR (qvoronoi $q_s s)"; return
+	fi
+	if ! measure 1 "$W/voronoi.out" "$BB/bench_voronoi"; then fail voronoi "$M_ERR"; return; fi
+	l_mib=$M_MIB
+	if own_line "$W/voronoi.out" voronoi-locus; then
+		l_s=$(awk -v s="$O_S" 'BEGIN {printf "%.4f", s}')
+		line voronoi "$l_s" qvoronoi "$q_s" "$l_mib" "$q_mib" "$O_KV" "note=context_only_different_task"
+	else
+		# no BENCH line of its own: time the whole program
+		measure "$SLOW_RUNS" /dev/null "$BB/bench_voronoi" &&
+			line voronoi "$M_S" qvoronoi "$q_s" "$M_MIB" "$q_mib" "note=context_only_different_task"
+	fi
+}
+
+# ---- main -------------------------------------------------------------------
+
+# shellcheck disable=SC2034 # RASTERB_a_S is read through eval
+RASTER_a_S="" RASTER_a_MIB="" RASTERB_a_S=""
+want plot && bench_plot
+want check && bench_check
+want pov && bench_pov
+want contour && bench_contour
+want voronoi && bench_voronoi
+mv "$RESULTS.tmp" "$RESULTS"
+echo "bench: $(grep -c '^BENCH ' "$RESULTS") comparisons, $(grep -c '^BENCH-SKIP' "$RESULTS") skipped," \
+	"$(grep -c '^BENCH-FAIL' "$RESULTS") failed; lines in $RESULTS" >&2
+exit "$FAILED"
