@@ -1,0 +1,170 @@
+/* bench_contour.c: time contour_extract on the anchor workload (3-point distance sum, 1024x1024, 19 levels).
+ *
+ * usage: bench_contour [-n RUNS] [-o FILE.meta] [--help] [--version]
+ *
+ * The workload, identical in tests/bench/contourpy_anchor.py:
+ *   grid  1024 x 1024 samples over [-3, 3] x [-3, 3] (x_i = -3 + 6 i / 1023)
+ *   field z = |P - (-1, 0)| + |P - (1, 0)| + |P - (0, 1.2)|, as float
+ *   levels 3.0, 3.5, ..., 12.0 (19 levels)
+ * Only the extraction is timed (segments found and joined into polylines,
+ * handed to a callback that counts them), median of RUNS runs (default 7).
+ * Prints one human line and one "BENCH contour-locus SECONDS s ..." line.
+ * With -o, also writes the map (colour bands + iso-lines) as a meta file on
+ * a 1024 x 1024 page so it can be looked at.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "contour.h"
+#include "locus_meta.h"
+
+#ifndef LOCUS_VERSION
+#define LOCUS_VERSION "unknown"
+#endif
+
+#define N 1024
+#define NLEVELS 19
+
+static double now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int count_cb(void *user, unsigned level, const contour_point_t *p, size_t n, int closed)
+{
+	(void)level;
+	size_t *sum = user;
+	sum[0] += closed ? n : n - 1;     /* segments */
+	sum[1] += (size_t)(p[0].x >= 0);  /* touch the data */
+	return 0;
+}
+
+static int cmp(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+
+static int fwrite_cb(void *user, const void *buf, size_t n)
+{
+	return fwrite(buf, 1, n, user) == n ? 0 : -1;
+}
+
+static int write_meta(const char *path, const contour_grid_t *g, const double *levels)
+{
+	char tmp[4096];
+	snprintf(tmp, sizeof tmp, "%s.tmp", path);
+	FILE *f = fopen(tmp, "wb");
+	if (!f) {
+		fprintf(stderr, "bench_contour: %s: %s\n", tmp, strerror(errno));
+		return 74;
+	}
+	meta_writer_t *w = meta_writer_new(fwrite_cb, f, META_ENC_TEXT);
+	meta_rgb_t bands[NLEVELS + 1], lines[NLEVELS];
+	contour_palette(bands, NLEVELS + 1);
+	for (int k = 0; k < NLEVELS + 1; k++) /* pale bands: mix with white */
+		bands[k] = ((((bands[k] >> 16) & 255) + 255) / 2) << 16 |
+		           ((((bands[k] >> 8) & 255) + 255) / 2) << 8 | (((bands[k] & 255) + 255) / 2);
+	for (int k = 0; k < NLEVELS; k++)
+		lines[k] = 0x000000;
+	contour_style_t st = { lines, 1.0 };
+	int rc = w ? 0 : -1;
+	if (rc == 0)
+		rc = meta_page(w, N, N);
+	if (rc == 0)
+		rc = contour_write_bands(w, g, levels, NLEVELS, bands, 0xffffff, 0, 0, N, N);
+	if (rc == 0)
+		rc = contour_write_meta(w, g, levels, NLEVELS, &st, NULL);
+	if (rc == 0)
+		rc = meta_end_page(w);
+	if (rc < 0)
+		fprintf(stderr, "bench_contour: %s: %s\n", path,
+		        *contour_error() ? contour_error() : w ? meta_writer_error(w) : "out of memory");
+	int rc2 = w ? meta_writer_close(w) : 0;
+	if (fclose(f) != 0 || rc2 < 0 || rc < 0) {
+		if (rc >= 0)
+			fprintf(stderr, "bench_contour: %s: write failed\n", path);
+		remove(tmp);
+		return 74;
+	}
+	if (rename(tmp, path) != 0) {
+		fprintf(stderr, "bench_contour: %s: %s\n", path, strerror(errno));
+		remove(tmp);
+		return 74;
+	}
+	return 0;
+}
+
+int main(int argc, char **argv)
+{
+	int runs = 7;
+	const char *out = NULL;
+	for (int a = 1; a < argc; a++) {
+		if (!strcmp(argv[a], "--help")) {
+			printf("usage: bench_contour [-n RUNS] [-o FILE.meta]\n"
+			       "Times contour extraction of a 1024x1024 3-point distance sum, 19 levels.\n");
+			return 0;
+		} else if (!strcmp(argv[a], "--version")) {
+			printf("bench_contour %s\n", LOCUS_VERSION);
+			return 0;
+		} else if (!strcmp(argv[a], "-n") && a + 1 < argc) {
+			runs = atoi(argv[++a]);
+			if (runs < 1 || runs > 1000) {
+				fprintf(stderr, "bench_contour: -n wants 1..1000\n");
+				return 64;
+			}
+		} else if (!strcmp(argv[a], "-o") && a + 1 < argc) {
+			out = argv[++a];
+		} else {
+			fprintf(stderr, "bench_contour: unknown argument '%s' (try --help)\n", argv[a]);
+			return 64;
+		}
+	}
+	float *z = malloc((size_t)N * N * sizeof *z);
+	double levels[NLEVELS], *t = malloc(runs * sizeof *t);
+	if (!z || !t) {
+		fprintf(stderr, "bench_contour: out of memory\n");
+		return 70;
+	}
+	static const double px[3] = { -1, 1, 0 }, py[3] = { 0, 0, 1.2 };
+	for (int j = 0; j < N; j++)
+		for (int i = 0; i < N; i++) {
+			double x = -3 + 6.0 * i / (N - 1), y = -3 + 6.0 * j / (N - 1), s = 0;
+			for (int k = 0; k < 3; k++)
+				s += hypot(x - px[k], y - py[k]);
+			z[(size_t)j * N + i] = (float)s;
+		}
+	for (int l = 0; l < NLEVELS; l++)
+		levels[l] = 3.0 + 0.5 * l;
+	contour_grid_t g = { z, N, N, { 0 } };
+	contour_map_rect(g.m, N, N, 0.5, 0.5, N - 0.5, N - 0.5);
+	contour_stats_t st = { 0 };
+	size_t sum[2] = { 0, 0 };
+	for (int r = 0; r < runs; r++) {
+		sum[0] = sum[1] = 0;
+		double t0 = now();
+		int rc = contour_extract(&g, levels, NLEVELS, count_cb, sum, &st);
+		t[r] = now() - t0;
+		if (rc < 0) {
+			fprintf(stderr, "bench_contour: %s\n", contour_error());
+			return 70;
+		}
+	}
+	qsort(t, runs, sizeof *t, cmp);
+	double med = t[runs / 2];
+	printf("contour 1024x1024, 19 levels: %.4f s (median of %d, best %.4f), %zu segments, "
+	       "%zu polylines (%zu closed), %zu points\n",
+	       med, runs, t[0], st.segments, st.polylines, st.closed, st.points);
+	printf("BENCH contour-locus %.6f s segments=%zu polylines=%zu\n", med, sum[0], st.polylines);
+	int rc = out ? write_meta(out, &g, levels) : 0;
+	free(z);
+	free(t);
+	return rc;
+}
