@@ -126,6 +126,9 @@ meta_reader_t *meta_reader_new(meta_read_fn fn, void *user, const char *name);
 /* Convenience: open a path ("-" = stdin). On failure returns NULL and, if
  * err is non-NULL, copies a message into err (errlen bytes). */
 meta_reader_t *meta_reader_open(const char *path, char *err, size_t errlen);
+/* Convenience: read from a memory buffer (not copied; it must outlive the
+ * reader). name is used in messages (NULL: "<memory>"). NULL if out of memory. */
+meta_reader_t *meta_reader_mem(const void *data, size_t len, const char *name);
 /* Free the reader (closes a file opened by meta_reader_open). */
 void meta_reader_free(meta_reader_t *r);
 
@@ -147,7 +150,8 @@ uint64_t meta_reader_position(const meta_reader_t *r);
 
 typedef struct meta_writer meta_writer_t;
 
-enum { META_TEXT = 0, META_BINARY = 1 };
+/* Encodings for meta_writer_new (META_TEXT is the op of the "text" statement). */
+enum { META_ENC_TEXT = 0, META_ENC_BINARY = 1 };
 
 /* Create a writer of the given encoding; the header is written on the first
  * statement. Returns NULL only when out of memory. */
@@ -155,7 +159,9 @@ meta_writer_t *meta_writer_new(meta_write_fn fn, void *user, int encoding);
 /* Write one statement exactly as given (no state elision), validating it.
  * Returns 0 or <0 (see meta_writer_error). */
 int meta_write(meta_writer_t *w, const meta_cmd_t *cmd);
-/* Flush buffered output and free the writer. Returns <0 if the final flush failed. */
+/* Flush buffered output and free the writer. Returns <0 if the final flush
+ * failed (META_EIO) or the output is incomplete (META_ESTATE: a page or path
+ * left open, or no page at all after something was written). */
 int meta_writer_close(meta_writer_t *w);
 const char *meta_writer_error(const meta_writer_t *w);
 
@@ -173,6 +179,7 @@ int meta_dash(meta_writer_t *w, const double *lengths, size_t n);
 int meta_cap(meta_writer_t *w, int cap);
 int meta_join(meta_writer_t *w, int join);
 int meta_fill_rule(meta_writer_t *w, int rule);
+int meta_miter_limit(meta_writer_t *w, double limit);
 int meta_stroke(meta_writer_t *w);          /* begin a stroked path */
 int meta_fill(meta_writer_t *w);            /* begin a filled path */
 int meta_move(meta_writer_t *w, double x, double y);

@@ -1,0 +1,362 @@
+/* locus-meta.c: check, format, describe and convert Locus meta-language files. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "locus_meta.h"
+
+#define EX_USAGE 64
+#define EX_DATAERR 65
+#define EX_NOINPUT 66
+#define EX_IOERR 74
+#define MAX_COLOURS 1024 /* info: distinct colours counted before saying "more than" */
+
+static const char usage_text[] =
+	"usage: locus-meta check FILE\n"
+	"       locus-meta fmt [IN] [-o OUT]\n"
+	"       locus-meta info FILE\n"
+	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
+	"Check, canonically format, describe or convert a Locus meta-language file\n"
+	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
+	"file is written as OUT.tmp and renamed only when the whole input was valid.\n"
+	"Exit status: 0 ok, 64 usage, 65 invalid input (one line names file and\n"
+	"place), 66 cannot open input, 74 I/O error.\n";
+
+static int usage(const char *msg)
+{
+	if (msg)
+		fprintf(stderr, "locus-meta: %s\n", msg);
+	fputs(usage_text, stderr);
+	return EX_USAGE;
+}
+
+/* Map a reader/writer error code to an exit status. */
+static int status_of(int rc)
+{
+	return rc == META_EIO ? EX_IOERR : rc == META_ENOMEM ? 71 : EX_DATAERR;
+}
+
+static meta_reader_t *open_in(const char *path, int *status)
+{
+	char err[512];
+	meta_reader_t *r = meta_reader_open(path, err, sizeof err);
+	if (!r) {
+		fprintf(stderr, "%s\n", err);
+		*status = EX_NOINPUT;
+	}
+	return r;
+}
+
+/* ---- Output file: OUT.tmp renamed on success --------------------------- */
+
+typedef struct {
+	int fd;
+	const char *path; /* NULL for stdout */
+	char tmp[4096];
+} out_t;
+
+static int fd_write(void *user, const void *buf, size_t n)
+{
+	out_t *o = user;
+	const char *p = buf;
+	while (n) {
+		ssize_t k = write(o->fd, p, n);
+		if (k < 0 && errno == EINTR)
+			continue;
+		if (k <= 0)
+			return -1;
+		p += k;
+		n -= (size_t)k;
+	}
+	return 0;
+}
+
+static int out_open(out_t *o, const char *path)
+{
+	if (!path || strcmp(path, "-") == 0) {
+		o->fd = 1;
+		o->path = NULL;
+		return 0;
+	}
+	o->path = path;
+	if (snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path) >= (int)sizeof o->tmp) {
+		fprintf(stderr, "%s: output path too long\n", path);
+		return EX_USAGE;
+	}
+	o->fd = open(o->tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+	if (o->fd < 0) {
+		fprintf(stderr, "%s: cannot create: %s\n", o->tmp, strerror(errno));
+		return EX_IOERR;
+	}
+	return 0;
+}
+
+/* Finish the output: rename on success (status 0), remove the temporary otherwise. */
+static int out_close(out_t *o, int status)
+{
+	if (!o->path)
+		return status;
+	if (close(o->fd) < 0 && status == 0) {
+		fprintf(stderr, "%s: %s\n", o->tmp, strerror(errno));
+		status = EX_IOERR;
+	}
+	if (status == 0 && rename(o->tmp, o->path) < 0) {
+		fprintf(stderr, "%s: cannot rename to %s: %s\n", o->tmp, o->path, strerror(errno));
+		status = EX_IOERR;
+	}
+	if (status != 0)
+		unlink(o->tmp);
+	return status;
+}
+
+/* ---- Subcommands -------------------------------------------------------- */
+
+static int cmd_check(const char *path)
+{
+	meta_cmd_t c;
+	int rc, status = 0;
+	meta_reader_t *r = open_in(path, &status);
+	if (!r)
+		return status;
+	while ((rc = meta_read(r, &c)) > 0)
+		;
+	if (rc < 0) {
+		fprintf(stderr, "%s\n", meta_reader_error(r));
+		status = status_of(rc);
+	}
+	meta_reader_free(r);
+	return status;
+}
+
+/* Copy IN to OUT in the given encoding (-1: the other one than IN's). */
+static int cmd_copy(const char *in, const char *outpath, int enc)
+{
+	meta_cmd_t c;
+	meta_writer_t *w = NULL;
+	out_t o;
+	int rc, status = 0;
+	meta_reader_t *r = open_in(in, &status);
+	if (!r)
+		return status;
+	if ((status = out_open(&o, outpath)) != 0) {
+		meta_reader_free(r);
+		return status;
+	}
+	while ((rc = meta_read(r, &c)) > 0) {
+		if (!w) {
+			if (enc < 0)
+				enc = meta_reader_is_binary(r) ? META_ENC_TEXT : META_ENC_BINARY;
+			w = meta_writer_new(fd_write, &o, enc);
+			if (!w) {
+				rc = META_ENOMEM;
+				break;
+			}
+		}
+		if ((rc = meta_write(w, &c)) < 0) {
+			fprintf(stderr, "%s: %s\n", o.path ? o.tmp : "<stdout>", meta_writer_error(w));
+			status = status_of(rc);
+			break;
+		}
+	}
+	if (rc < 0 && !status) {
+		fprintf(stderr, "%s\n", rc == META_ENOMEM && !w ? "locus-meta: out of memory" : meta_reader_error(r));
+		status = status_of(rc);
+	}
+	if (w && (rc = meta_writer_close(w)) < 0 && !status) {
+		fprintf(stderr, "%s: write error\n", o.path ? o.tmp : "<stdout>");
+		status = EX_IOERR;
+	}
+	meta_reader_free(r);
+	return out_close(&o, status);
+}
+
+typedef struct {
+	meta_rgb_t set[2 * MAX_COLOURS]; /* open addressing; 0xffffffff = empty */
+	size_t n;
+	int overflow;
+} colours_t;
+
+static void colour_add(colours_t *s, meta_rgb_t c)
+{
+	size_t h = (c * 2654435761u) % (2 * MAX_COLOURS);
+	while (s->set[h] != 0xffffffffu) {
+		if (s->set[h] == c)
+			return;
+		h = (h + 1) % (2 * MAX_COLOURS);
+	}
+	if (s->n == MAX_COLOURS) {
+		s->overflow = 1;
+		return;
+	}
+	s->set[h] = c;
+	s->n++;
+}
+
+static int cmp_rgb(const void *a, const void *b)
+{
+	meta_rgb_t x = *(const meta_rgb_t *)a, y = *(const meta_rgb_t *)b;
+	return x < y ? -1 : x > y;
+}
+
+typedef struct {
+	double x0, y0, x1, y1;
+	int any;
+} box_t;
+
+static void box_add(box_t *b, double x0, double y0, double x1, double y1)
+{
+	if (!b->any || x0 < b->x0) b->x0 = x0;
+	if (!b->any || y0 < b->y0) b->y0 = y0;
+	if (!b->any || x1 > b->x1) b->x1 = x1;
+	if (!b->any || y1 > b->y1) b->y1 = y1;
+	b->any = 1;
+}
+
+static void print_page(unsigned page, const meta_cmd_t *pg, const meta_fix_t *size, unsigned long long nst, const box_t *b)
+{
+	char w[16], h[16];
+	printf("page %u: %u x %u px", page, pg->u[0], pg->u[1]);
+	if (size[0]) {
+		meta_fix_format(size[0], w);
+		meta_fix_format(size[1], h);
+		printf(", %s x %s mm", w, h);
+	}
+	printf(", %llu statements", nst);
+	if (b->any)
+		printf(", geometry bounds x %.3f .. %.3f, y %.3f .. %.3f", b->x0, b->x1, b->y0, b->y1);
+	else
+		printf(", no geometry");
+	printf("\n");
+}
+
+static int cmd_info(const char *path)
+{
+	static colours_t cs;
+	unsigned long long count[META_OP_COUNT] = { 0 }, nst = 0;
+	meta_cmd_t c, pg;
+	meta_fix_t size[2] = { 0, 0 };
+	box_t box = { 0, 0, 0, 0, 0 };
+	unsigned pages = 0, imgx = 0, imgy = 0, imgw = 0, imgrow = 0, imgh = 0;
+	int rc, status = 0, i;
+	size_t k;
+	meta_reader_t *r = open_in(path, &status);
+	if (!r)
+		return status;
+	memset(cs.set, 0xff, sizeof cs.set);
+	memset(&pg, 0, sizeof pg);
+	while ((rc = meta_read(r, &c)) > 0) {
+		double f0 = c.f[0] / 1000.0, f1 = c.f[1] / 1000.0, f2 = c.f[2] / 1000.0;
+		count[c.op]++;
+		nst++;
+		switch (c.op) {
+		case META_PAGE:
+			if (!pages++)
+				printf("%s: %s encoding\n", path, meta_reader_is_binary(r) ? "binary" : "text");
+			pg = c;
+			size[0] = size[1] = 0;
+			memset(&box, 0, sizeof box);
+			nst = 1;
+			break;
+		case META_SIZE: size[0] = c.f[0]; size[1] = c.f[1]; break;
+		case META_END_PAGE: print_page(pages, &pg, size, nst, &box); break;
+		case META_CLEAR: case META_COLOUR: colour_add(&cs, c.rgb); break;
+		case META_MOVE: case META_DRAW: box_add(&box, f0, f1, f0, f1); break;
+		case META_ARC: case META_CIRCLE: box_add(&box, f0 - f2, f1 - f2, f0 + f2, f1 + f2); break;
+		case META_TEXT: box_add(&box, f0, f1, f0, f1); break;
+		case META_SPAN:
+			colour_add(&cs, c.rgb);
+			box_add(&box, c.u[0], c.u[1], (double)c.u[0] + c.u[2], c.u[1] + 1.0);
+			break;
+		case META_IMAGE:
+			imgx = c.u[0], imgy = c.u[1], imgw = c.u[2], imgh = c.u[3], imgrow = 0;
+			box_add(&box, imgx, imgy, (double)imgx + imgw, (double)imgy + imgh);
+			break;
+		case META_ROW:
+			for (k = 0; k < c.nruns; k++)
+				colour_add(&cs, c.runs[k].rgb);
+			imgrow++;
+			break;
+		default: break;
+		}
+	}
+	(void)imgrow;
+	if (rc < 0) {
+		fflush(stdout);
+		fprintf(stderr, "%s\n", meta_reader_error(r));
+		meta_reader_free(r);
+		return status_of(rc);
+	}
+	printf("pages: %u\nstatements:", pages);
+	for (i = 0; i < META_OP_COUNT; i++)
+		if (count[i])
+			printf(" %s %llu", meta_op_name((meta_op_t)i), count[i]);
+	printf("\n");
+	if (cs.overflow) {
+		printf("colours: more than %d distinct\n", MAX_COLOURS);
+	} else {
+		meta_rgb_t list[MAX_COLOURS];
+		size_t n = 0;
+		for (k = 0; k < 2 * MAX_COLOURS; k++)
+			if (cs.set[k] != 0xffffffffu)
+				list[n++] = cs.set[k];
+		qsort(list, n, sizeof *list, cmp_rgb);
+		printf("colours: %zu distinct", n);
+		for (k = 0; k < n && k < 32; k++)
+			printf(" #%06x", list[k]);
+		printf("%s\n", n > 32 ? " ..." : "");
+	}
+	meta_reader_free(r);
+	return fflush(stdout) == 0 ? 0 : EX_IOERR;
+}
+
+int main(int argc, char **argv)
+{
+	const char *in = NULL, *out = NULL, *sub;
+	int enc = -1, i;
+	if (argc >= 2 && strcmp(argv[1], "--help") == 0) {
+		fputs(usage_text, stdout);
+		return 0;
+	}
+	if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
+		printf("locus-meta %s (meta-language version %d)\n", LOCUS_VERSION, META_VERSION);
+		return 0;
+	}
+	if (argc < 2)
+		return usage("missing subcommand");
+	sub = argv[1];
+	for (i = 2; i < argc; i++) {
+		const char *a = argv[i];
+		if (strcmp(a, "--help") == 0) {
+			fputs(usage_text, stdout);
+			return 0;
+		} else if (strcmp(a, "-o") == 0) {
+			if (++i >= argc)
+				return usage("-o needs a file name");
+			out = argv[i];
+		} else if (strcmp(a, "--text") == 0 || strcmp(a, "--binary") == 0) {
+			if (strcmp(sub, "convert") != 0)
+				return usage("--text and --binary belong to 'convert'");
+			enc = a[2] == 't' ? META_ENC_TEXT : META_ENC_BINARY;
+		} else if (a[0] == '-' && a[1]) {
+			fprintf(stderr, "locus-meta: unknown option '%s'\n", a);
+			return usage(NULL);
+		} else if (!in) {
+			in = a;
+		} else {
+			return usage("too many file names");
+		}
+	}
+	if (strcmp(sub, "check") == 0 || strcmp(sub, "info") == 0) {
+		if (!in || out)
+			return usage(out ? "-o does not apply here" : "missing FILE");
+		return sub[0] == 'c' ? cmd_check(in) : cmd_info(in);
+	}
+	if (strcmp(sub, "fmt") == 0)
+		return cmd_copy(in ? in : "-", out, META_ENC_TEXT);
+	if (strcmp(sub, "convert") == 0)
+		return cmd_copy(in ? in : "-", out, enc);
+	fprintf(stderr, "locus-meta: unknown subcommand '%s'\n", sub);
+	return usage(NULL);
+}

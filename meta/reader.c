@@ -1,0 +1,217 @@
+/* reader.c: the streaming reader: buffered input over a callback, encoding detection, validation, errors. */
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "meta_int.h"
+
+static long fd_read(void *user, void *buf, size_t n)
+{
+	int fd = *(int *)user;
+	for (;;) {
+		ssize_t k = read(fd, buf, n);
+		if (k >= 0 || errno != EINTR)
+			return (long)k;
+	}
+}
+
+static meta_reader_t *reader_alloc(const char *name)
+{
+	meta_reader_t *r = calloc(1, sizeof *r);
+	if (!r)
+		return NULL;
+	r->fd = -1;
+	r->str = malloc(META_MAX_STRING + 1);
+	if (!r->str) {
+		free(r);
+		return NULL;
+	}
+	if (!name || strcmp(name, "-") == 0)
+		name = "<stdin>";
+	meta_fmt(r->name, sizeof r->name, "%s", name);
+	return r;
+}
+
+meta_reader_t *meta_reader_new(meta_read_fn fn, void *user, const char *name)
+{
+	meta_reader_t *r = reader_alloc(name);
+	if (!r)
+		return NULL;
+	r->fn = fn;
+	r->user = user;
+	r->cap = META_READ_CHUNK;
+	r->buf = malloc(r->cap);
+	if (!r->buf) {
+		meta_reader_free(r);
+		return NULL;
+	}
+	return r;
+}
+
+meta_reader_t *meta_reader_mem(const void *data, size_t len, const char *name)
+{
+	meta_reader_t *r = reader_alloc(name ? name : "<memory>");
+	if (!r)
+		return NULL;
+	r->mem = data ? data : (const unsigned char *)"";
+	r->buf = (unsigned char *)r->mem; /* never written: fill does not move memory input */
+	r->cap = r->end = data ? len : 0;
+	r->eof = 1;
+	return r;
+}
+
+meta_reader_t *meta_reader_open(const char *path, char *err, size_t errlen)
+{
+	meta_reader_t *r;
+	int fd = 0;
+	if (strcmp(path, "-") != 0) {
+		fd = open(path, O_RDONLY);
+		if (fd < 0) {
+			if (err && errlen)
+				meta_fmt(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+			return NULL;
+		}
+	}
+	r = meta_reader_new(fd_read, NULL, path);
+	if (!r) {
+		if (fd > 0)
+			close(fd);
+		if (err && errlen)
+			meta_fmt(err, errlen, "%s: out of memory", path);
+		return NULL;
+	}
+	r->fd = fd;
+	r->user = &r->fd;
+	return r;
+}
+
+void meta_reader_free(meta_reader_t *r)
+{
+	if (!r)
+		return;
+	if (r->fd > 0)
+		close(r->fd);
+	if (!r->mem)
+		free(r->buf);
+	free(r->runs);
+	free(r->str);
+	free(r);
+}
+
+long meta_rd_fill(meta_reader_t *r)
+{
+	long k;
+	if (r->eof || r->mem)
+		return 0;
+	if (r->pos) {
+		memmove(r->buf, r->buf + r->pos, r->end - r->pos);
+		r->base += r->pos;
+		r->end -= r->pos;
+		r->pos = 0;
+	}
+	if (r->end == r->cap) {
+		size_t ncap = r->cap * 2;
+		unsigned char *nb;
+		if (ncap > 2 * (size_t)META_MAX_LINE + META_READ_CHUNK)
+			return 0; /* callers bound what they ask for; never reached */
+		nb = realloc(r->buf, ncap);
+		if (!nb)
+			return meta_rd_fail(r, META_ENOMEM, r->binary ? r->base + r->end : 1, "out of memory");
+		r->buf = nb;
+		r->cap = ncap;
+	}
+	k = r->fn(r->user, r->buf + r->end, r->cap - r->end);
+	if (k < 0)
+		return meta_rd_fail(r, META_EIO, r->binary ? r->base + r->end : 1, "read error: %s",
+		                    errno ? strerror(errno) : "callback failed");
+	if (k == 0)
+		r->eof = 1;
+	r->end += (size_t)k;
+	return k;
+}
+
+int meta_rd_fail(meta_reader_t *r, int code, uint64_t where, const char *fmt, ...)
+{
+	char msg[480];
+	va_list ap;
+	va_start(ap, fmt);
+	if (vsnprintf(msg, sizeof msg, fmt, ap) < 0)
+		msg[0] = 0;
+	va_end(ap);
+	if (r->binary)
+		meta_fmt(r->err, sizeof r->err, "%s: byte %llu: %s", r->name, (unsigned long long)where, msg);
+	else
+		meta_fmt(r->err, sizeof r->err, "%s:%llu:%llu: %s", r->name, (unsigned long long)r->line,
+		         (unsigned long long)where, msg);
+	r->state = code;
+	return code;
+}
+
+int meta_rd_runs(meta_reader_t *r, size_t n, uint64_t where)
+{
+	size_t ncap;
+	meta_run_t *nr;
+	if (n <= r->runs_cap)
+		return 0;
+	ncap = r->runs_cap ? r->runs_cap : 64;
+	while (ncap < n)
+		ncap *= 2;
+	nr = realloc(r->runs, ncap * sizeof *nr);
+	if (!nr)
+		return meta_rd_fail(r, META_ENOMEM, where, "out of memory");
+	r->runs = nr;
+	r->runs_cap = ncap;
+	return 0;
+}
+
+static int start(meta_reader_t *r)
+{
+	while (r->end - r->pos < 1 && !r->eof)
+		if (meta_rd_fill(r) < 0)
+			return r->state;
+	r->binary = r->end > r->pos && r->buf[r->pos] == meta_magic[0];
+	r->state = 1;
+	return r->binary ? meta_binary_header(r) : meta_text_header(r);
+}
+
+int meta_read(meta_reader_t *r, meta_cmd_t *cmd)
+{
+	char msg[400];
+	int rc, where;
+	if (r->state < 0)
+		return r->state;
+	if (r->state == 2)
+		return 0;
+	if (r->state == 0 && (rc = start(r)) < 0)
+		return rc;
+	rc = r->binary ? meta_read_binary(r, cmd) : meta_read_text(r, cmd);
+	if (rc < 0)
+		return rc;
+	if (rc == 0) {
+		if (meta_check_eof(&r->chk, msg, sizeof msg))
+			return meta_rd_fail(r, META_ESTATE, r->binary ? r->base + r->end : 1, "%s", msg);
+		r->state = 2;
+		return 0;
+	}
+	rc = meta_check_cmd(&r->chk, cmd, &where, msg, sizeof msg);
+	if (rc)
+		return meta_rd_fail(r, rc, where < 0 ? r->opos[7] : r->opos[where], "%s", msg);
+	return 1;
+}
+
+const char *meta_reader_error(const meta_reader_t *r)
+{
+	return r->state < 0 ? r->err : "";
+}
+
+int meta_reader_is_binary(const meta_reader_t *r)
+{
+	return r->binary;
+}
+
+uint64_t meta_reader_position(const meta_reader_t *r)
+{
+	return r->stmt_pos;
+}
