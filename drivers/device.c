@@ -1,0 +1,368 @@
+/* device.c: device instances, the meta replay loop dev_play(), and defaults for vector devices. */
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "device.h"
+#include "render.h"
+
+#define DEFAULT_BUDGET ((size_t)64 << 20)
+
+dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out)
+{
+	dev_device_t *d = calloc(1, sizeof *d);
+	if (!d)
+		return NULL;
+	d->ops = ops;
+	d->out = out;
+	d->mem_budget = DEFAULT_BUDGET;
+	if (ops->priv_size && !(d->priv = calloc(1, ops->priv_size))) {
+		free(d);
+		return NULL;
+	}
+	return d;
+}
+
+void dev_free(dev_device_t *d)
+{
+	if (!d)
+		return;
+	free(d->priv);
+	free(d);
+}
+
+int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(d->err, sizeof d->err, fmt, ap);
+	va_end(ap);
+	return code;
+}
+
+const char *dev_error(const dev_device_t *d)
+{
+	return d->err;
+}
+
+/* Everything one replay needs. */
+typedef struct {
+	meta_reader_t *rd;
+	dev_device_t *d;
+	dev_page_t page;
+	dev_state_t st;
+	int in_page, path_kind;          /* path_kind: 0, META_STROKE or META_FILL */
+	scan_path_t path;
+	dev_elem_t *elems;
+	size_t nelems, cap_elems;
+	dev_render_t *rr;                /* raster devices */
+	unsigned img_x, img_y, img_h, img_row;   /* current image */
+} play_t;
+
+static void default_state(dev_state_t *s)
+{
+	memset(s, 0, sizeof *s);
+	s->colour = 0x000000;
+	s->width = 1000;
+	s->cap = META_CAP_BUTT;
+	s->join = META_JOIN_MITER;
+	s->miter_limit = 10000;
+	s->rule = META_RULE_NON_ZERO;
+}
+
+static void style_of(const dev_state_t *s, scan_style_t *st, int text)
+{
+	st->width = s->width;
+	st->cap = text ? META_CAP_ROUND : s->cap;
+	st->join = text ? META_JOIN_ROUND : s->join;
+	st->miter_limit = s->miter_limit;
+	st->dash = text ? NULL : s->dash;
+	st->ndash = text ? 0 : s->ndash;
+}
+
+static int is_raster(const dev_device_t *d)
+{
+	return (d->ops->caps & DEV_CAP_RASTER) != 0;
+}
+
+static int emit_band(void *user, const dev_band_t *b)
+{
+	dev_device_t *d = user;
+	if (!d->ops->write_band)
+		return 0;
+	return d->ops->write_band(d, b);
+}
+
+static int nomem(play_t *p)
+{
+	return dev_fail(p->d, META_ENOMEM, "out of memory");
+}
+
+/* A filled rectangle of pixels for vector devices without put_span. */
+static int rect_path(play_t *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, meta_rgb_t rgb)
+{
+	scan_path_t r = { 0 };
+	int rc = 0;
+	if (scan_path_move(&r, x0, y0) || scan_path_draw(&r, x1, y0) || scan_path_draw(&r, x1, y1) ||
+			scan_path_draw(&r, x0, y1)) {
+		scan_path_free(&r);
+		return nomem(p);
+	}
+	dev_state_t s = p->st;
+	s.colour = rgb;
+	s.rule = META_RULE_NON_ZERO;
+	dev_path_t dp = { &r, NULL, 0 };
+	if (p->d->ops->fill_path)
+		rc = p->d->ops->fill_path(p->d, &dp, &s);
+	scan_path_free(&r);
+	return rc;
+}
+
+static int do_span(play_t *p, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+{
+	if (is_raster(p->d))
+		return dev_render_span(p->rr, x, y, n, rgb);
+	if (x >= p->page.width || y >= p->page.height)
+		return 0;
+	if (x + n > p->page.width)
+		n = p->page.width - x;
+	if (p->d->ops->put_span)
+		return p->d->ops->put_span(p->d, (unsigned)x, (unsigned)y, (unsigned)n, rgb);
+	return rect_path(p, x * 1000, y * 1000, (x + n) * 1000, (y + 1) * 1000, rgb);
+}
+
+static int do_row(play_t *p, const meta_cmd_t *c)
+{
+	int64_t y = (int64_t)p->img_y + p->img_h - 1 - p->img_row++;
+	if (is_raster(p->d))
+		return dev_render_row(p->rr, p->img_x, y, c->runs, c->nruns);
+	if (p->d->ops->put_image_row)
+		return y < p->page.height ? p->d->ops->put_image_row(p->d, p->img_x, (unsigned)y, c->runs, c->nruns) : 0;
+	int64_t x = p->img_x;
+	for (size_t k = 0; k < c->nruns; k++) {
+		int rc = do_span(p, x, y, c->runs[k].count, c->runs[k].rgb);
+		if (rc)
+			return rc;
+		x += c->runs[k].count;
+	}
+	return 0;
+}
+
+static int path_elem(play_t *p, const meta_cmd_t *c)
+{
+	if (p->nelems == p->cap_elems) {
+		size_t n = p->cap_elems ? p->cap_elems * 2 : 64;
+		dev_elem_t *e = realloc(p->elems, n * sizeof *e);
+		if (!e)
+			return nomem(p);
+		p->elems = e;
+		p->cap_elems = n;
+	}
+	dev_elem_t *e = &p->elems[p->nelems++];
+	e->op = c->op;
+	memcpy(e->f, c->f, sizeof e->f);
+	int rc = 0;
+	switch (c->op) {
+	case META_MOVE: rc = scan_path_move(&p->path, c->f[0], c->f[1]); break;
+	case META_DRAW:
+		if (!scan_path_has_current(&p->path))
+			return dev_fail(p->d, META_ESTATE, "draw without a current point");
+		rc = scan_path_draw(&p->path, c->f[0], c->f[1]);
+		break;
+	case META_ARC: rc = scan_path_arc(&p->path, c->f[0], c->f[1], c->f[2], c->f[3], c->f[4]); break;
+	case META_CIRCLE: rc = scan_path_circle(&p->path, c->f[0], c->f[1], c->f[2]); break;
+	case META_CLOSE: rc = scan_path_close(&p->path); break;
+	default: break;
+	}
+	return rc ? nomem(p) : 0;
+}
+
+static int paint_path(play_t *p, int kind, int text)
+{
+	dev_device_t *d = p->d;
+	int rc = 0;
+	if (p->path.npts == 0)
+		return 0;
+	if (is_raster(d)) {
+		scan_style_t st;
+		style_of(&p->st, &st, text);
+		rc = kind == META_FILL ? dev_render_fill(p->rr, &p->path, p->st.rule, p->st.colour)
+			: dev_render_stroke(p->rr, &p->path, &st, p->st.colour);
+		return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
+	}
+	dev_path_t dp = { &p->path, p->elems, p->nelems };
+	if (kind == META_FILL)
+		return d->ops->fill_path ? d->ops->fill_path(d, &dp, &p->st) : 0;
+	if (!d->ops->stroke_path)
+		return 0;
+	if (text) {
+		dev_state_t s = p->st;
+		s.cap = META_CAP_ROUND;
+		s.join = META_JOIN_ROUND;
+		s.ndash = 0;
+		return d->ops->stroke_path(d, &dp, &s);
+	}
+	return d->ops->stroke_path(d, &dp, &p->st);
+}
+
+static int do_text(play_t *p, const meta_cmd_t *c)
+{
+	if (!is_raster(p->d) && (p->d->ops->caps & DEV_CAP_TEXT) && p->d->ops->text) {
+		dev_text_t t = { c->f[0], c->f[1], c->f[2], c->f[3], c->str, c->len };
+		return p->d->ops->text(p->d, &t, &p->st);
+	}
+	scan_path_reset(&p->path);
+	p->nelems = 0;
+	if (scan_text_path(&p->path, c->str, c->len, c->f[0], c->f[1], c->f[2], c->f[3]))
+		return nomem(p);
+	return paint_path(p, META_STROKE, 1);
+}
+
+static int begin_page(play_t *p, const meta_cmd_t *c)
+{
+	dev_device_t *d = p->d;
+	memset(&p->page, 0, sizeof p->page);
+	p->page.width = c->u[0];
+	p->page.height = c->u[1];
+	p->page.index = d->pages;
+	default_state(&p->st);
+	p->in_page = 1;
+	if (is_raster(d)) {
+		char err[256];
+		p->rr = dev_render_new(p->page.width, p->page.height, d->band_rows, d->mem_budget, err, sizeof err);
+		if (!p->rr)
+			return dev_fail(d, META_ENOMEM, "%s", err);
+		d->bands = dev_render_bands(p->rr);
+	}
+	return 0;
+}
+
+/* begin_page of the device is deferred to the first statement after `page` so that `size`
+ * is known to it. */
+static int device_page(play_t *p)
+{
+	if (p->in_page != 1)
+		return 0;
+	p->in_page = 2;
+	if (p->d->on_page) {
+		int rc = p->d->on_page(p->d, &p->page, 0);
+		if (rc)
+			return rc;
+	}
+	return p->d->ops->begin_page ? p->d->ops->begin_page(p->d, &p->page) : 0;
+}
+
+static int end_page(play_t *p)
+{
+	dev_device_t *d = p->d;
+	int rc = device_page(p);
+	if (!rc && is_raster(d)) {
+		rc = dev_render_finish(p->rr, emit_band, d);
+		if (rc && !d->err[0])
+			dev_fail(d, rc, "rendering failed (spool I/O)");
+		dev_render_free(p->rr);
+		p->rr = NULL;
+	}
+	if (!rc && d->ops->end_page)
+		rc = d->ops->end_page(d, &p->page);
+	if (!rc && d->on_page)
+		rc = d->on_page(d, &p->page, 1);
+	p->in_page = 0;
+	d->pages++;
+	return rc;
+}
+
+static int statement(play_t *p, const meta_cmd_t *c)
+{
+	dev_state_t *s = &p->st;
+	if (c->op == META_PAGE)
+		return begin_page(p, c);
+	if (c->op == META_SIZE) {
+		p->page.has_size = 1;
+		p->page.width_mm = c->f[0];
+		p->page.height_mm = c->f[1];
+		return 0;
+	}
+	if (c->op == META_COMMENT)
+		return 0;
+	int rc = device_page(p);
+	if (rc)
+		return rc;
+	switch (c->op) {
+	case META_CLEAR:
+		if (is_raster(p->d))
+			return dev_render_clear(p->rr, c->rgb) ? nomem(p) : 0;
+		if (p->d->ops->clear)
+			return p->d->ops->clear(p->d, c->rgb);
+		return rect_path(p, 0, 0, (int64_t)p->page.width * 1000, (int64_t)p->page.height * 1000, c->rgb);
+	case META_END_PAGE: return end_page(p);
+	case META_COLOUR: s->colour = c->rgb; return 0;
+	case META_WIDTH: s->width = c->f[0]; return 0;
+	case META_DASH:
+		s->ndash = 0;
+		for (int rep = 0; rep < (c->nlist % 2 ? 2 : 1); rep++)
+			for (size_t k = 0; k < c->nlist; k++)
+				s->dash[s->ndash++] = c->list[k];
+		return 0;
+	case META_CAP: s->cap = c->k; return 0;
+	case META_JOIN: s->join = c->k; return 0;
+	case META_FILL_RULE: s->rule = c->k; return 0;
+	case META_MITER_LIMIT: s->miter_limit = c->f[0]; return 0;
+	case META_STROKE:
+	case META_FILL:
+		p->path_kind = c->op;
+		scan_path_reset(&p->path);
+		p->nelems = 0;
+		return 0;
+	case META_MOVE: case META_DRAW: case META_ARC: case META_CIRCLE: case META_CLOSE:
+		return path_elem(p, c);
+	case META_END:
+		rc = paint_path(p, p->path_kind, 0);
+		p->path_kind = 0;
+		return rc;
+	case META_TEXT: return do_text(p, c);
+	case META_SPAN: return do_span(p, c->u[0], c->u[1], c->u[2], c->rgb);
+	case META_IMAGE:
+		p->img_x = c->u[0];
+		p->img_y = c->u[1];
+		p->img_h = c->u[3];
+		p->img_row = 0;
+		return 0;
+	case META_ROW: return do_row(p, c);
+	default: return 0;
+	}
+}
+
+int dev_play(meta_reader_t *r, dev_device_t *d)
+{
+	play_t p;
+	memset(&p, 0, sizeof p);
+	p.rd = r;
+	p.d = d;
+	d->err[0] = 0;
+	int rc = d->ops->open ? d->ops->open(d) : 0;
+	meta_cmd_t c;
+	while (rc == 0) {
+		int k = meta_read(r, &c);
+		if (k < 0) {
+			rc = dev_fail(d, k, "%s", meta_reader_error(r));
+			break;
+		}
+		if (k == 0)
+			break;
+		rc = statement(&p, &c);
+		if (rc && !d->err[0])
+			dev_fail(d, rc, "device error");
+	}
+	if (rc == 0 && p.in_page)
+		rc = dev_fail(d, META_ESTATE, "input ended inside a page");
+	if (d->ops->close) {
+		int c2 = d->ops->close(d);
+		if (rc == 0)
+			rc = c2;
+	}
+	dev_render_free(p.rr);
+	scan_path_free(&p.path);
+	free(p.elems);
+	return rc;
+}

@@ -1,0 +1,154 @@
+/* device.h: the Locus device interface: one operations table per device, and the replay loop.
+ *
+ * A device is a table of operations (dev_ops_t) plus capability flags; dev_play() reads a meta
+ * file and drives any device, filling in what the device leaves out:
+ *
+ *  - A RASTER device (DEV_CAP_RASTER) implements only write_band (and optionally begin_page /
+ *    end_page / open / close): the framework scan-converts every statement exactly per spec §5
+ *    in horizontal bands and hands over finished rows, top row first, 24-bit RGB. The band
+ *    height is dev_device_t.band_rows (0 = whole page when it fits dev_device_t.mem_budget). Multi-band pages
+ *    are spooled to a temporary file and replayed per band, so memory stays bounded.
+ *  - A VECTOR device receives paths: fill_path / stroke_path get the flattened path (arcs as
+ *    chords, §5.4) and the raw elements (for devices with native arcs, DEV_CAP_ARCS), with the
+ *    state in force. Text is expanded to a stroked path unless DEV_CAP_TEXT is set; image rows
+ *    become put_span calls when put_image_row is NULL; spans become filled rectangles when
+ *    put_span is NULL; clear becomes a filled page rectangle when clear is NULL.
+ *
+ * Drivers write through a borrowed transport (transport.h) and never print or exit: every
+ * operation returns 0 or a negative META_E* / DEV_E* code after dev_error() recorded a message.
+ * To add a device: one file defining a const dev_ops_t, an entry in registry.c, and (for its
+ * own program) a thin drivers/main-NAME.c. See docs/drivers.md.
+ */
+#ifndef LOCUS_DEVICE_H
+#define LOCUS_DEVICE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "locus_meta.h"
+#include "scan.h"
+#include "transport.h"
+
+/* Capability flags. */
+#define DEV_CAP_RASTER  0x01   /* framework renders; device gets finished bands */
+#define DEV_CAP_VECTOR  0x02   /* device gets paths */
+#define DEV_CAP_ARCS    0x04   /* vector device draws arcs and circles natively (uses elems) */
+#define DEV_CAP_TEXT    0x08   /* vector device draws the text statement itself */
+#define DEV_CAP_FILL    0x10   /* vector device can fill polygons (else fills are outlined) */
+#define DEV_CAP_DASH    0x20   /* vector device dashes natively */
+#define DEV_CAP_WIDTH   0x40   /* vector device draws wide lines natively */
+
+/* Extra error code for device failures (besides META_E*). */
+#define DEV_EDEVICE (-20)
+
+/* One page as announced by the `page` and `size` statements. */
+typedef struct {
+	unsigned width, height;     /* pixels */
+	int has_size;               /* 1 if a size statement gave the physical size */
+	meta_fix_t width_mm, height_mm;
+	unsigned index;             /* 0-based page number in the file */
+} dev_page_t;
+
+/* The graphics state in force (spec §1, §4). Dash normalised to an even count (≤ 32). */
+typedef struct {
+	meta_rgb_t colour;
+	meta_fix_t width;
+	int64_t dash[2 * META_MAX_DASH];
+	size_t ndash;
+	int cap, join, rule;
+	meta_fix_t miter_limit;
+} dev_state_t;
+
+/* A raw path element as written in the meta file (for devices with native arcs). */
+typedef struct {
+	meta_op_t op;               /* META_MOVE, META_DRAW, META_ARC, META_CIRCLE, META_CLOSE */
+	meta_fix_t f[5];
+} dev_elem_t;
+
+/* A path handed to a vector device. */
+typedef struct {
+	const scan_path_t *flat;    /* flattened: subpaths of points in thousandths */
+	const dev_elem_t *elems;    /* the raw elements */
+	size_t nelems;
+} dev_path_t;
+
+/* A text statement (for DEV_CAP_TEXT devices). */
+typedef struct {
+	meta_fix_t x, y, size, angle;
+	const char *str;
+	size_t len;
+} dev_text_t;
+
+/* Finished rows for a raster device: rows [y0, y0 + nrows) counted from the TOP of the page
+ * (y0 = 0 is the top row), 3 bytes per pixel R, G, B, row k at pix + k * stride. */
+typedef struct {
+	const uint8_t *pix;
+	size_t stride;
+	unsigned width;
+	unsigned y0, nrows;
+	unsigned page_height;
+} dev_band_t;
+
+typedef struct dev dev_device_t;
+
+/* The operations table. Any member may be NULL (a default or nothing is used). */
+typedef struct dev_ops {
+	const char *name;           /* registry name, e.g. "png" */
+	const char *description;    /* one line for `locus-play -l` */
+	const char *extension;      /* default output suffix, e.g. ".png" */
+	unsigned caps;              /* DEV_CAP_* */
+	unsigned colours;           /* distinct colours the device shows; 0 = 24-bit */
+	size_t priv_size;           /* bytes of zeroed private state allocated for dev->priv */
+	int (*open)(dev_device_t *d);
+	int (*begin_page)(dev_device_t *d, const dev_page_t *pg);
+	int (*write_band)(dev_device_t *d, const dev_band_t *band);             /* raster */
+	int (*clear)(dev_device_t *d, meta_rgb_t rgb);                          /* vector */
+	int (*stroke_path)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
+	int (*fill_path)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
+	int (*text)(dev_device_t *d, const dev_text_t *t, const dev_state_t *st);
+	int (*put_span)(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
+	int (*put_image_row)(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
+	int (*end_page)(dev_device_t *d, const dev_page_t *pg);
+	int (*close)(dev_device_t *d);
+} dev_ops_t;
+
+/* A device instance. Fields before priv are set by the caller (dev_new + options). */
+struct dev {
+	const dev_ops_t *ops;
+	io_transport_t *out;        /* borrowed: the caller opens and closes it */
+	const char *options;        /* device-specific "key=value,..." or NULL */
+	unsigned band_rows;         /* raster: rows per band, 0 = automatic */
+	size_t mem_budget;          /* raster: bytes a page buffer may take (automatic banding) */
+	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
+	void *user;                 /* free for the program */
+	/* Optional program hook, called before the device's begin_page (end = 0) and after its
+	 * end_page (end = 1): lets a program give each page its own transport (d->out). */
+	int (*on_page)(dev_device_t *d, const dev_page_t *pg, int end);
+	/* filled by dev_play */
+	unsigned pages;             /* pages replayed so far */
+	unsigned bands;             /* bands of the last page */
+	char err[512];
+};
+
+/* Create a device instance over the ops table and a borrowed transport (may be NULL for
+ * devices that write nothing). Returns NULL when out of memory. */
+dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out);
+/* Free the instance (does not close the transport). */
+void dev_free(dev_device_t *d);
+/* Record an error message (printf style) and return code. For drivers and the framework. */
+int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 3, 4)))
+#endif
+	;
+/* The last error message, one line. */
+const char *dev_error(const dev_device_t *d);
+
+/* Replay a whole meta stream onto the device: open, pages, close. Returns 0, or <0 with
+ * dev_error() set (a reader error is copied verbatim, e.g. "f.meta:3:1: ..."). */
+int dev_play(meta_reader_t *r, dev_device_t *d);
+
+/* The device registry (registry.c): NULL-terminated list, and lookup by name. */
+extern const dev_ops_t *const dev_registry[];
+const dev_ops_t *dev_find(const char *name);
+
+#endif

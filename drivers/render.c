@@ -1,0 +1,328 @@
+/* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "render.h"
+
+enum { REC_CLEAR = 1, REC_FILL, REC_STROKE, REC_SPAN, REC_ROW };
+
+/* Spool record header: kind, then the page rows [jlo, jhi) the record may touch, payload size. */
+typedef struct {
+	int32_t kind, jlo, jhi;
+	uint32_t len;
+} rec_t;
+
+struct dev_render {
+	unsigned width, height, band_rows, bands;
+	uint8_t *pix;
+	scan_band_t band;
+	scan_ctx_t *ctx;
+	FILE *spool;            /* NULL: single band, painted directly */
+	unsigned char *rbuf;    /* record payload while replaying */
+	size_t rcap;
+	scan_path_t path;       /* deserialised path */
+	meta_run_t *runs;
+	size_t cap_runs;
+};
+
+dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
+		char *err, size_t errlen)
+{
+	dev_render_t *r = calloc(1, sizeof *r);
+	if (!r)
+		goto nomem;
+	r->width = width;
+	r->height = height;
+	size_t row = (size_t)width * 3;
+	if (band_rows == 0) {
+		size_t fit = budget / row;
+		band_rows = fit >= height ? height : fit < 1 ? 1 : (unsigned)fit;
+	}
+	if (band_rows > height)
+		band_rows = height;
+	r->band_rows = band_rows;
+	r->bands = (height + band_rows - 1) / band_rows;
+	r->pix = malloc(row * band_rows);
+	r->ctx = scan_ctx_new();
+	if (!r->pix || !r->ctx)
+		goto nomem;
+	r->band.pix = r->pix;
+	r->band.stride = row;
+	r->band.width = (int)width;
+	r->band.height = (int)height;
+	if (r->bands == 1) {
+		r->band.jlo = 0;
+		r->band.jhi = (int)height;
+		memset(r->pix, 0xff, row * height);
+	} else {
+		r->spool = tmpfile();
+		if (!r->spool) {
+			snprintf(err, errlen, "cannot create a temporary spool file for banded rendering");
+			dev_render_free(r);
+			return NULL;
+		}
+	}
+	return r;
+nomem:
+	snprintf(err, errlen, "out of memory for a %ux%u page buffer", width, band_rows ? band_rows : height);
+	dev_render_free(r);
+	return NULL;
+}
+
+void dev_render_free(dev_render_t *r)
+{
+	if (!r)
+		return;
+	if (r->spool)
+		fclose(r->spool);
+	free(r->pix);
+	scan_ctx_free(r->ctx);
+	free(r->rbuf);
+	scan_path_free(&r->path);
+	free(r->runs);
+	free(r);
+}
+
+unsigned dev_render_bands(const dev_render_t *r)
+{
+	return r->bands;
+}
+
+/* ---- spool writing ---- */
+
+static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void *a, size_t na,
+		const void *b, size_t nb, const void *c, size_t nc)
+{
+	if (jlo < 0)
+		jlo = 0;
+	if (jhi > r->height)
+		jhi = r->height;
+	if (jlo >= jhi)
+		return 0;   /* entirely off the page */
+	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
+	if (fwrite(&h, sizeof h, 1, r->spool) != 1 || (na && fwrite(a, 1, na, r->spool) != na) ||
+			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
+		return META_EIO;
+	return 0;
+}
+
+/* Serialised path: npts, nsubs (uint64), subs, points. */
+static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
+		const scan_path_t *p)
+{
+	int64_t x0, y0, x1, y1;
+	if (!scan_path_bbox(p, &x0, &y0, &x1, &y1))
+		return 0;
+	int64_t jlo = (y0 - ext) / 1000 - 2, jhi = (y1 + ext) / 1000 + 2;
+	uint64_t cnt[2] = { p->npts, p->nsubs };
+	size_t nsz = sizeof cnt + p->nsubs * sizeof(scan_subpath_t);
+	unsigned char *meta = malloc(nhead + nsz);
+	if (!meta)
+		return META_ENOMEM;
+	memcpy(meta, head, nhead);
+	memcpy(meta + nhead, cnt, sizeof cnt);
+	memcpy(meta + nhead + sizeof cnt, p->subs, p->nsubs * sizeof(scan_subpath_t));
+	int rc = spool(r, kind, jlo, jhi, meta, nhead + nsz, p->pts, p->npts * sizeof(scan_pt_t), NULL, 0);
+	free(meta);
+	return rc;
+}
+
+/* Fixed part of a stroke record. */
+typedef struct {
+	meta_rgb_t rgb;
+	int32_t cap, join;
+	int64_t width, miter_limit;
+	uint64_t ndash;
+	int64_t dash[2 * META_MAX_DASH];
+} stroke_head_t;
+
+typedef struct {
+	meta_rgb_t rgb;
+	int32_t rule;
+} fill_head_t;
+
+int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
+{
+	if (!r->spool) {
+		scan_clear(&r->band, rgb);
+		return 0;
+	}
+	return spool(r, REC_CLEAR, 0, r->height, &rgb, sizeof rgb, NULL, 0, NULL, 0);
+}
+
+int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
+{
+	if (!r->spool)
+		return scan_fill(r->ctx, &r->band, p, rule, rgb);
+	fill_head_t h;
+	memset(&h, 0, sizeof h);
+	h.rgb = rgb;
+	h.rule = rule;
+	return spool_path(r, REC_FILL, 0, &h, sizeof h, p);
+}
+
+int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
+{
+	if (!r->spool)
+		return scan_stroke(r->ctx, &r->band, p, st, rgb);
+	stroke_head_t h;
+	memset(&h, 0, sizeof h);
+	h.rgb = rgb;
+	h.cap = st->cap;
+	h.join = st->join;
+	h.width = st->width;
+	h.miter_limit = st->miter_limit;
+	h.ndash = st->dash ? st->ndash : 0;
+	for (size_t k = 0; k < h.ndash && k < 2 * META_MAX_DASH; k++)
+		h.dash[k] = st->dash[k];
+	int64_t w = st->width < 1000 ? 1000 : st->width;
+	int64_t lim = st->miter_limit < 1500 ? 1500 : st->miter_limit;
+	int64_t ext = (int64_t)((double)w / 2.0 * ((double)lim / 1000.0)) + 2000;
+	return spool_path(r, REC_STROKE, ext, &h, sizeof h, p);
+}
+
+int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+{
+	if (!r->spool) {
+		scan_span(&r->band, x, y, n, rgb);
+		return 0;
+	}
+	int64_t v[3] = { x, y, n };
+	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
+}
+
+static void paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run_t *runs, size_t n)
+{
+	for (size_t k = 0; k < n; k++) {
+		scan_span(b, x, y, runs[k].count, runs[k].rgb);
+		x += runs[k].count;
+	}
+}
+
+int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
+{
+	if (!r->spool) {
+		paint_row(&r->band, x, y, runs, nruns);
+		return 0;
+	}
+	int64_t v[2] = { x, y };
+	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
+}
+
+/* ---- replay ---- */
+
+static int load_path(dev_render_t *r, const unsigned char *q)
+{
+	uint64_t cnt[2];
+	memcpy(cnt, q, sizeof cnt);
+	q += sizeof cnt;
+	scan_path_t *p = &r->path;
+	if (cnt[0] > p->cappts) {
+		scan_pt_t *n = realloc(p->pts, cnt[0] * sizeof(scan_pt_t));
+		if (!n)
+			return META_ENOMEM;
+		p->pts = n;
+		p->cappts = cnt[0];
+	}
+	if (cnt[1] > p->capsubs) {
+		scan_subpath_t *n = realloc(p->subs, cnt[1] * sizeof(scan_subpath_t));
+		if (!n)
+			return META_ENOMEM;
+		p->subs = n;
+		p->capsubs = cnt[1];
+	}
+	p->npts = cnt[0];
+	p->nsubs = cnt[1];
+	memcpy(p->subs, q, cnt[1] * sizeof(scan_subpath_t));
+	q += cnt[1] * sizeof(scan_subpath_t);
+	memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
+	return 0;
+}
+
+static int replay(dev_render_t *r)
+{
+	rec_t h;
+	rewind(r->spool);
+	while (fread(&h, sizeof h, 1, r->spool) == 1) {
+		if (h.jhi <= r->band.jlo || h.jlo >= r->band.jhi) {
+			if (fseek(r->spool, h.len, SEEK_CUR))
+				return META_EIO;
+			continue;
+		}
+		if (h.len > r->rcap) {
+			unsigned char *n = realloc(r->rbuf, h.len);
+			if (!n)
+				return META_ENOMEM;
+			r->rbuf = n;
+			r->rcap = h.len;
+		}
+		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
+			return META_EIO;
+		const unsigned char *q = r->rbuf;
+		int rc = 0;
+		if (h.kind == REC_CLEAR) {
+			meta_rgb_t c;
+			memcpy(&c, q, sizeof c);
+			scan_clear(&r->band, c);
+		} else if (h.kind == REC_FILL) {
+			fill_head_t f;
+			memcpy(&f, q, sizeof f);
+			if (!(rc = load_path(r, q + sizeof f)))
+				rc = scan_fill(r->ctx, &r->band, &r->path, f.rule, f.rgb);
+		} else if (h.kind == REC_STROKE) {
+			stroke_head_t s;
+			memcpy(&s, q, sizeof s);
+			scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
+			if (!(rc = load_path(r, q + sizeof s)))
+				rc = scan_stroke(r->ctx, &r->band, &r->path, &st, s.rgb);
+		} else if (h.kind == REC_SPAN) {
+			int64_t v[3];
+			meta_rgb_t c;
+			memcpy(v, q, sizeof v);
+			memcpy(&c, q + sizeof v, sizeof c);
+			scan_span(&r->band, v[0], v[1], v[2], c);
+		} else if (h.kind == REC_ROW) {
+			int64_t v[2];
+			memcpy(v, q, sizeof v);
+			size_t n = (h.len - sizeof v) / sizeof(meta_run_t);
+			if (n > r->cap_runs) {
+				meta_run_t *m = realloc(r->runs, n * sizeof *m);
+				if (!m)
+					return META_ENOMEM;
+				r->runs = m;
+				r->cap_runs = n;
+			}
+			memcpy(r->runs, q + sizeof v, n * sizeof(meta_run_t));
+			paint_row(&r->band, v[0], v[1], r->runs, n);
+		}
+		if (rc)
+			return rc;
+	}
+	return ferror(r->spool) ? META_EIO : 0;
+}
+
+int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
+{
+	size_t row = (size_t)r->width * 3;
+	dev_band_t out = { r->pix, row, r->width, 0, 0, r->height };
+	if (!r->spool) {
+		out.nrows = r->height;
+		return fn(user, &out);
+	}
+	if (fflush(r->spool))
+		return META_EIO;
+	for (unsigned top = 0; top < r->height; top += r->band_rows) {
+		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
+		r->band.jhi = (int)(r->height - top);
+		r->band.jlo = r->band.jhi - (int)n;
+		memset(r->pix, 0xff, row * n);
+		int rc = replay(r);
+		if (rc)
+			return rc;
+		out.y0 = top;
+		out.nrows = n;
+		if ((rc = fn(user, &out)))
+			return rc;
+	}
+	return 0;
+}

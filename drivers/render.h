@@ -1,0 +1,34 @@
+/* render.h: the banded raster page renderer behind every raster device (drivers only). */
+#ifndef LOCUS_RENDER_H
+#define LOCUS_RENDER_H
+
+#include "device.h"
+
+typedef struct dev_render dev_render_t;
+
+/* Called with each finished band, top band first. */
+typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
+
+/* A renderer for one page of width x height. band_rows 0 = whole page when width*height*3 fits
+ * budget bytes, else as many rows as fit; band_rows >= height = whole page. A single-band page
+ * is painted as the statements arrive; a multi-band page spools them to a temporary file and
+ * replays it once per band, skipping statements whose rows miss the band. Returns NULL with a
+ * message in err on failure. */
+dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
+		char *err, size_t errlen);
+/* Free the renderer and its spool. */
+void dev_render_free(dev_render_t *r);
+/* Number of bands the page is rendered in. */
+unsigned dev_render_bands(const dev_render_t *r);
+
+/* The painting statements. Each returns 0 or <0 (META_ENOMEM, META_EIO). */
+int dev_render_clear(dev_render_t *r, meta_rgb_t rgb);
+int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb);
+int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb);
+int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb);
+/* One image row at pixel row y (bottom-up page row) from x. */
+int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns);
+/* Render (if spooled) and hand every band to fn, top first. Returns fn's first error or 0. */
+int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user);
+
+#endif

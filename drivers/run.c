@@ -1,0 +1,120 @@
+/* run.c: one replay job for the programs: input, device, per-page outputs, exit status. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "run.h"
+
+typedef struct {
+	const dev_job_t *job;
+	io_transport_t **pages;   /* kept temporaries, one per page (file output) */
+	size_t npages, cap;
+	io_transport_t *std;      /* "-" */
+	char err[512];
+} job_state_t;
+
+char *dev_page_name(const char *out, unsigned page)
+{
+	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+	if (!dot || (slash && dot < slash) || dot == out || (slash && dot == slash + 1))
+		dot = out + strlen(out);
+	size_t n = strlen(out) + 16;
+	char *s = malloc(n);
+	if (s)
+		snprintf(s, n, "%.*s-%03u%s", (int)(dot - out), out, page, dot);
+	return s;
+}
+
+static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
+{
+	job_state_t *js = d->user;
+	(void)pg;
+	if (js->std || !js->job->out)
+		return 0;
+	if (end) {
+		io_transport_t *t = d->out;
+		d->out = NULL;
+		if (io_close(t, IO_KEEP)) {
+			int rc = dev_fail(d, META_EIO, "%s", io_error(t));
+			io_finish(t, 0, NULL);
+			return rc;
+		}
+		js->pages[js->npages++] = t;
+		return 0;
+	}
+	if (js->npages == js->cap) {
+		size_t n = js->cap ? js->cap * 2 : 8;
+		io_transport_t **p = realloc(js->pages, n * sizeof *p);
+		if (!p)
+			return dev_fail(d, META_ENOMEM, "out of memory");
+		js->pages = p;
+		js->cap = n;
+	}
+	char err[512];
+	d->out = io_open_write(js->job->out, err, sizeof err);
+	if (!d->out)
+		return dev_fail(d, META_EIO, "%s", err);
+	return 0;
+}
+
+static int status_of(int rc)
+{
+	switch (rc) {
+	case META_ESYNTAX: case META_ELIMIT: case META_EVERSION: case META_ESTATE: return 65;
+	case META_ENOMEM: return 70;
+	default: return 74;
+	}
+}
+
+int dev_run(const dev_job_t *job, char *err, size_t errlen)
+{
+	job_state_t js;
+	memset(&js, 0, sizeof js);
+	js.job = job;
+	int status = 0;
+	meta_reader_t *r = meta_reader_open(job->in, err, errlen);
+	if (!r)
+		return 66;
+	dev_device_t *d = dev_new(job->ops, NULL);
+	if (!d) {
+		meta_reader_free(r);
+		snprintf(err, errlen, "out of memory");
+		return 70;
+	}
+	d->user = &js;
+	d->on_page = on_page;
+	d->band_rows = job->band_rows;
+	if (job->budget)
+		d->mem_budget = job->budget;
+	d->options = job->options;
+	if (job->out && strcmp(job->out, "-") == 0) {
+		js.std = io_open_write("-", err, errlen);
+		if (!js.std)
+			status = 74;
+		d->out = js.std;
+	}
+	if (status == 0) {
+		int rc = dev_play(r, d);
+		if (rc) {
+			snprintf(err, errlen, "%s", dev_error(d));
+			status = status_of(rc);
+		}
+	}
+	if (d->out && d->out != js.std)
+		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
+	if (js.std && io_close(js.std, status ? IO_ABORT : IO_COMMIT) && status == 0) {
+		snprintf(err, errlen, "<stdout>: write failed");
+		status = 74;
+	}
+	for (size_t k = 0; k < js.npages; k++) {
+		char *name = js.npages > 1 ? dev_page_name(job->out, (unsigned)k + 1) : NULL;
+		if (io_finish(js.pages[k], status == 0, name) && status == 0) {
+			snprintf(err, errlen, "%s: cannot rename output into place", name ? name : job->out);
+			status = 74;
+		}
+		free(name);
+	}
+	free(js.pages);
+	dev_free(d);
+	meta_reader_free(r);
+	return status;
+}

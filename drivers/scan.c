@@ -1,0 +1,296 @@
+/* scan.c: exact polygon coverage (spec §5.1) with an active edge table and integer DDA. */
+#include <stdlib.h>
+#include <string.h>
+#include "scan.h"
+#include "scan_int.h"
+
+/* One non-horizontal edge, normalised to go upwards, with its crossing DDA.
+ * For row j the crossing pixel index i is the smallest i whose centre is at or right of the
+ * edge's crossing abscissa X: (1000i + 500) >= X, i.e. i = ceil((N - 500*dy) / (1000*dy)) with
+ * N = x0*dy + (Yc - y0)*dx. It is kept as i and a remainder r (0 <= r < D) such that the exact
+ * numerator equals i*D - r; one row up adds 1000*dx to the numerator. */
+typedef struct {
+	int64_t i, r, d, sq, sr;
+	int jf, jl;
+	int dir;
+} edge_t;
+
+typedef struct {
+	int64_t i;
+	int dir;
+} cross_t;
+
+struct scan_ctx {
+	edge_t *edges;
+	size_t cap_edges;
+	edge_t **active;
+	size_t cap_active;
+	cross_t *cross;
+	size_t cap_cross;
+	scan_path_t piece;    /* stroke pieces */
+	scan_path_t dashed;   /* dash pieces */
+};
+
+scan_ctx_t *scan_ctx_new(void)
+{
+	return calloc(1, sizeof(scan_ctx_t));
+}
+
+void scan_ctx_free(scan_ctx_t *c)
+{
+	if (!c)
+		return;
+	free(c->edges);
+	free(c->active);
+	free(c->cross);
+	scan_path_free(&c->piece);
+	scan_path_free(&c->dashed);
+	free(c);
+}
+
+scan_path_t *scan_ctx_piece(scan_ctx_t *c)
+{
+	return &c->piece;
+}
+
+scan_path_t *scan_ctx_dashed(scan_ctx_t *c)
+{
+	return &c->dashed;
+}
+
+static int grow(void **p, size_t *cap, size_t need, size_t elem)
+{
+	if (need <= *cap)
+		return 0;
+	size_t n = *cap ? *cap : 64;
+	while (n < need)
+		n *= 2;
+	void *q = realloc(*p, n * elem);
+	if (!q)
+		return META_ENOMEM;
+	*p = q;
+	*cap = n;
+	return 0;
+}
+
+/* ceil(a / b) for b > 0. */
+static inline int64_t ceil_div(int64_t a, int64_t b)
+{
+	int64_t q = a / b;
+	if (q * b != a && a > 0)
+		q++;
+	return q;
+}
+
+static inline int64_t floor_div(int64_t a, int64_t b)
+{
+	int64_t q = a / b;
+	if (q * b != a && a < 0)
+		q--;
+	return q;
+}
+
+#define SMALL ((int64_t)1 << 30)
+
+/* Set up the edge (x0,y0)->(x1,y1) for rows within [lo, hi); returns 0 when no row is crossed. */
+static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, int lo, int hi)
+{
+	int dir = 1;
+	if (y0 == y1)
+		return 0;
+	if (y0 > y1) {
+		int64_t t = x0; x0 = x1; x1 = t;
+		t = y0; y0 = y1; y1 = t;
+		dir = -1;
+	}
+	/* rows j with y0 <= 1000j + 500 < y1 */
+	int64_t jf = ceil_div(y0 - 500, 1000), jl = ceil_div(y1 - 500, 1000) - 1;
+	if (jf < lo)
+		jf = lo;
+	if (jl > hi - 1)
+		jl = hi - 1;
+	if (jf > jl)
+		return 0;
+	int64_t dx = x1 - x0, dy = y1 - y0, yc = 1000 * jf + 500;
+	int64_t d = 1000 * dy;
+	if (x0 > -SMALL && x0 < SMALL && x1 > -SMALL && x1 < SMALL && y0 > -SMALL && y1 < SMALL) {
+		int64_t n = x0 * dy + (yc - y0) * dx - 500 * dy;
+		e->i = ceil_div(n, d);
+		e->r = e->i * d - n;
+	} else {
+		__int128 n = (__int128)x0 * dy + (__int128)(yc - y0) * dx - (__int128)500 * dy;
+		__int128 q = n / d;
+		if (q * d != n && n > 0)
+			q++;
+		e->i = (int64_t)q;
+		e->r = (int64_t)(q * d - n);
+	}
+	int64_t s = 1000 * dx;
+	e->sq = floor_div(s, d);
+	e->sr = s - e->sq * d;
+	e->d = d;
+	e->jf = (int)jf;
+	e->jl = (int)jl;
+	e->dir = dir;
+	return 1;
+}
+
+static inline void edge_step(edge_t *e)
+{
+	e->i += e->sq;
+	e->r -= e->sr;
+	if (e->r < 0) {
+		e->r += e->d;
+		e->i++;
+	}
+}
+
+/* Paint pixels [a, b) of page row j (already known to be inside the band). */
+static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, meta_rgb_t rgb)
+{
+	if (a < 0)
+		a = 0;
+	if (e > b->width)
+		e = b->width;
+	if (a >= e)
+		return;
+	uint8_t *p = b->pix + (size_t)(b->jhi - 1 - j) * b->stride + (size_t)a * 3;
+	uint8_t r = (uint8_t)(rgb >> 16), g = (uint8_t)(rgb >> 8), bl = (uint8_t)rgb;
+	int64_t n = e - a;
+	if (n <= 16) {
+		for (int64_t k = 0; k < n; k++) {
+			p[0] = r; p[1] = g; p[2] = bl;
+			p += 3;
+		}
+		return;
+	}
+	p[0] = r; p[1] = g; p[2] = bl;
+	size_t done = 3, total = (size_t)n * 3;
+	while (done < total) {
+		size_t c = done < total - done ? done : total - done;
+		memcpy(p + done, p, c);
+		done += c;
+	}
+}
+
+void scan_span(const scan_band_t *b, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+{
+	int lo = b->jlo < 0 ? 0 : b->jlo, hi = b->jhi > b->height ? b->height : b->jhi;
+	if (y < lo || y >= hi || n <= 0)
+		return;
+	paint(b, (int)y, x, x + n, rgb);
+}
+
+void scan_clear(const scan_band_t *b, meta_rgb_t rgb)
+{
+	int lo = b->jlo < 0 ? 0 : b->jlo, hi = b->jhi > b->height ? b->height : b->jhi;
+	for (int j = lo; j < hi; j++)
+		paint(b, j, 0, b->width, rgb);
+}
+
+static int cmp_edge(const void *a, const void *b)
+{
+	const edge_t *x = a, *y = b;
+	return (x->jf > y->jf) - (x->jf < y->jf);
+}
+
+/* The general scanline loop over n prepared edges. */
+static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_rgb_t rgb)
+{
+	if (n == 0)
+		return 0;
+	if (grow((void **)&c->active, &c->cap_active, n, sizeof(edge_t *)) ||
+			grow((void **)&c->cross, &c->cap_cross, n, sizeof(cross_t)))
+		return META_ENOMEM;
+	edge_t *e = c->edges;
+	if (n > 1)
+		qsort(e, n, sizeof(edge_t), cmp_edge);
+	int jmax = e[0].jl;
+	for (size_t k = 1; k < n; k++)
+		if (e[k].jl > jmax)
+			jmax = e[k].jl;
+	size_t next = 0, na = 0;
+	edge_t **act = c->active;
+	cross_t *cr = c->cross;
+	for (int j = e[0].jf; j <= jmax; j++) {
+		while (next < n && e[next].jf == j)
+			act[na++] = &e[next++];
+		if (na == 0) {
+			if (next < n)
+				j = e[next].jf - 1;
+			continue;
+		}
+		/* collect crossings, insertion-sorted by pixel index */
+		for (size_t k = 0; k < na; k++) {
+			cross_t x = { act[k]->i, act[k]->dir };
+			size_t m = k;
+			while (m > 0 && cr[m - 1].i > x.i) {
+				cr[m] = cr[m - 1];
+				m--;
+			}
+			cr[m] = x;
+		}
+		int w = 0;
+		for (size_t k = 0; k + 1 < na; k++) {
+			w += cr[k].dir;
+			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
+			if (in && cr[k + 1].i > cr[k].i)
+				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
+		}
+		/* step and retire */
+		size_t keep = 0;
+		for (size_t k = 0; k < na; k++) {
+			if (act[k]->jl == j)
+				continue;
+			edge_step(act[k]);
+			act[keep++] = act[k];
+		}
+		na = keep;
+	}
+	return 0;
+}
+
+static void band_rows(const scan_band_t *b, int *lo, int *hi)
+{
+	*lo = b->jlo < 0 ? 0 : b->jlo;
+	*hi = b->jhi > b->height ? b->height : b->jhi;
+}
+
+int scan_fill(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, int rule, meta_rgb_t rgb)
+{
+	int lo, hi;
+	band_rows(b, &lo, &hi);
+	if (lo >= hi)
+		return 0;
+	if (grow((void **)&c->edges, &c->cap_edges, p->npts, sizeof(edge_t)))
+		return META_ENOMEM;
+	size_t n = 0;
+	for (size_t s = 0; s < p->nsubs; s++) {
+		const scan_pt_t *q = p->pts + p->subs[s].start;
+		size_t m = p->subs[s].n;
+		if (m < 2)
+			continue;
+		for (size_t k = 0; k < m; k++) {
+			const scan_pt_t *a = &q[k], *z = &q[k + 1 == m ? 0 : k + 1];
+			n += (size_t)edge_init(&c->edges[n], a->x, a->y, z->x, z->y, lo, hi);
+		}
+	}
+	return sweep(c, b, n, rule, rgb);
+}
+
+int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
+		meta_rgb_t rgb)
+{
+	int lo, hi;
+	band_rows(b, &lo, &hi);
+	if (lo >= hi || m < 3)
+		return 0;
+	if (grow((void **)&c->edges, &c->cap_edges, m, sizeof(edge_t)))
+		return META_ENOMEM;
+	size_t n = 0;
+	for (size_t k = 0; k < m; k++) {
+		const scan_pt_t *a = &pts[k], *z = &pts[k + 1 == m ? 0 : k + 1];
+		n += (size_t)edge_init(&c->edges[n], a->x, a->y, z->x, z->y, lo, hi);
+	}
+	return sweep(c, b, n, rule, rgb);
+}

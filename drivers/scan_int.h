@@ -1,0 +1,16 @@
+/* scan_int.h: internals shared by scan.c, stroke.c, flatten.c and font.c (not public). */
+#ifndef LOCUS_SCAN_INT_H
+#define LOCUS_SCAN_INT_H
+#include <math.h>
+#include "scan.h"
+
+/* Scratch paths owned by the context. */
+scan_path_t *scan_ctx_piece(scan_ctx_t *c);
+scan_path_t *scan_ctx_dashed(scan_ctx_t *c);
+
+/* Round a double to the nearest integer (thousandths), ties away from zero. */
+static inline int64_t scan_round(double v)
+{
+	return (int64_t)llround(v);
+}
+#endif
