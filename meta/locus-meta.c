@@ -291,7 +291,7 @@ static int cmd_info(const char *path)
 	printf("pages: %u\nstatements:", pages);
 	for (i = 0; i < META_OP_COUNT; i++)
 		if (count[i])
-			printf(" %s %llu", meta_op_name((meta_op_t)i), count[i]);
+			printf(" %s %llu", i == META_COMMENT ? "comment" : meta_op_name((meta_op_t)i), count[i]);
 	printf("\n");
 	if (cs.overflow) {
 		printf("colours: more than %d distinct\n", MAX_COLOURS);
