@@ -90,7 +90,23 @@ static inline int64_t floor_div(int64_t a, int64_t b)
 	return q;
 }
 
+/* ceil(a / b) for b > 0 through a double estimate corrected exactly (divisions are slow). */
+static inline int64_t fast_ceil_div(int64_t a, int64_t b)
+{
+	const int64_t lim = (int64_t)1 << 52;
+	if (a > -lim && a < lim && b < lim) {
+		int64_t q = (int64_t)ceil((double)a / (double)b);
+		while (q * b < a)
+			q++;
+		while ((q - 1) * b >= a)
+			q--;
+		return q;
+	}
+	return ceil_div(a, b);
+}
+
 #define SMALL ((int64_t)1 << 30)
+#define SMALL_EDGES 12
 
 /* Set up the edge (x0,y0)->(x1,y1) for rows within [lo, hi); returns 0 when no row is crossed. */
 static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, int lo, int hi)
@@ -115,7 +131,7 @@ static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 	int64_t d = 1000 * dy;
 	if (x0 > -SMALL && x0 < SMALL && x1 > -SMALL && x1 < SMALL && y0 > -SMALL && y1 < SMALL) {
 		int64_t n = x0 * dy + (yc - y0) * dx - 500 * dy;
-		e->i = ceil_div(n, d);
+		e->i = fast_ceil_div(n, d);
 		e->r = e->i * d - n;
 	} else {
 		__int128 n = (__int128)x0 * dy + (__int128)(yc - y0) * dx - (__int128)500 * dy;
@@ -125,9 +141,13 @@ static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 		e->i = (int64_t)q;
 		e->r = (int64_t)(q * d - n);
 	}
-	int64_t s = 1000 * dx;
-	e->sq = floor_div(s, d);
-	e->sr = s - e->sq * d;
+	if (jl > jf) {
+		int64_t s = 1000 * dx;
+		e->sq = floor_div(s, d);
+		e->sr = s - e->sq * d;
+	} else {
+		e->sq = e->sr = 0;
+	}
 	e->d = d;
 	e->jf = (int)jf;
 	e->jl = (int)jl;
@@ -194,11 +214,50 @@ static int cmp_edge(const void *a, const void *b)
 	return (x->jf > y->jf) - (x->jf < y->jf);
 }
 
+/* Few edges (stroke pieces): no sorting of edges, crossings by insertion. */
+static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, meta_rgb_t rgb)
+{
+	int j0 = e[0].jf, j1 = e[0].jl;
+	for (size_t k = 1; k < n; k++) {
+		if (e[k].jf < j0) j0 = e[k].jf;
+		if (e[k].jl > j1) j1 = e[k].jl;
+	}
+	cross_t cr[SMALL_EDGES];
+	for (int j = j0; j <= j1; j++) {
+		size_t na = 0;
+		for (size_t k = 0; k < n; k++) {
+			edge_t *a = &e[k];
+			if (j < a->jf || j > a->jl)
+				continue;
+			cross_t x = { a->i, a->dir };
+			size_t m = na++;
+			while (m > 0 && cr[m - 1].i > x.i) {
+				cr[m] = cr[m - 1];
+				m--;
+			}
+			cr[m] = x;
+			if (j < a->jl)
+				edge_step(a);
+		}
+		int w = 0;
+		for (size_t k = 0; k + 1 < na; k++) {
+			w += cr[k].dir;
+			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
+			if (in && cr[k + 1].i > cr[k].i)
+				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
+		}
+	}
+}
+
 /* The general scanline loop over n prepared edges. */
 static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_rgb_t rgb)
 {
 	if (n == 0)
 		return 0;
+	if (n <= SMALL_EDGES) {
+		sweep_small(b, c->edges, n, rule, rgb);
+		return 0;
+	}
 	if (grow((void **)&c->active, &c->cap_active, n, sizeof(edge_t *)) ||
 			grow((void **)&c->cross, &c->cap_cross, n, sizeof(cross_t)))
 		return META_ENOMEM;

@@ -11,6 +11,11 @@ scan_path_t *scan_ctx_dashed(scan_ctx_t *c);
 /* Round a double to the nearest integer (thousandths), ties away from zero. */
 static inline int64_t scan_round(double v)
 {
-	return (int64_t)llround(v);
+	double t = trunc(v), f = v - t;
+	if (f >= 0.5)
+		t += 1.0;
+	else if (f <= -0.5)
+		t -= 1.0;
+	return (int64_t)t;
 }
 #endif
