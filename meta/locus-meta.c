@@ -236,6 +236,7 @@ static int cmd_info(const char *path)
 	static colours_t cs;
 	unsigned long long count[META_OP_COUNT] = { 0 }, nst = 0;
 	meta_cmd_t c, pg;
+	meta_rgb_t cur = 0;
 	meta_fix_t size[2] = { 0, 0 };
 	box_t box = { 0, 0, 0, 0, 0 };
 	unsigned pages = 0, imgx = 0, imgy = 0, imgw = 0, imgrow = 0, imgh = 0;
@@ -255,16 +256,22 @@ static int cmd_info(const char *path)
 			if (!pages++)
 				printf("%s: %s encoding\n", path, meta_reader_is_binary(r) ? "binary" : "text");
 			pg = c;
+			cur = 0x000000; /* the default colour of every page */
 			size[0] = size[1] = 0;
 			memset(&box, 0, sizeof box);
 			nst = 1;
 			break;
 		case META_SIZE: size[0] = c.f[0]; size[1] = c.f[1]; break;
 		case META_END_PAGE: print_page(pages, &pg, size, nst, &box); break;
-		case META_CLEAR: case META_COLOUR: colour_add(&cs, c.rgb); break;
+		case META_CLEAR: colour_add(&cs, c.rgb); break;
+		case META_COLOUR: cur = c.rgb; break;
+		case META_END: colour_add(&cs, cur); break; /* the colour a path is painted with */
 		case META_MOVE: case META_DRAW: box_add(&box, f0, f1, f0, f1); break;
 		case META_ARC: case META_CIRCLE: box_add(&box, f0 - f2, f1 - f2, f0 + f2, f1 + f2); break;
-		case META_TEXT: box_add(&box, f0, f1, f0, f1); break;
+		case META_TEXT:
+			colour_add(&cs, cur);
+			box_add(&box, f0, f1, f0, f1);
+			break;
 		case META_SPAN:
 			colour_add(&cs, c.rgb);
 			box_add(&box, c.u[0], c.u[1], (double)c.u[0] + c.u[2], c.u[1] + 1.0);
