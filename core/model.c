@@ -1,0 +1,365 @@
+/* model.c: elements, transforms, the double-precision reference evaluator, gradients and bounds of a shape. */
+#include "model.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+static double len3(const double *a) { return sqrt(dot3(a, a)); }
+
+static void set_identity(double *m)
+{
+	memset(m, 0, 12 * sizeof *m);
+	m[0] = m[5] = m[10] = 1;
+}
+
+static void update_inverse(model_shape_t *s)
+{
+	const double *a = s->m;
+	double det = a[0] * (a[5] * a[10] - a[6] * a[9]) - a[1] * (a[4] * a[10] - a[6] * a[8])
+	           + a[2] * (a[4] * a[9] - a[5] * a[8]);
+	double *b = s->minv;
+	double id = 1.0 / det;
+	b[0] = (a[5] * a[10] - a[6] * a[9]) * id;
+	b[1] = (a[2] * a[9] - a[1] * a[10]) * id;
+	b[2] = (a[1] * a[6] - a[2] * a[5]) * id;
+	b[4] = (a[6] * a[8] - a[4] * a[10]) * id;
+	b[5] = (a[0] * a[10] - a[2] * a[8]) * id;
+	b[6] = (a[2] * a[4] - a[0] * a[6]) * id;
+	b[8] = (a[4] * a[9] - a[5] * a[8]) * id;
+	b[9] = (a[1] * a[8] - a[0] * a[9]) * id;
+	b[10] = (a[0] * a[5] - a[1] * a[4]) * id;
+	for (int r = 0; r < 3; r++)
+		b[r * 4 + 3] = -(b[r * 4] * a[3] + b[r * 4 + 1] * a[7] + b[r * 4 + 2] * a[11]);
+	for (int i = 0; i < 12; i++)
+		s->mf[i] = (float)b[i];
+}
+
+static void apply(const double *m, const double *p, double *q)
+{
+	double r[3];
+	for (int i = 0; i < 3; i++)
+		r[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
+	memcpy(q, r, sizeof r);
+}
+
+model_shape_t *model_new(void)
+{
+	model_shape_t *s = calloc(1, sizeof *s);
+	if (!s)
+		return NULL;
+	set_identity(s->m);
+	s->norm_m = s->norm_minv = 1;
+	update_inverse(s);
+	return s;
+}
+
+void model_free(model_shape_t *s)
+{
+	if (!s)
+		return;
+	for (size_t i = 0; i < s->nel; i++) {
+		free(s->el[i].p);
+		free(s->el[i].pf);
+	}
+	free(s->el);
+	expr_free(s->c.expr);
+	free(s);
+}
+
+static void premultiply(model_shape_t *s, const double r[9])
+{
+	double n[12];
+	for (int i = 0; i < 3; i++)
+		for (int j = 0; j < 4; j++)
+			n[i * 4 + j] = r[i * 3] * s->m[j] + r[i * 3 + 1] * s->m[4 + j] + r[i * 3 + 2] * s->m[8 + j];
+	memcpy(s->m, n, sizeof n);
+	update_inverse(s);
+}
+
+void model_translate(model_shape_t *s, double x, double y, double z)
+{
+	s->m[3] += x;
+	s->m[7] += y;
+	s->m[11] += z;
+	update_inverse(s);
+}
+
+void model_rotate(model_shape_t *s, int axis, double degrees)
+{
+	double a = degrees * (3.14159265358979323846 / 180), c = cos(a), sn = sin(a);
+	double r[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+	int i = (axis + 1) % 3, j = (axis + 2) % 3;
+	r[i * 3 + i] = c;
+	r[i * 3 + j] = -sn;
+	r[j * 3 + i] = sn;
+	r[j * 3 + j] = c;
+	premultiply(s, r);
+}
+
+int model_scale(model_shape_t *s, double sx, double sy, double sz)
+{
+	if (!(isfinite(sx) && isfinite(sy) && isfinite(sz)) || sx == 0 || sy == 0 || sz == 0)
+		return -1;
+	double r[9] = {sx, 0, 0, 0, sy, 0, 0, 0, sz};
+	double mx = fmax(fabs(sx), fmax(fabs(sy), fabs(sz)));
+	double mn = fmin(fabs(sx), fmin(fabs(sy), fabs(sz)));
+	s->norm_m *= mx;
+	s->norm_minv /= mn;
+	premultiply(s, r);
+	return 0;
+}
+
+static int need_points(int kind, size_t np)
+{
+	switch (kind) {
+	case MODEL_POINT: return np == 1;
+	case MODEL_SEGMENT: case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: return np == 2;
+	case MODEL_POINTS: return np >= 1;
+	case MODEL_POLYLINE: return np >= 2;
+	default: return np == 0;
+	}
+}
+
+int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np, double r,
+              const model_shape_t *shape, char *err, size_t errlen)
+{
+	if (!need_points(kind, np)) {
+		snprintf(err, errlen, "wrong number of points for this element");
+		return -1;
+	}
+	if (!isfinite(w) || !isfinite(r) || r < 0) {
+		snprintf(err, errlen, "a finite weight%s", kind == MODEL_DISK ? " and radius >= 0" : "");
+		return -1;
+	}
+	for (size_t i = 0; i < 3 * np; i++)
+		if (!isfinite(pts[i])) {
+			snprintf(err, errlen, "finite coordinates (found NaN or infinity)");
+			return -1;
+		}
+	if (kind == MODEL_SHAPE && (!shape || !shape->has_lip || shape->lip <= 0)) {
+		snprintf(err, errlen, "a shape with a known Lipschitz bound as a distance element");
+		return -1;
+	}
+	model_elem_t e = {0};
+	e.kind = kind;
+	e.w = w;
+	e.np = np;
+	e.r = r;
+	e.shape = shape;
+	size_t nf = kind == MODEL_POLYLINE ? 7 * (np - 1) : 3 * np + 8;
+	e.p = malloc((3 * np + 1) * sizeof *e.p);
+	e.pf = calloc(nf, sizeof *e.pf);
+	if (!e.p || !e.pf) {
+		free(e.p);
+		free(e.pf);
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	if (np)
+		memcpy(e.p, pts, 3 * np * sizeof *pts);
+	if (kind == MODEL_LINE || kind == MODEL_PLANE || kind == MODEL_DISK) {
+		double l = len3(e.p + 3);
+		if (!(l > 0)) {
+			free(e.p);
+			free(e.pf);
+			snprintf(err, errlen, "a non-zero direction or normal");
+			return -1;
+		}
+		for (int i = 3; i < 6; i++)
+			e.p[i] /= l;
+	}
+	/* float layout for the kernels */
+	if (kind == MODEL_SEGMENT || kind == MODEL_POLYLINE) {
+		for (size_t k = 0; k + 1 < np; k++) {
+			const double *a = e.p + 3 * k, *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double l2 = dot3(ba, ba);
+			float *f = e.pf + 7 * k;
+			for (int i = 0; i < 3; i++) {
+				f[i] = (float)a[i];
+				f[3 + i] = (float)ba[i];
+			}
+			f[6] = l2 > 0 ? (float)(1.0 / l2) : 0.0f;
+		}
+	} else if (kind == MODEL_PLANE) {
+		for (int i = 0; i < 3; i++)
+			e.pf[i] = (float)e.p[3 + i];
+		e.pf[3] = (float)dot3(e.p, e.p + 3);
+	} else {
+		for (size_t i = 0; i < 3 * np; i++)
+			e.pf[i] = (float)e.p[i];
+		e.pf[3 * np] = (float)r;
+	}
+	if (s->nel == s->cap) {
+		size_t cap = s->cap ? 2 * s->cap : 4;
+		model_elem_t *n = realloc(s->el, cap * sizeof *n);
+		if (!n) {
+			free(e.p);
+			free(e.pf);
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		s->el = n;
+		s->cap = cap;
+	}
+	s->el[s->nel++] = e;
+	return 0;
+}
+
+/* Nearest point q of the element to p (setup frame); returns the distance. */
+static double nearest(const model_elem_t *e, const double *p, double *q)
+{
+	double best = INFINITY;
+	switch (e->kind) {
+	case MODEL_POINT: case MODEL_POINTS:
+		for (size_t k = 0; k < e->np; k++) {
+			const double *a = e->p + 3 * k;
+			double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+			double l = len3(d);
+			if (l < best) {
+				best = l;
+				memcpy(q, a, 3 * sizeof *q);
+			}
+		}
+		return best;
+	case MODEL_SEGMENT: case MODEL_POLYLINE:
+		for (size_t k = 0; k + 1 < e->np; k++) {
+			const double *a = e->p + 3 * k, *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+			double l2 = dot3(ba, ba), h = l2 > 0 ? dot3(pa, ba) / l2 : 0;
+			h = h < 0 ? 0 : h > 1 ? 1 : h;
+			double c[3] = {a[0] + h * ba[0], a[1] + h * ba[1], a[2] + h * ba[2]};
+			double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+			double l = len3(d);
+			if (l < best) {
+				best = l;
+				memcpy(q, c, sizeof c);
+			}
+		}
+		return best;
+	case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: {
+		const double *a = e->p, *n = e->p + 3;
+		double v[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+		double h = dot3(v, n);
+		if (e->kind == MODEL_LINE) {
+			for (int i = 0; i < 3; i++)
+				q[i] = a[i] + h * n[i];
+		} else {
+			double rv[3] = {v[0] - h * n[0], v[1] - h * n[1], v[2] - h * n[2]};
+			double rho = len3(rv), s = 1;
+			if (e->kind == MODEL_DISK && rho > e->r)
+				s = e->r / rho;
+			for (int i = 0; i < 3; i++)
+				q[i] = a[i] + s * rv[i];
+		}
+		double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+		return len3(d);
+	}
+	}
+	return 0;
+}
+
+static double mandel(const model_param_t *c, const double *q)
+{
+	double cr = c->u[0] * q[0] + c->u[1] * q[1] + c->u[2] * q[2] + c->u[3];
+	double ci = c->v[0] * q[0] + c->v[1] * q[1] + c->v[2] * q[2] + c->v[3];
+	double zr = 0, zi = 0;
+	int n = 0;
+	while (n < c->maxit && zr * zr + zi * zi <= 4) {
+		double t = zr * zr - zi * zi + cr;
+		zi = 2 * zr * zi + ci;
+		zr = t;
+		n++;
+	}
+	return c->c0 + c->amp * n / c->maxit;
+}
+
+static unsigned hash3(unsigned seed, int x, int y, int z)
+{
+	unsigned h = seed * 0x9e3779b1u ^ (unsigned)x * 0x85ebca77u ^ (unsigned)y * 0xc2b2ae3du ^ (unsigned)z * 0x27d4eb2fu;
+	h ^= h >> 15;
+	h *= 0x2c1b3c6du;
+	h ^= h >> 12;
+	h *= 0x297a2d39u;
+	h ^= h >> 15;
+	return h;
+}
+
+double model_noise(unsigned seed, double x, double y, double z)
+{
+	double fx = floor(x), fy = floor(y), fz = floor(z);
+	int ix = (int)fx, iy = (int)fy, iz = (int)fz;
+	double tx = x - fx, ty = y - fy, tz = z - fz;
+	double sx = tx * tx * (3 - 2 * tx), sy = ty * ty * (3 - 2 * ty), sz = tz * tz * (3 - 2 * tz);
+	double v[8];
+	for (int k = 0; k < 8; k++)
+		v[k] = hash3(seed, ix + (k & 1), iy + ((k >> 1) & 1), iz + (k >> 2)) / 2147483647.5 - 1.0;
+	double x00 = v[0] + sx * (v[1] - v[0]), x10 = v[2] + sx * (v[3] - v[2]);
+	double x01 = v[4] + sx * (v[5] - v[4]), x11 = v[6] + sx * (v[7] - v[6]);
+	double y0 = x00 + sy * (x10 - x00), y1 = x01 + sy * (x11 - x01);
+	return y0 + sz * (y1 - y0);
+}
+
+double model_param(const model_shape_t *s, const double p[3], const double q[3])
+{
+	const model_param_t *c = &s->c;
+	switch (c->kind) {
+	case MODEL_C_CONST: return c->c0;
+	case MODEL_C_EXPR: return expr_eval(c->expr, q[0], q[1], q[2]);
+	case MODEL_C_NOISE: return c->c0 + c->amp * model_noise(c->seed, c->freq * q[0], c->freq * q[1], c->freq * q[2]);
+	case MODEL_C_MANDEL: return mandel(c, q);
+	default: return c->c0 + c->amp * model_eval(c->shape, p);
+	}
+}
+
+double model_eval(const model_shape_t *s, const double p[3])
+{
+	double q[3], near[3], sum = 0;
+	apply(s->minv, p, q);
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		double d = e->kind == MODEL_SHAPE ? fabs(model_eval(e->shape, p)) / e->shape->lip : nearest(e, q, near);
+		sum += e->w * d;
+	}
+	return sum - model_param(s, p, q);
+}
+
+void model_grad(const model_shape_t *s, const double p[3], double g[3])
+{
+	double q[3], near[3], gs[3] = {0, 0, 0}, ga[3] = {0, 0, 0};
+	apply(s->minv, p, q);
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (e->kind == MODEL_SHAPE) {
+			double f = model_eval(e->shape, p), sg[3];
+			model_grad(e->shape, p, sg);
+			double k = e->w * (f < 0 ? -1 : 1) / e->shape->lip;
+			for (int j = 0; j < 3; j++)
+				ga[j] += k * sg[j];
+			continue;
+		}
+		double d = nearest(e, q, near);
+		if (d > 0)
+			for (int j = 0; j < 3; j++)
+				gs[j] += e->w * (q[j] - near[j]) / d;
+	}
+	if (s->c.kind != MODEL_C_CONST) {
+		double h = 1e-5 * (1 + len3(q));
+		for (int j = 0; j < 3; j++) {
+			double qa[3] = {q[0], q[1], q[2]}, qb[3] = {q[0], q[1], q[2]};
+			qa[j] += h;
+			qb[j] -= h;
+			double pa[3], pb[3];
+			apply(s->m, qa, pa);
+			apply(s->m, qb, pb);
+			gs[j] -= (model_param(s, pa, qa) - model_param(s, pb, qb)) / (2 * h);
+		}
+	}
+	/* setup gradient to actual: g = A^-T gs */
+	for (int j = 0; j < 3; j++)
+		g[j] = s->minv[j] * gs[0] + s->minv[4 + j] * gs[1] + s->minv[8 + j] * gs[2] + ga[j];
+}

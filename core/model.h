@@ -1,0 +1,126 @@
+/* model.h: distance-based implicit shapes f(P) = sum w_i d(P, A_i) - c(P), with Lipschitz bounds and 8-wide kernels.
+ *
+ * Elements A_i (extended distance d(P, A), the Euclidean distance to the
+ * nearest point of the set A; every d is 1-Lipschitz):
+ *   point, finite point set (min over the points), segment, polyline (min over
+ *   its segments), infinite line, plane (unsigned distance), planar disk
+ *   (sqrt(h^2 + max(rho - r, 0)^2)), and another shape S, for which the
+ *   estimate |f_S(P)| / L_S is used (never above the true distance to the
+ *   surface of S, and 1-Lipschitz).
+ *
+ * The defining parameter c(P) is one of
+ *   constant              bound G_c = 0
+ *   expression in x,y,z   G_c from expr_bound() over the object's box
+ *   noise                 c0 + amp * noise(freq * P): seeded value noise with
+ *                         smoothstep trilinear interpolation, values in
+ *                         [-1, 1], |grad noise| <= 3*sqrt(3), so
+ *                         G_c = 3*sqrt(3)*|amp|*freq
+ *   mandelbrot            c0 + amp * n(P)/maxit, n = escape count of
+ *                         z <- z^2 + (u(P) + i v(P)) with u, v affine in P:
+ *                         piecewise constant, no bound (bracketing fallback)
+ *   another shape         c0 + amp * f_S(P): G_c = |amp| * L_S
+ *
+ * Coordinates: elements and the parameter live in the object's SETUP frame;
+ * translate/rotate/scale move the object to its ACTUAL position (M, applied
+ * in call order). f_actual(P) = f_setup(M^-1 P), so
+ *   L = ||M^-1|| * (sum |w_i| over setup elements + G_c) + sum |w_j| (shape elements)
+ * where ||M^-1|| <= product of 1/min|scale| over the scale steps.
+ *
+ * The shape is f < 0 inside (for positive weights) and f = 0 on its surface.
+ */
+#ifndef LOCUS_MODEL_H
+#define LOCUS_MODEL_H
+
+#include <stddef.h>
+#include "expr.h"
+
+/* Element kinds. */
+enum { MODEL_POINT, MODEL_POINTS, MODEL_SEGMENT, MODEL_POLYLINE, MODEL_LINE,
+       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE };
+/* Parameter kinds. */
+enum { MODEL_C_CONST, MODEL_C_EXPR, MODEL_C_NOISE, MODEL_C_MANDEL, MODEL_C_SHAPE };
+
+typedef struct model_shape model_shape_t;
+
+/* One element with its weight. p holds np points of 3 doubles: POINT 1,
+ * POINTS n, SEGMENT 2, POLYLINE n >= 2, LINE point + direction, PLANE point +
+ * normal, DISK centre + normal (radius r). */
+typedef struct {
+	int kind;
+	double w;
+	double *p;
+	size_t np;
+	double r;
+	float *pf;                 /* float copy (directions normalised) for the 8-wide kernel */
+	const model_shape_t *shape; /* MODEL_SHAPE */
+} model_elem_t;
+
+/* The defining parameter. */
+typedef struct {
+	int kind;
+	double c0;                 /* constant, or base value of noise/mandelbrot/shape */
+	expr_t *expr;              /* MODEL_C_EXPR (owned) */
+	double amp, freq;          /* noise, mandelbrot and shape amplitude; noise frequency */
+	unsigned seed;             /* noise */
+	double u[4], v[4];         /* mandelbrot: u = u0 x + u1 y + u2 z + u3, v likewise */
+	int maxit;                 /* mandelbrot iterations */
+	const model_shape_t *shape; /* MODEL_C_SHAPE */
+} model_param_t;
+
+/* A shape. Fill with the model_add_* and model_set_* calls, then model_prepare(). */
+struct model_shape {
+	model_elem_t *el;
+	size_t nel, cap;
+	model_param_t c;
+	double m[12], minv[12];    /* setup->actual affine (3x4 row-major) and its inverse */
+	double norm_m, norm_minv;  /* operator-norm bounds of their linear parts */
+	float mf[12];              /* float copy of minv */
+	int user_box;              /* box[] given by the user */
+	double box[6];             /* actual-frame clip box: x0 y0 z0 x1 y1 z1 */
+	/* set by model_prepare: */
+	double lip;                /* Lipschitz bound of f in the actual frame (0 if none) */
+	int has_lip;               /* 1 when lip is a valid bound inside box */
+	int bounded;               /* 1 when the surface lies in the sphere below */
+	double centre[3], radius;  /* bounding sphere (actual frame) */
+};
+
+/* A new empty shape (c = 0, identity transform), NULL when out of memory. */
+model_shape_t *model_new(void);
+/* Free a shape (not the shapes it refers to). */
+void model_free(model_shape_t *s);
+
+/* Add an element of weight w. pts: np points of 3 doubles as described above.
+ * Returns 0, or -1 with a message in err for degenerate input (NaN, zero
+ * direction, polyline with < 2 points, negative radius...). */
+int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np, double r,
+              const model_shape_t *shape, char *err, size_t errlen);
+
+/* Transforms, applied after the ones already given (SETUP -> ACTUAL). Angles in degrees. */
+void model_translate(model_shape_t *s, double x, double y, double z);
+void model_rotate(model_shape_t *s, int axis, double degrees);   /* axis 0 = x, 1 = y, 2 = z */
+int model_scale(model_shape_t *s, double sx, double sy, double sz); /* -1 if a factor is 0 or not finite */
+
+/* Derive the Lipschitz bound and the bounding region. Returns 0, or -1 with
+ * a message when the shape cannot be drawn (no elements, no region: an
+ * unbounded shape needs a user box). Sets *warn (if non-NULL) to a warning
+ * text or NULL. */
+int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn);
+
+/* f at the actual-frame point p (double precision, the reference). */
+double model_eval(const model_shape_t *s, const double p[3]);
+/* f at 8 actual-frame points (float, vectorised). */
+void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* Gradient of f at p (analytic for elements, central differences for c). */
+void model_grad(const model_shape_t *s, const double p[3], double g[3]);
+
+/* Value of the defining parameter at the actual point p (setup point q). */
+double model_param(const model_shape_t *s, const double p[3], const double q[3]);
+
+/* 1 when the Lipschitz cell test proves f > 0 everywhere in the clip region
+ * (the shape is empty, e.g. c below the minimum of the sum). */
+int model_is_empty(const model_shape_t *s);
+
+/* Seeded value noise in [-1, 1] (see above). */
+double model_noise(unsigned seed, double x, double y, double z);
+
+#endif

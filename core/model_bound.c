@@ -1,0 +1,194 @@
+/* model_bound.c: Lipschitz bound, bounding region and the emptiness proof of a shape. */
+#include "model.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static void apply(const double *m, const double *p, double *q)
+{
+	for (int i = 0; i < 3; i++)
+		q[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
+}
+
+/* Axis-aligned box (setup frame) holding the image of the actual box under minv. */
+static void box_to_setup(const model_shape_t *s, const double *box, double *lo, double *hi)
+{
+	for (int i = 0; i < 3; i++) {
+		lo[i] = INFINITY;
+		hi[i] = -INFINITY;
+	}
+	for (int c = 0; c < 8; c++) {
+		double p[3] = {box[(c & 1) ? 3 : 0], box[(c & 2) ? 4 : 1], box[(c & 4) ? 5 : 2]}, q[3];
+		apply(s->minv, p, q);
+		for (int i = 0; i < 3; i++) {
+			lo[i] = fmin(lo[i], q[i]);
+			hi[i] = fmax(hi[i], q[i]);
+		}
+	}
+}
+
+/* Range and gradient bound of c over the setup box; -1 when unknown. */
+static int param_bound(const model_shape_t *s, const double *lo, const double *hi,
+                       double *cmax, double *g)
+{
+	const model_param_t *c = &s->c;
+	double vlo;
+	switch (c->kind) {
+	case MODEL_C_CONST: *cmax = c->c0; *g = 0; return 0;
+	case MODEL_C_NOISE: *cmax = c->c0 + fabs(c->amp); *g = 3 * sqrt(3.0) * fabs(c->amp) * c->freq; return 0;
+	case MODEL_C_MANDEL: *cmax = fmax(c->c0, c->c0 + c->amp); *g = -1; return 0;
+	case MODEL_C_EXPR: return expr_bound(c->expr, lo, hi, &vlo, cmax, g);
+	default: *cmax = INFINITY; *g = fabs(c->amp) * c->shape->lip; return 0;
+	}
+}
+
+static int elem_finite(const model_elem_t *e)
+{
+	return e->kind == MODEL_POINT || e->kind == MODEL_POINTS || e->kind == MODEL_SEGMENT
+	    || e->kind == MODEL_POLYLINE || e->kind == MODEL_DISK;
+}
+
+/* Bounding sphere in the setup frame from sum w_i (|P - C| - R_i) <= c_max. */
+static int setup_sphere(const model_shape_t *s, double *C, double *R)
+{
+	double wf = 0, n = 0;
+	C[0] = C[1] = C[2] = 0;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (e->w < 0)
+			return -1;
+		if (!elem_finite(e))
+			continue;
+		wf += e->w;
+		size_t np = e->kind == MODEL_DISK ? 1 : e->np;
+		for (size_t k = 0; k < np; k++) {
+			for (int j = 0; j < 3; j++)
+				C[j] += e->p[3 * k + j];
+			n++;
+		}
+	}
+	if (!(wf > 0))
+		return -1;
+	for (int j = 0; j < 3; j++)
+		C[j] /= n;
+	double wr = 0;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (!elem_finite(e))
+			continue;
+		double rmax = 0;
+		size_t np = e->kind == MODEL_DISK ? 1 : e->np;
+		for (size_t k = 0; k < np; k++) {
+			double d[3] = {e->p[3 * k] - C[0], e->p[3 * k + 1] - C[1], e->p[3 * k + 2] - C[2]};
+			rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+		}
+		if (e->kind == MODEL_DISK)
+			rmax += e->r;
+		wr += e->w * rmax;
+	}
+	for (double r = 1; r <= 1e6; r *= 2) {
+		double lo[3] = {C[0] - r, C[1] - r, C[2] - r}, hi[3] = {C[0] + r, C[1] + r, C[2] + r};
+		double cmax, g;
+		if (param_bound(s, lo, hi, &cmax, &g) < 0 || !isfinite(cmax))
+			return -1;
+		double need = (cmax + wr) / wf;
+		if (s->c.kind != MODEL_C_EXPR || need <= r) {
+			*R = fmax(need, 0) * 1.0001 + 1e-6;
+			return 0;
+		}
+	}
+	return -1;
+}
+
+int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
+{
+	if (warn)
+		*warn = NULL;
+	if (s->nel == 0) {
+		snprintf(err, errlen, "a shape needs at least one distance element");
+		return -1;
+	}
+	double C[3], R, lo[3], hi[3];
+	s->bounded = setup_sphere(s, C, &R) == 0;
+	if (s->bounded) {
+		apply(s->m, C, s->centre);
+		s->radius = R * s->norm_m;
+	}
+	if (!s->bounded && !s->user_box) {
+		snprintf(err, errlen, "an unbounded shape (negative weights, only infinite elements or an unbounded parameter) needs a 'bound' box");
+		return -1;
+	}
+	if (s->user_box)
+		box_to_setup(s, s->box, lo, hi);
+	if (s->bounded) {
+		for (int i = 0; i < 3; i++) {
+			double a = C[i] - R, b = C[i] + R;
+			lo[i] = s->user_box ? fmax(lo[i], a) : a;
+			hi[i] = s->user_box ? fmin(hi[i], b) : b;
+		}
+		if (!s->user_box) {
+			for (int i = 0; i < 3; i++) {
+				s->box[i] = s->centre[i] - s->radius;
+				s->box[3 + i] = s->centre[i] + s->radius;
+			}
+		}
+	}
+	double ws = 0, wa = 0, cmax, g;
+	for (size_t i = 0; i < s->nel; i++) {
+		if (s->el[i].kind == MODEL_SHAPE)
+			wa += fabs(s->el[i].w);
+		else
+			ws += fabs(s->el[i].w);
+	}
+	s->has_lip = 0;
+	s->lip = 0;
+	if (param_bound(s, lo, hi, &cmax, &g) == 0 && g >= 0) {
+		s->has_lip = 1;
+		if (s->c.kind == MODEL_C_SHAPE)
+			s->lip = s->norm_minv * ws + wa + g;
+		else
+			s->lip = s->norm_minv * (ws + g) + wa;
+	}
+	if (s->has_lip && !(s->lip > 0))
+		s->has_lip = 0;
+	if (!s->has_lip && warn)
+		*warn = "no Lipschitz bound for this defining parameter: using step-and-bisect bracketing (slower)";
+	if (s->has_lip && model_is_empty(s) && warn)
+		*warn = "the shape is empty (the defining parameter is below the minimum of the distance sum)";
+	return 0;
+}
+
+/* Spherical cell test: can the cell centred at p of half-diagonal r hold f <= 0? */
+static int cell_may_hold(const model_shape_t *s, const double *p, double r, int depth, int *neg)
+{
+	double f = model_eval(s, p);
+	if (!(f == f))
+		return 1;
+	if (f <= 0) {
+		*neg = 1;
+		return 1;
+	}
+	if (f > s->lip * r)
+		return 0;
+	if (depth == 0)
+		return 1;
+	for (int c = 0; c < 8 && !*neg; c++) {
+		double h = r / (2 * sqrt(3.0));
+		double q[3] = {p[0] + ((c & 1) ? h : -h), p[1] + ((c & 2) ? h : -h), p[2] + ((c & 4) ? h : -h)};
+		if (cell_may_hold(s, q, r / 2, depth - 1, neg))
+			return 1;
+	}
+	return *neg;
+}
+
+int model_is_empty(const model_shape_t *s)
+{
+	if (!s->has_lip)
+		return 0;
+	const double *b = s->box;
+	double size = fmax(b[3] - b[0], fmax(b[4] - b[1], b[5] - b[2]));
+	double p[3] = {(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2};
+	int neg = 0;
+	return !cell_may_hold(s, p, size * sqrt(3.0) / 2, 6, &neg);
+}

@@ -1,0 +1,136 @@
+/* model_kernel.c: the 8-points-at-once float evaluator of a shape (branch-free loops that gcc vectorises). */
+#include "model.h"
+
+#include <math.h>
+
+typedef float v8[8];
+
+static void point8(const float *restrict a, const float *restrict x, const float *restrict y, const float *restrict z, float *restrict d)
+{
+	for (int k = 0; k < 8; k++) {
+		float dx = x[k] - a[0], dy = y[k] - a[1], dz = z[k] - a[2];
+		d[k] = sqrtf(dx * dx + dy * dy + dz * dz);
+	}
+}
+
+/* f: a, b-a, 1/|b-a|^2 */
+static void segment8(const float *restrict f, const float *restrict x, const float *restrict y, const float *restrict z, float *restrict d)
+{
+	const float ax = f[0], ay = f[1], az = f[2], bx = f[3], by = f[4], bz = f[5], il = f[6];
+	for (int k = 0; k < 8; k++) {
+		float px = x[k] - ax, py = y[k] - ay, pz = z[k] - az;
+		float h = (px * bx + py * by + pz * bz) * il;
+		h = h < 0.0f ? 0.0f : h;
+		h = h > 1.0f ? 1.0f : h;
+		px -= h * bx;
+		py -= h * by;
+		pz -= h * bz;
+		d[k] = sqrtf(px * px + py * py + pz * pz);
+	}
+}
+
+/* Infinite line (a, u), plane (n, offset) or disk (c, n, r); f as laid out by model_add. */
+static void plane_line_disk8(int kind, const float *restrict f, const float *restrict x,
+                             const float *restrict y, const float *restrict z, float *restrict d)
+{
+	const float a0 = f[0], a1 = f[1], a2 = f[2], n0 = f[3], n1 = f[4], n2 = f[5], r = f[6];
+	if (kind == MODEL_PLANE) {
+		for (int k = 0; k < 8; k++)
+			d[k] = fabsf(x[k] * a0 + y[k] * a1 + z[k] * a2 - n0);
+		return;
+	}
+	for (int k = 0; k < 8; k++) {
+		float px = x[k] - a0, py = y[k] - a1, pz = z[k] - a2;
+		float h = px * n0 + py * n1 + pz * n2;
+		px -= h * n0;
+		py -= h * n1;
+		pz -= h * n2;
+		float rho2 = px * px + py * py + pz * pz;
+		if (kind == MODEL_LINE) {
+			d[k] = sqrtf(rho2);
+		} else {
+			float o = sqrtf(rho2) - r;
+			o = o > 0.0f ? o : 0.0f;
+			d[k] = sqrtf(h * h + o * o);
+		}
+	}
+}
+
+static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
+                  const v8 ax, const v8 ay, const v8 az, v8 d)
+{
+	const float *f = e->pf;
+	v8 t;
+	switch (e->kind) {
+	case MODEL_POINT:
+		point8(f, x, y, z, d);
+		break;
+	case MODEL_POINTS:
+		point8(f, x, y, z, d);
+		for (size_t i = 1; i < e->np; i++) {
+			point8(f + 3 * i, x, y, z, t);
+			for (int k = 0; k < 8; k++)
+				d[k] = t[k] < d[k] ? t[k] : d[k];
+		}
+		break;
+	case MODEL_SEGMENT:
+		segment8(f, x, y, z, d);
+		break;
+	case MODEL_POLYLINE:
+		segment8(f, x, y, z, d);
+		for (size_t i = 1; i + 1 < e->np; i++) {
+			segment8(f + 7 * i, x, y, z, t);
+			for (int k = 0; k < 8; k++)
+				d[k] = t[k] < d[k] ? t[k] : d[k];
+		}
+		break;
+	case MODEL_LINE:
+	case MODEL_DISK:
+	case MODEL_PLANE:
+		plane_line_disk8(e->kind, f, x, y, z, d);
+		break;
+	default: {
+		model_eval8(e->shape, ax, ay, az, d);
+		float il = (float)(1.0 / e->shape->lip);
+		for (int k = 0; k < 8; k++)
+			d[k] = fabsf(d[k]) * il;
+	}
+	}
+}
+
+void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
+{
+	v8 qx, qy, qz, d, sum;
+	const float *m = s->mf;
+	for (int k = 0; k < 8; k++) {
+		qx[k] = m[0] * x[k] + m[1] * y[k] + m[2] * z[k] + m[3];
+		qy[k] = m[4] * x[k] + m[5] * y[k] + m[6] * z[k] + m[7];
+		qz[k] = m[8] * x[k] + m[9] * y[k] + m[10] * z[k] + m[11];
+		sum[k] = 0;
+	}
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		elem8(e, qx, qy, qz, x, y, z, d);
+		float w = (float)e->w;
+		for (int k = 0; k < 8; k++)
+			sum[k] += w * d[k];
+	}
+	switch (s->c.kind) {
+	case MODEL_C_CONST: {
+		float c = (float)s->c.c0;
+		for (int k = 0; k < 8; k++)
+			out[k] = sum[k] - c;
+		break;
+	}
+	case MODEL_C_EXPR:
+		expr_eval8(s->c.expr, qx, qy, qz, d);
+		for (int k = 0; k < 8; k++)
+			out[k] = sum[k] - d[k];
+		break;
+	default:
+		for (int k = 0; k < 8; k++) {
+			double p[3] = {x[k], y[k], z[k]}, q[3] = {qx[k], qy[k], qz[k]};
+			out[k] = sum[k] - (float)model_param(s, p, q);
+		}
+	}
+}

@@ -1,0 +1,64 @@
+/* oct.h: implicit-to-octree conversion (thesis chapter 6) and painter's-algorithm drawing of the leaves.
+ *
+ * The root cube is the shape's clip box made cubical. A cell of side a and
+ * centre p is kept (subdivided, or a leaf at the final depth) when the
+ * surface may cross it:
+ *   spherical test  |f(p)| <= L * (sqrt(3)/2) * a   (the cell's circumscribed
+ *                   sphere; one evaluation per cell)
+ *   cubical test    0 lies in an interval enclosure of f over the cell: for
+ *                   point elements the exact range of |P - A| over the cube,
+ *                   for the other elements and the parameter the Lipschitz
+ *                   enclosure f(p) +- L_i * (sqrt(3)/2) * a per term, i.e.
+ *                   tighter than the spherical test whenever points are
+ *                   involved.
+ * Without a Lipschitz bound neither test is safe and oct_build refuses.
+ * The root cell counts as visited; every cell tested counts as visited.
+ */
+#ifndef LOCUS_OCT_H
+#define LOCUS_OCT_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "camera.h"
+#include "locus_meta.h"
+#include "model.h"
+#include "rt.h"
+
+enum { OCT_SPHERICAL, OCT_CUBICAL };
+
+/* A leaf cell: centre and half side. */
+typedef struct {
+	float c[3];
+	float h;
+} oct_leaf_t;
+
+typedef struct {
+	uint64_t visited, leaves, evals;
+} oct_stats_t;
+
+/* Subdivide s to depth (1..12) with the given test; *leaves (malloc'd, the
+ * caller frees) receives the leaves. Returns 0 or -1 with a message. */
+int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, size_t *n,
+              oct_stats_t *st, char *err, size_t errlen);
+
+/* A projected face to paint. */
+typedef struct {
+	float x[4], y[4];
+	float depth;
+	meta_rgb_t rgb;
+} oct_face_t;
+
+/* Append the visible faces of the leaves (faces between two leaves are
+ * skipped only when the cube face points away from the eye), shaded with
+ * `shading`: RT_CONSTANT lights each face by its own normal (flat facets),
+ * RT_GOURAUD by the surface normal grad f at the cell centre (smooth look).
+ * *faces grows with realloc. Returns 0 or -1 (out of memory). */
+int oct_faces(const cam_t *cam, const rt_object_t *mat, const rt_light_t *lights, size_t nlights,
+              const oct_leaf_t *leaves, size_t n, int shading,
+              oct_face_t **faces, size_t *nfaces, size_t *cap);
+
+/* Sort faces far to near and paint them as filled quadrilaterals, shifted by
+ * xoff pixels. Returns 0 or a meta error code. */
+int oct_draw(meta_writer_t *w, oct_face_t *faces, size_t n, double xoff);
+
+#endif

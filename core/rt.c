@@ -1,0 +1,354 @@
+/* rt.c: the ray-tracing renderer: packets of pixels, shading with shadows, adaptive supersampling, threads. */
+#include "rt.h"
+#include "rt_int.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+typedef struct {
+	const rt_params_t *p;
+	meta_rgb_t *img;
+	const meta_rgb_t *src;   /* supersampling pass: the first-pass picture */
+	int pass;
+	atomic_uint next_row;
+	atomic_uint rows_done;
+	atomic_uint workers_done;
+} job_t;
+
+typedef struct {
+	job_t *job;
+	rt_stats_t st;
+} worker_t;
+
+static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static meta_rgb_t to_rgb(const double *c)
+{
+	unsigned v[3];
+	for (int i = 0; i < 3; i++) {
+		double x = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
+		v[i] = (unsigned)(x * 255 + 0.5);
+	}
+	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
+}
+
+/* Trace up to 8 rays (active[k]) and shade them into col. */
+static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_stats_t *st)
+{
+	double best[8];
+	int obj[8];
+	uint64_t lanes = 0;
+	for (int k = 0; k < 8; k++) {
+		best[k] = INFINITY;
+		obj[k] = -1;
+		for (int i = 0; i < 3; i++)
+			col[k][i] = p->background[i];
+	}
+	for (size_t i = 0; i < p->nobjects; i++) {
+		uint64_t ev = 0;
+		rt_march8(p->objects[i].shape, pk, 0, &ev, &lanes);
+		st->primary_evals += ev;
+		for (int k = 0; k < 8; k++)
+			if (pk->active[k] && pk->thit[k] < best[k]) {
+				best[k] = pk->thit[k];
+				obj[k] = (int)i;
+			}
+	}
+	double P[8][3], N[8][3], V[8][3];
+	int hit[8];
+	for (int k = 0; k < 8; k++) {
+		hit[k] = pk->active[k] && obj[k] >= 0;
+		if (!hit[k])
+			continue;
+		st->hits++;
+		const rt_object_t *ob = &p->objects[obj[k]];
+		for (int i = 0; i < 3; i++) {
+			P[k][i] = pk->o[k][i] + best[k] * pk->d[k][i];
+			V[k][i] = -pk->d[k][i];
+		}
+		model_grad(ob->shape, P[k], N[k]);
+		st->normal_evals++;
+		double l = sqrt(dot(N[k], N[k]));
+		if (l > 0)
+			for (int i = 0; i < 3; i++)
+				N[k][i] /= l;
+		else
+			memcpy(N[k], V[k], sizeof N[k]);
+		if (dot(N[k], V[k]) < 0)
+			for (int i = 0; i < 3; i++)
+				N[k][i] = -N[k][i];
+		double a = ob->shading == RT_CONSTANT ? 1 : ob->ambient;
+		for (int i = 0; i < 3; i++)
+			col[k][i] = ob->colour[i] * a;
+	}
+	for (size_t li = 0; li < p->nlights; li++) {
+		const rt_light_t *lt = &p->lights[li];
+		double Ld[8][3], dist[8];
+		rt_packet_t sp;
+		memset(&sp, 0, sizeof sp);
+		sp.acc = pk->acc;
+		sp.step = pk->step;
+		int need = 0;
+		for (int k = 0; k < 8; k++) {
+			if (!hit[k] || p->objects[obj[k]].shading == RT_CONSTANT)
+				continue;
+			for (int i = 0; i < 3; i++)
+				Ld[k][i] = lt->directional ? lt->pos[i] : lt->pos[i] - P[k][i];
+			dist[k] = sqrt(dot(Ld[k], Ld[k]));
+			if (!(dist[k] > 0))
+				continue;
+			for (int i = 0; i < 3; i++)
+				Ld[k][i] /= dist[k];
+			if (lt->directional)
+				dist[k] = INFINITY;
+			if (dot(N[k], Ld[k]) <= 0)
+				continue;
+			sp.active[k] = 1;
+			need = 1;
+			double fp = pk->fa[k] + pk->fb[k] * best[k];
+			for (int i = 0; i < 3; i++) {
+				sp.o[k][i] = P[k][i] + 0.5 * fp * N[k][i];
+				sp.d[k][i] = Ld[k][i];
+			}
+			sp.tmin[k] = 0;
+			sp.tmax[k] = dist[k];
+			sp.fa[k] = fp;
+			sp.fb[k] = 0;
+		}
+		if (need && lt->shadows) {
+			for (size_t i = 0; i < p->nobjects; i++) {
+				uint64_t ev = 0;
+				rt_march8(p->objects[i].shape, &sp, 1, &ev, &lanes);
+				st->shadow_evals += ev;
+				for (int k = 0; k < 8; k++)
+					if (sp.active[k] && sp.thit[k] < INFINITY)
+						sp.active[k] = 0;
+			}
+		}
+		for (int k = 0; k < 8; k++) {
+			if (!sp.active[k])
+				continue;
+			const rt_object_t *ob = &p->objects[obj[k]];
+			double nl = dot(N[k], Ld[k]);
+			double spec = 0;
+			if (ob->shading == RT_PHONG) {
+				double r[3];
+				for (int i = 0; i < 3; i++)
+					r[i] = 2 * nl * N[k][i] - Ld[k][i];
+				double rv = dot(r, V[k]);
+				if (rv > 0)
+					spec = ob->specular * pow(rv, ob->shininess);
+			}
+			for (int i = 0; i < 3; i++)
+				col[k][i] += lt->colour[i] * (ob->colour[i] * ob->diffuse * nl + spec);
+		}
+	}
+	st->lane_evals += lanes;
+}
+
+static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, double py)
+{
+	cam_ray(&p->cam, px, py, pk->o[k], pk->d[k]);
+	pk->active[k] = 1;
+	pk->tmin[k] = 0;
+	pk->tmax[k] = INFINITY;
+	if (p->cam.projection == CAM_ORTHOGRAPHIC) {
+		pk->fa[k] = cam_footprint(&p->cam, 1);
+		pk->fb[k] = 0;
+	} else {
+		pk->fa[k] = 0;
+		pk->fb[k] = cam_footprint(&p->cam, 1);
+	}
+}
+
+static void init_packet(const rt_params_t *p, rt_packet_t *pk)
+{
+	memset(pk, 0, sizeof *pk);
+	pk->acc = p->accuracy > 0 ? p->accuracy : 1e-3;
+	pk->step = p->step_pixels > 0 ? p->step_pixels : 0.5;
+}
+
+static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_stats_t *st)
+{
+	unsigned nx = p->cam.nxpix, j = p->cam.nypix - 1 - r;
+	rt_packet_t pk;
+	double col[8][3];
+	for (unsigned x0 = 0; x0 < nx; x0 += 8) {
+		init_packet(p, &pk);
+		for (int k = 0; k < 8 && x0 + k < nx; k++)
+			setup_ray(p, &pk, k, x0 + k + 0.5, j + 0.5);
+		trace8(p, &pk, col, st);
+		for (int k = 0; k < 8 && x0 + k < nx; k++)
+			row[x0 + k] = to_rgb(col[k]);
+	}
+}
+
+static int differs(meta_rgb_t a, meta_rgb_t b, double th)
+{
+	for (int s = 0; s < 24; s += 8) {
+		int d = (int)((a >> s) & 255) - (int)((b >> s) & 255);
+		if (d > th || -d > th)
+			return 1;
+	}
+	return 0;
+}
+
+static void supersample_row(const rt_params_t *p, const meta_rgb_t *src, meta_rgb_t *row, unsigned r, rt_stats_t *st)
+{
+	unsigned nx = p->cam.nxpix, ny = p->cam.nypix, j = ny - 1 - r, n = (unsigned)p->supersample;
+	double th = p->aa_threshold > 0 ? p->aa_threshold : 8;
+	for (unsigned i = 0; i < nx; i++) {
+		meta_rgb_t c = src[(size_t)r * nx + i];
+		int need = (i > 0 && differs(c, src[(size_t)r * nx + i - 1], th))
+		        || (i + 1 < nx && differs(c, src[(size_t)r * nx + i + 1], th))
+		        || (r > 0 && differs(c, src[(size_t)(r - 1) * nx + i], th))
+		        || (r + 1 < ny && differs(c, src[(size_t)(r + 1) * nx + i], th));
+		if (!need)
+			continue;
+		st->aa_pixels++;
+		double sum[3] = {0, 0, 0}, col[8][3];
+		rt_packet_t pk;
+		uint64_t before = st->primary_evals + st->shadow_evals;
+		for (unsigned s0 = 0; s0 < n * n; s0 += 8) {
+			init_packet(p, &pk);
+			for (unsigned k = 0; k < 8 && s0 + k < n * n; k++) {
+				unsigned a = (s0 + k) % n, b = (s0 + k) / n;
+				setup_ray(p, &pk, (int)k, i + (a + 0.5) / n, j + (b + 0.5) / n);
+			}
+			trace8(p, &pk, col, st);
+			for (unsigned k = 0; k < 8 && s0 + k < n * n; k++)
+				for (int q = 0; q < 3; q++)
+					sum[q] += col[k][q];
+		}
+		st->aa_evals += st->primary_evals + st->shadow_evals - before;
+		for (int q = 0; q < 3; q++)
+			sum[q] /= n * n;
+		row[i] = to_rgb(sum);
+	}
+}
+
+static void *worker(void *arg)
+{
+	worker_t *w = arg;
+	job_t *job = w->job;
+	const rt_params_t *p = job->p;
+	unsigned ny = p->cam.nypix, nx = p->cam.nxpix;
+	for (;;) {
+		unsigned r = atomic_fetch_add(&job->next_row, 1);
+		if (r >= ny)
+			break;
+		if (job->pass == 0)
+			render_row(p, job->img + (size_t)r * nx, r, &w->st);
+		else
+			supersample_row(p, job->src, job->img + (size_t)r * nx, r, &w->st);
+		atomic_fetch_add(&job->rows_done, 1);
+	}
+	atomic_fetch_add(&job->workers_done, 1);
+	return NULL;
+}
+
+static int run_pass(job_t *job, unsigned nthreads, rt_stats_t *st, char *err, size_t errlen)
+{
+	const rt_params_t *p = job->p;
+	pthread_t tid[64];
+	worker_t ws[64];
+	atomic_store(&job->next_row, 0);
+	atomic_store(&job->rows_done, 0);
+	atomic_store(&job->workers_done, 0);
+	unsigned started = 0;
+	for (unsigned i = 0; i < nthreads; i++) {
+		memset(&ws[i], 0, sizeof ws[i]);
+		ws[i].job = job;
+		if (i > 0 && pthread_create(&tid[i], NULL, worker, &ws[i]) != 0)
+			break;
+		started++;
+	}
+	if (started < nthreads && started == 0) {
+		snprintf(err, errlen, "cannot start worker threads");
+		return -1;
+	}
+	if (started == 1 || !p->progress) {
+		worker(&ws[0]);
+	} else {
+		/* thread 0's share is done by an extra worker so this thread can report */
+		pthread_t extra;
+		if (pthread_create(&extra, NULL, worker, &ws[0]) != 0)
+			worker(&ws[0]);
+		else {
+			while (atomic_load(&job->workers_done) < started) {
+				p->progress(p->progress_user, atomic_load(&job->rows_done), p->cam.nypix);
+				struct timespec ts = {0, 50000000};
+				nanosleep(&ts, NULL);
+			}
+			pthread_join(extra, NULL);
+		}
+	}
+	for (unsigned i = 1; i < started; i++)
+		pthread_join(tid[i], NULL);
+	if (p->progress)
+		p->progress(p->progress_user, p->cam.nypix, p->cam.nypix);
+	for (unsigned i = 0; i < started; i++) {
+		const rt_stats_t *s = &ws[i].st;
+		st->lane_evals += s->lane_evals;
+		st->primary_evals += s->primary_evals;
+		st->shadow_evals += s->shadow_evals;
+		st->normal_evals += s->normal_evals;
+		st->aa_evals += s->aa_evals;
+		st->hits += s->hits;
+		st->aa_pixels += s->aa_pixels;
+	}
+	return 0;
+}
+
+int rt_render(const rt_params_t *p, meta_rgb_t *img, rt_stats_t *st, char *err, size_t errlen)
+{
+	rt_stats_t local;
+	if (!st)
+		st = &local;
+	memset(st, 0, sizeof *st);
+	unsigned nthreads = p->threads;
+	if (nthreads == 0) {
+		long n = sysconf(_SC_NPROCESSORS_ONLN);
+		nthreads = n > 0 ? (unsigned)n : 1;
+	}
+	if (nthreads > 64)
+		nthreads = 64;
+	job_t job;
+	memset(&job, 0, sizeof job);
+	job.p = p;
+	job.img = img;
+	if (run_pass(&job, nthreads, st, err, errlen) < 0)
+		return -1;
+	if (p->supersample >= 2) {
+		size_t n = (size_t)p->cam.nxpix * p->cam.nypix;
+		meta_rgb_t *copy = malloc(n * sizeof *copy);
+		if (!copy) {
+			snprintf(err, errlen, "out of memory for supersampling");
+			return -1;
+		}
+		memcpy(copy, img, n * sizeof *copy);
+		job.src = copy;
+		job.pass = 1;
+		int rc = run_pass(&job, nthreads, st, err, errlen);
+		free(copy);
+		if (rc < 0)
+			return -1;
+	}
+	st->evals = st->primary_evals + st->shadow_evals + st->normal_evals;
+	return 0;
+}
+
+int rt_write_image(meta_writer_t *w, const meta_rgb_t *img, unsigned width, unsigned height,
+                   unsigned x, unsigned y)
+{
+	int rc = meta_image(w, x, y, width, height);
+	for (unsigned r = 0; rc >= 0 && r < height; r++)
+		rc = meta_row_pixels(w, img + (size_t)r * width, width);
+	return rc < 0 ? rc : 0;
+}

@@ -1,0 +1,565 @@
+/* scene.c: parser of the scene language: view, lights, background, shapes and objects, render blocks. */
+#include "scene.h"
+#include "scene_lex.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef scene_tok_t tok_t;
+
+static int parse_colour(scene_lex_t *lx, double *c)
+{
+	if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
+		return -1;
+	for (int i = 0; i < 3; i++)
+		if (c[i] < 0 || c[i] > 1)
+			return scene_lex_error(lx, lx->line, 1, "expected colour components between 0 and 1");
+	return 0;
+}
+
+static void warn(scene_t *sc, unsigned line, unsigned col, const char *msg)
+{
+	if (sc->nwarnings >= SCENE_MAX_WARNINGS)
+		return;
+	char *b = sc->warnbuf[sc->nwarnings], tmp[sizeof sc->warnbuf[0]];
+	snprintf(tmp, sizeof tmp, "%.200s:%u:%u: warning: %.250s", sc->name, line, col, msg);
+	memcpy(b, tmp, sizeof tmp);
+	sc->warnings[sc->nwarnings++] = b;
+}
+
+static scene_obj_t *find(scene_t *sc, const tok_t *t)
+{
+	for (size_t i = 0; i < sc->nobjs; i++)
+		if (strlen(sc->objs[i].name) == t->len && !memcmp(sc->objs[i].name, t->s, t->len))
+			return &sc->objs[i];
+	return NULL;
+}
+
+static int parse_view(scene_lex_t *lx, scene_t *sc)
+{
+	tok_t t;
+	if (scene_lex_eol(lx) < 0)
+		return -1;
+	while (scene_lex_line(lx)) {
+		scene_lex_tok(lx, &t);
+		cam_t *c = &sc->cam;
+		if (scene_tok_is(&t, "end"))
+			return scene_lex_eol(lx);
+		if (scene_tok_is(&t, "eye")) {
+			if (scene_lex_numbers(lx, c->eye, 3, "an eye coordinate") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "look-at")) {
+			if (scene_lex_numbers(lx, c->look, 3, "a look-at coordinate") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "direction")) {
+			double d[3];
+			if (scene_lex_numbers(lx, d, 3, "a direction component") < 0)
+				return -1;
+			for (int i = 0; i < 3; i++)
+				c->look[i] = c->eye[i] + d[i];
+		} else if (scene_tok_is(&t, "up")) {
+			if (scene_lex_numbers(lx, c->up, 3, "an up component") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "fov")) {
+			if (scene_lex_number(lx, &c->fov, "a field of view in degrees") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "window")) {
+			if (scene_lex_number(lx, &c->window, "a window width") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "eye-separation")) {
+			if (scene_lex_number(lx, &sc->eye_separation, "an eye separation") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "size")) {
+			double w, h;
+			if (scene_lex_number(lx, &w, "a width in pixels") < 0 || scene_lex_number(lx, &h, "a height in pixels") < 0)
+				return -1;
+			if (w < 1 || h < 1 || w > 32768 || h > 32768 || w != floor(w) || h != floor(h))
+				return scene_lex_error(lx, t.line, t.col, "expected a viewport size of 1..32768 whole pixels each way");
+			c->nxpix = (unsigned)w;
+			c->nypix = (unsigned)h;
+		} else if (scene_tok_is(&t, "projection")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "perspective"))
+				c->projection = CAM_PERSPECTIVE;
+			else if (scene_tok_is(&t, "orthographic"))
+				c->projection = CAM_ORTHOGRAPHIC;
+			else if (scene_tok_is(&t, "stereoscopic")) {
+				c->projection = CAM_PERSPECTIVE;
+				if (sc->stereo == SCENE_MONO)
+					sc->stereo = SCENE_STEREO_SIDE;
+			} else
+				return scene_lex_expected(lx, &t, "perspective, orthographic or stereoscopic");
+		} else if (scene_tok_is(&t, "stereo-layout")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "side-by-side"))
+				sc->stereo = SCENE_STEREO_SIDE;
+			else if (scene_tok_is(&t, "pages"))
+				sc->stereo = SCENE_STEREO_PAGES;
+			else
+				return scene_lex_expected(lx, &t, "side-by-side or pages");
+		} else {
+			return scene_lex_expected(lx, &t, "a view setting (eye, look-at, direction, up, fov, projection, window, size, eye-separation, stereo-layout) or 'end'");
+		}
+		if (scene_lex_eol(lx) < 0)
+			return -1;
+	}
+	return scene_lex_expected(lx, &(tok_t){"", 0, lx->line, 1}, "'end' closing the view block");
+}
+
+/* Optional "weight W" at the end of an element line. */
+static int opt_weight(scene_lex_t *lx, double *w)
+{
+	tok_t t;
+	*w = 1;
+	if (!scene_lex_tok(lx, &t))
+		return 0;
+	if (!scene_tok_is(&t, "weight"))
+		return scene_lex_expected(lx, &t, "'weight' or the end of the line");
+	if (scene_lex_number(lx, w, "a weight") < 0)
+		return -1;
+	return scene_lex_eol(lx);
+}
+
+static int add_elem(scene_lex_t *lx, model_shape_t *m, int kind, const double *p, size_t np,
+                    double r, const model_shape_t *other, const tok_t *at)
+{
+	double w;
+	char e[200], msg[256];
+	if (opt_weight(lx, &w) < 0)
+		return -1;
+	if (model_add(m, kind, w, p, np, r, other, e, sizeof e) < 0) {
+		snprintf(msg, sizeof msg, "expected %s", e);
+		return scene_lex_error(lx, at->line, at->col, msg);
+	}
+	return 0;
+}
+
+/* A list of points: numbers in threes up to 'weight' or the end of the line. */
+static int point_list(scene_lex_t *lx, double **pts, size_t *np)
+{
+	size_t cap = 0, n = 0;
+	double *p = NULL;
+	for (;;) {
+		size_t save = lx->pos;
+		tok_t t;
+		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight")) {
+			lx->pos = save;
+			break;
+		}
+		lx->pos = save;
+		if (n == cap) {
+			cap = cap ? 2 * cap : 24;
+			double *q = realloc(p, cap * sizeof *q);
+			if (!q) {
+				free(p);
+				return scene_lex_error(lx, t.line, t.col, "out of memory");
+			}
+			p = q;
+		}
+		if (scene_lex_number(lx, &p[n], "a coordinate") < 0) {
+			free(p);
+			return -1;
+		}
+		n++;
+	}
+	if (n == 0 || n % 3) {
+		free(p);
+		return scene_lex_error(lx, lx->line, 1, "expected coordinates in groups of three (x y z)");
+	}
+	*pts = p;
+	*np = n / 3;
+	return 0;
+}
+
+static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
+{
+	tok_t t, rest;
+	size_t save = lx->pos;
+	model_param_t *c = &m->c;
+	expr_free(c->expr);
+	memset(c, 0, sizeof *c);
+	scene_lex_tok(lx, &t);
+	if (scene_tok_is(&t, "noise")) {
+		double v[4];
+		c->kind = MODEL_C_NOISE;
+		if (scene_lex_numbers(lx, v, 4, "noise BASE AMPLITUDE FREQUENCY SEED") < 0)
+			return -1;
+		if (v[2] <= 0 || v[3] < 0 || v[3] != floor(v[3]) || v[3] > 4294967295.0)
+			return scene_lex_error(lx, t.line, t.col, "expected a positive frequency and a whole seed >= 0");
+		c->c0 = v[0];
+		c->amp = v[1];
+		c->freq = v[2];
+		c->seed = (unsigned)v[3];
+		return scene_lex_eol(lx);
+	}
+	if (scene_tok_is(&t, "mandelbrot")) {
+		double v[3];
+		c->kind = MODEL_C_MANDEL;
+		if (scene_lex_numbers(lx, v, 3, "mandelbrot BASE AMPLITUDE ITERATIONS") < 0
+		    || scene_lex_numbers(lx, c->u, 4, "the u map (4 numbers)") < 0
+		    || scene_lex_numbers(lx, c->v, 4, "the v map (4 numbers)") < 0)
+			return -1;
+		if (v[2] < 1 || v[2] > 100000 || v[2] != floor(v[2]))
+			return scene_lex_error(lx, t.line, t.col, "expected 1..100000 whole iterations");
+		c->c0 = v[0];
+		c->amp = v[1];
+		c->maxit = (int)v[2];
+		return scene_lex_eol(lx);
+	}
+	if (scene_tok_is(&t, "shape")) {
+		tok_t n;
+		scene_lex_tok(lx, &n);
+		scene_obj_t *o = find(sc, &n);
+		if (!o)
+			return scene_lex_expected(lx, &n, "the name of a shape or object defined above");
+		if (!o->shape->has_lip)
+			return scene_lex_expected(lx, &n, "a shape with a Lipschitz bound");
+		c->kind = MODEL_C_SHAPE;
+		c->shape = o->shape;
+		if (scene_lex_number(lx, &c->c0, "a base value") < 0 || scene_lex_number(lx, &c->amp, "an amplitude") < 0)
+			return -1;
+		return scene_lex_eol(lx);
+	}
+	lx->pos = save;
+	scene_lex_rest(lx, &rest);
+	if (rest.len == 0)
+		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot or shape");
+	char *src = malloc(rest.len + 1), e[200], msg[300];
+	if (!src)
+		return scene_lex_error(lx, rest.line, rest.col, "out of memory");
+	memcpy(src, rest.s, rest.len);
+	src[rest.len] = 0;
+	size_t at = 0;
+	if (expr_compile(src, &c->expr, e, sizeof e, &at) < 0) {
+		free(src);
+		snprintf(msg, sizeof msg, "%s", e);
+		return scene_lex_error(lx, rest.line, rest.col + (unsigned)at, msg);
+	}
+	free(src);
+	if (expr_is_constant(c->expr)) {
+		c->c0 = expr_eval(c->expr, 0, 0, 0);
+		expr_free(c->expr);
+		c->expr = NULL;
+		c->kind = MODEL_C_CONST;
+		if (!isfinite(c->c0))
+			return scene_lex_error(lx, rest.line, rest.col, "expected a finite defining parameter");
+	} else {
+		c->kind = MODEL_C_EXPR;
+	}
+	return 0;
+}
+
+static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
+{
+	model_shape_t *m = o->shape;
+	rt_object_t *mat = &o->mat;
+	tok_t t;
+	char msg[400];
+	while (scene_lex_line(lx)) {
+		scene_lex_tok(lx, &t);
+		double v[8];
+		if (scene_tok_is(&t, "end")) {
+			if (scene_lex_eol(lx) < 0)
+				return -1;
+			char e[300];
+			const char *w = NULL;
+			if (model_prepare(m, e, sizeof e, &w) < 0) {
+				snprintf(msg, sizeof msg, "%s (in '%s')", e, o->name);
+				return scene_lex_error(lx, o->line, o->col, msg);
+			}
+			if (w) {
+				snprintf(msg, sizeof msg, "'%s': %s", o->name, w);
+				warn(sc, o->line, o->col, msg);
+			}
+			return 0;
+		}
+		if (scene_tok_is(&t, "point")) {
+			if (scene_lex_numbers(lx, v, 3, "a coordinate") < 0 || add_elem(lx, m, MODEL_POINT, v, 1, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "points") || scene_tok_is(&t, "polyline")) {
+			double *p = NULL;
+			size_t np = 0;
+			int kind = t.s[1] == 'o' && t.s[2] == 'i' ? MODEL_POINTS : MODEL_POLYLINE;
+			if (point_list(lx, &p, &np) < 0)
+				return -1;
+			int rc = add_elem(lx, m, kind, p, np, 0, NULL, &t);
+			free(p);
+			if (rc < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "segment") || scene_tok_is(&t, "line") || scene_tok_is(&t, "plane")) {
+			int kind = t.s[0] == 's' ? MODEL_SEGMENT : t.s[0] == 'l' ? MODEL_LINE : MODEL_PLANE;
+			if (scene_lex_numbers(lx, v, 6, "a coordinate") < 0 || add_elem(lx, m, kind, v, 2, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "disk")) {
+			if (scene_lex_numbers(lx, v, 7, "disk CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_DISK, v, 2, v[6], NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "distance-to")) {
+			tok_t n;
+			scene_lex_tok(lx, &n);
+			scene_obj_t *other = find(sc, &n);
+			if (!other || other == o)
+				return scene_lex_expected(lx, &n, "the name of a shape or object defined above");
+			if (add_elem(lx, m, MODEL_SHAPE, NULL, 0, 0, other->shape, &n) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "c")) {
+			if (parse_param(lx, sc, m) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "translate")) {
+			if (scene_lex_numbers(lx, v, 3, "a translation") < 0 || scene_lex_eol(lx) < 0)
+				return -1;
+			model_translate(m, v[0], v[1], v[2]);
+		} else if (scene_tok_is(&t, "rotate")) {
+			tok_t a;
+			scene_lex_tok(lx, &a);
+			int axis = scene_tok_is(&a, "x") ? 0 : scene_tok_is(&a, "y") ? 1 : scene_tok_is(&a, "z") ? 2 : -1;
+			if (axis < 0)
+				return scene_lex_expected(lx, &a, "an axis x, y or z");
+			if (scene_lex_number(lx, v, "an angle in degrees") < 0 || scene_lex_eol(lx) < 0)
+				return -1;
+			model_rotate(m, axis, v[0]);
+		} else if (scene_tok_is(&t, "scale")) {
+			if (scene_lex_number(lx, &v[0], "a scale factor") < 0)
+				return -1;
+			size_t save = lx->pos;
+			tok_t n;
+			v[1] = v[2] = v[0];
+			if (scene_lex_tok(lx, &n)) {
+				lx->pos = save;
+				if (scene_lex_numbers(lx, v + 1, 2, "a scale factor") < 0)
+					return -1;
+			}
+			if (scene_lex_eol(lx) < 0)
+				return -1;
+			if (model_scale(m, v[0], v[1], v[2]) < 0)
+				return scene_lex_error(lx, t.line, t.col, "expected non-zero scale factors");
+		} else if (scene_tok_is(&t, "bound")) {
+			if (scene_lex_numbers(lx, m->box, 6, "a bound corner coordinate") < 0 || scene_lex_eol(lx) < 0)
+				return -1;
+			for (int i = 0; i < 3; i++)
+				if (!(m->box[i] < m->box[3 + i]))
+					return scene_lex_error(lx, t.line, t.col, "expected bound X0 Y0 Z0 X1 Y1 Z1 with X0 < X1, Y0 < Y1, Z0 < Z1");
+			m->user_box = 1;
+		} else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
+			if (parse_colour(lx, mat->colour) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "shading")) {
+			tok_t a;
+			scene_lex_tok(lx, &a);
+			if (scene_tok_is(&a, "constant"))
+				mat->shading = RT_CONSTANT;
+			else if (scene_tok_is(&a, "gouraud"))
+				mat->shading = RT_GOURAUD;
+			else if (scene_tok_is(&a, "phong"))
+				mat->shading = RT_PHONG;
+			else
+				return scene_lex_expected(lx, &a, "constant, gouraud or phong");
+		} else if (scene_tok_is(&t, "ambient") || scene_tok_is(&t, "diffuse") || scene_tok_is(&t, "specular") || scene_tok_is(&t, "shininess")) {
+			double *dst = t.s[0] == 'a' ? &mat->ambient : t.s[0] == 'd' ? &mat->diffuse : t.s[1] == 'p' ? &mat->specular : &mat->shininess;
+			if (scene_lex_number(lx, dst, "a non-negative number") < 0)
+				return -1;
+			if (*dst < 0)
+				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
+		} else {
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+		}
+		if (!lx->failed && scene_lex_eol(lx) < 0)
+			return -1;
+		if (lx->failed)
+			return -1;
+	}
+	return scene_lex_expected(lx, &(tok_t){"", 0, lx->line, 1}, "'end' closing the shape");
+}
+
+static int parse_shape(scene_lex_t *lx, scene_t *sc, int drawn, const tok_t *kw)
+{
+	tok_t n;
+	if (!scene_lex_tok(lx, &n) || n.len >= 64)
+		return scene_lex_expected(lx, &n, "a name (at most 63 bytes)");
+	if (find(sc, &n))
+		return scene_lex_expected(lx, &n, "a name not used before");
+	if (scene_lex_eol(lx) < 0)
+		return -1;
+	if (sc->nobjs == sc->cap) {
+		size_t cap = sc->cap ? 2 * sc->cap : 8;
+		scene_obj_t *q = realloc(sc->objs, cap * sizeof *q);
+		if (!q)
+			return scene_lex_error(lx, n.line, n.col, "out of memory");
+		sc->objs = q;
+		sc->cap = cap;
+	}
+	scene_obj_t *o = &sc->objs[sc->nobjs];
+	memset(o, 0, sizeof *o);
+	memcpy(o->name, n.s, n.len);
+	o->drawn = drawn;
+	o->line = kw->line;
+	o->col = kw->col;
+	o->shape = model_new();
+	if (!o->shape)
+		return scene_lex_error(lx, n.line, n.col, "out of memory");
+	sc->nobjs++;
+	rt_object_t *m = &o->mat;
+	m->shape = o->shape;
+	m->colour[0] = 0.9;
+	m->colour[1] = 0.6;
+	m->colour[2] = 0.2;
+	m->shading = RT_PHONG;
+	m->ambient = 0.15;
+	m->diffuse = 0.75;
+	m->specular = 0.5;
+	m->shininess = 30;
+	return parse_body(lx, sc, o);
+}
+
+int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw);
+
+static int parse_light(scene_lex_t *lx, scene_t *sc)
+{
+	tok_t t;
+	if (sc->nlights >= SCENE_MAX_LIGHTS)
+		return scene_lex_error(lx, lx->line, 1, "expected at most 16 lights");
+	rt_light_t *l = &sc->lights[sc->nlights];
+	memset(l, 0, sizeof *l);
+	l->colour[0] = l->colour[1] = l->colour[2] = 1;
+	scene_lex_tok(lx, &t);
+	if (scene_tok_is(&t, "point"))
+		l->directional = 0;
+	else if (scene_tok_is(&t, "directional"))
+		l->directional = 1;
+	else
+		return scene_lex_expected(lx, &t, "point or directional");
+	if (scene_lex_numbers(lx, l->pos, 3, l->directional ? "a direction towards the light" : "a light position") < 0)
+		return -1;
+	if (l->directional && l->pos[0] == 0 && l->pos[1] == 0 && l->pos[2] == 0)
+		return scene_lex_error(lx, t.line, t.col, "expected a non-zero light direction");
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "shadows"))
+			l->shadows = 1;
+		else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
+			if (parse_colour(lx, l->colour) < 0)
+				return -1;
+		} else
+			return scene_lex_expected(lx, &t, "'colour', 'shadows' or the end of the line");
+	}
+	sc->nlights++;
+	return 0;
+}
+
+int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen)
+{
+	scene_lex_t lx;
+	tok_t t;
+	scene_t *sc = calloc(1, sizeof *sc);
+	*out = NULL;
+	if (!sc) {
+		snprintf(err, errlen, "%s: out of memory", name);
+		return -1;
+	}
+	snprintf(sc->name, sizeof sc->name, "%s", name);
+	cam_t *c = &sc->cam;
+	c->eye[2] = -6;
+	c->up[1] = 1;
+	c->fov = 40;
+	c->nxpix = 320;
+	c->nypix = 240;
+	sc->eye_separation = 0.2;
+	sc->background[0] = sc->background[1] = sc->background[2] = 1;
+	unsigned view_line = 1, view_col = 1;
+	scene_lex_init(&lx, text, name, err, errlen);
+	while (!lx.failed && scene_lex_line(&lx)) {
+		scene_lex_tok(&lx, &t);
+		if (scene_tok_is(&t, "view")) {
+			view_line = t.line;
+			view_col = t.col;
+			parse_view(&lx, sc);
+		} else if (scene_tok_is(&t, "background")) {
+			if (parse_colour(&lx, sc->background) == 0)
+				scene_lex_eol(&lx);
+		} else if (scene_tok_is(&t, "light")) {
+			parse_light(&lx, sc);
+		} else if (scene_tok_is(&t, "object") || scene_tok_is(&t, "shape")) {
+			parse_shape(&lx, sc, t.s[0] == 'o', &t);
+		} else if (scene_tok_is(&t, "render")) {
+			scene_parse_render(&lx, sc, &t);
+		} else {
+			scene_lex_expected(&lx, &t, "view, background, light, shape, object or render");
+		}
+	}
+	if (!lx.failed) {
+		char e[200];
+		if (cam_setup(c, e, sizeof e) < 0) {
+			char msg[300];
+			snprintf(msg, sizeof msg, "expected %s in the view", e);
+			scene_lex_error(&lx, view_line, view_col, msg);
+		}
+	}
+	if (lx.failed) {
+		scene_free(sc);
+		return -1;
+	}
+	*out = sc;
+	return 0;
+}
+
+int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
+{
+	FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+	const char *name = strcmp(path, "-") ? path : "<stdin>";
+	*out = NULL;
+	if (!f) {
+		snprintf(err, errlen, "%s: cannot open: %s", path, "no such file or not readable");
+		return -2;
+	}
+	size_t cap = 1 << 16, n = 0;
+	char *buf = malloc(cap);
+	while (buf) {
+		if (n + 1 >= cap) {
+			if (cap >= (64u << 20))
+				break;
+			char *b = realloc(buf, cap * 2);
+			if (!b) {
+				free(buf);
+				buf = NULL;
+				break;
+			}
+			buf = b;
+			cap *= 2;
+		}
+		size_t r = fread(buf + n, 1, cap - 1 - n, f);
+		n += r;
+		if (r == 0)
+			break;
+	}
+	int bad = !buf || ferror(f) || n + 1 >= cap;
+	if (f != stdin)
+		fclose(f);
+	if (bad) {
+		free(buf);
+		snprintf(err, errlen, "%s: cannot read (I/O error, or larger than 64 MiB)", name);
+		return -2;
+	}
+	buf[n] = 0;
+	const char *nul = memchr(buf, 0, n);
+	if (nul) {
+		snprintf(err, errlen, "%s: byte %zu: expected text, found a NUL byte", name, (size_t)(nul - buf));
+		free(buf);
+		return -1;
+	}
+	int rc = scene_parse(buf, name, out, err, errlen);
+	free(buf);
+	return rc;
+}
+
+void scene_free(scene_t *s)
+{
+	if (!s)
+		return;
+	for (size_t i = 0; i < s->nobjs; i++)
+		model_free(s->objs[i].shape);
+	for (size_t i = 0; i < s->nrenders; i++)
+		free(s->renders[i].nuclei);
+	free(s->objs);
+	free(s->renders);
+	free(s);
+}

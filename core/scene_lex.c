@@ -1,0 +1,155 @@
+/* scene_lex.c: tokens, numbers and positioned error messages of the scene language. */
+#include "scene_lex.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+void scene_lex_init(scene_lex_t *lx, const char *text, const char *name, char *err, size_t errlen)
+{
+	memset(lx, 0, sizeof *lx);
+	lx->text = text;
+	lx->name = name;
+	lx->err = err;
+	lx->errlen = errlen;
+	lx->line = 0;
+	lx->pos = 0;
+	lx->line_start = 0;
+	if (errlen)
+		err[0] = 0;
+}
+
+int scene_lex_line(scene_lex_t *lx)
+{
+	const char *s = lx->text;
+	size_t p = lx->pos;
+	if (lx->line > 0) {
+		while (s[p] && s[p] != '\n')
+			p++;
+		if (s[p] == '\n')
+			p++;
+		else if (!s[p]) {
+			lx->pos = p;
+			return 0;
+		}
+	}
+	for (;;) {
+		lx->line++;
+		lx->line_start = p;
+		size_t q = p;
+		while (blank(s[q]))
+			q++;
+		if (s[q] && s[q] != '\n' && s[q] != '#') {
+			lx->pos = p;
+			return 1;
+		}
+		while (s[q] && s[q] != '\n')
+			q++;
+		if (!s[q]) {
+			lx->pos = q;
+			return 0;
+		}
+		p = q + 1;
+	}
+}
+
+int scene_lex_tok(scene_lex_t *lx, scene_tok_t *t)
+{
+	const char *s = lx->text;
+	size_t p = lx->pos;
+	while (blank(s[p]))
+		p++;
+	t->s = s + p;
+	t->line = lx->line;
+	t->col = (unsigned)(p - lx->line_start + 1);
+	if (!s[p] || s[p] == '\n' || s[p] == '#') {
+		t->len = 0;
+		lx->pos = p;
+		return 0;
+	}
+	size_t q = p;
+	while (s[q] && !blank(s[q]) && s[q] != '\n' && s[q] != '#')
+		q++;
+	t->len = q - p;
+	lx->pos = q;
+	return 1;
+}
+
+void scene_lex_rest(scene_lex_t *lx, scene_tok_t *t)
+{
+	const char *s = lx->text;
+	size_t p = lx->pos;
+	while (blank(s[p]))
+		p++;
+	size_t q = p;
+	while (s[q] && s[q] != '\n' && s[q] != '#')
+		q++;
+	size_t e = q;
+	while (e > p && blank(s[e - 1]))
+		e--;
+	t->s = s + p;
+	t->len = e - p;
+	t->line = lx->line;
+	t->col = (unsigned)(p - lx->line_start + 1);
+	lx->pos = q;
+}
+
+int scene_tok_is(const scene_tok_t *t, const char *word)
+{
+	return t->len == strlen(word) && !memcmp(t->s, word, t->len);
+}
+
+int scene_lex_error(scene_lex_t *lx, unsigned line, unsigned col, const char *msg)
+{
+	if (!lx->failed) {
+		lx->failed = 1;
+		snprintf(lx->err, lx->errlen, "%s:%u:%u: %s", lx->name, line, col, msg);
+	}
+	return -1;
+}
+
+int scene_lex_expected(scene_lex_t *lx, const scene_tok_t *t, const char *what)
+{
+	char msg[512];
+	if (t->len)
+		snprintf(msg, sizeof msg, "expected %s, found '%.*s'", what, (int)(t->len > 40 ? 40 : t->len), t->s);
+	else
+		snprintf(msg, sizeof msg, "expected %s, found the end of the line", what);
+	return scene_lex_error(lx, t->line, t->col, msg);
+}
+
+int scene_lex_number(scene_lex_t *lx, double *v, const char *what)
+{
+	scene_tok_t t;
+	char buf[64], msg[128];
+	snprintf(msg, sizeof msg, "%s (a finite number)", what);
+	if (!scene_lex_tok(lx, &t) || t.len >= sizeof buf)
+		return scene_lex_expected(lx, &t, msg);
+	memcpy(buf, t.s, t.len);
+	buf[t.len] = 0;
+	char *end;
+	double x = strtod(buf, &end);
+	if (*end || end == buf || !isfinite(x))
+		return scene_lex_expected(lx, &t, msg);
+	*v = x;
+	return 0;
+}
+
+int scene_lex_numbers(scene_lex_t *lx, double *v, int n, const char *what)
+{
+	for (int i = 0; i < n; i++)
+		if (scene_lex_number(lx, &v[i], what) < 0)
+			return -1;
+	return 0;
+}
+
+int scene_lex_eol(scene_lex_t *lx)
+{
+	scene_tok_t t;
+	if (scene_lex_tok(lx, &t))
+		return scene_lex_expected(lx, &t, "the end of the line");
+	return 0;
+}

@@ -1,0 +1,414 @@
+/* scene_render.c: render blocks of the scene language, and rendering a scene's pages to a meta writer. */
+#include "scene.h"
+#include "scene_lex.h"
+#include "contour.h"
+#include "oct.h"
+#include "wire.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+typedef scene_tok_t tok_t;
+#define NO_COLOUR 0xff000000u
+
+static meta_rgb_t rgb3(const double *c)
+{
+	unsigned v[3];
+	for (int i = 0; i < 3; i++)
+		v[i] = (unsigned)(fmin(fmax(c[i], 0), 1) * 255 + 0.5);
+	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
+}
+
+static int yes_no(scene_lex_t *lx, int *v)
+{
+	tok_t t;
+	scene_lex_tok(lx, &t);
+	if (scene_tok_is(&t, "yes"))
+		*v = 1;
+	else if (scene_tok_is(&t, "no"))
+		*v = 0;
+	else
+		return scene_lex_expected(lx, &t, "yes or no");
+	return 0;
+}
+
+static int whole(scene_lex_t *lx, int *v, int lo, int hi, const char *what)
+{
+	double d;
+	char msg[160];
+	if (scene_lex_number(lx, &d, what) < 0)
+		return -1;
+	if (d < lo || d > hi || d != floor(d)) {
+		snprintf(msg, sizeof msg, "expected %s: a whole number from %d to %d", what, lo, hi);
+		return scene_lex_error(lx, lx->line, 1, msg);
+	}
+	*v = (int)d;
+	return 0;
+}
+
+static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
+{
+	voronoi_nucleus_t n;
+	tok_t t;
+	memset(&n, 0, sizeof n);
+	n.colour = NO_COLOUR;
+	n.weight = r->metric == VORONOI_MULTIPLICATIVE ? 1 : 0;
+	n.kind = kw->s[0] == 'p' ? VORONOI_POINT : VORONOI_SEGMENT;
+	if (scene_lex_numbers(lx, n.a, 2, "a nucleus coordinate (x y)") < 0)
+		return -1;
+	if (n.kind == VORONOI_SEGMENT && scene_lex_numbers(lx, n.b, 2, "the segment's second end (x y)") < 0)
+		return -1;
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "weight")) {
+			if (scene_lex_number(lx, &n.weight, "a weight") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
+			double c[3];
+			if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
+				return -1;
+			n.colour = rgb3(c);
+		} else
+			return scene_lex_expected(lx, &t, "'weight', 'colour' or the end of the line");
+	}
+	if (r->nnuclei == r->cap) {
+		size_t cap = r->cap ? 2 * r->cap : 16;
+		voronoi_nucleus_t *q = realloc(r->nuclei, cap * sizeof *q);
+		if (!q)
+			return scene_lex_error(lx, kw->line, kw->col, "out of memory");
+		r->nuclei = q;
+		r->cap = cap;
+	}
+	r->nuclei[r->nnuclei++] = n;
+	return 0;
+}
+
+int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw);
+
+int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
+{
+	tok_t t;
+	static const char *kinds[] = {"raytrace", "octree", "contour", "voronoi", "wireframe"};
+	scene_lex_tok(lx, &t);
+	int kind = -1;
+	for (int i = 0; i < 5; i++)
+		if (scene_tok_is(&t, kinds[i]))
+			kind = i;
+	if (kind < 0)
+		return scene_lex_expected(lx, &t, "raytrace, octree, contour, voronoi or wireframe");
+	if (scene_lex_eol(lx) < 0)
+		return -1;
+	if (sc->nrenders == sc->rcap) {
+		size_t cap = sc->rcap ? 2 * sc->rcap : 4;
+		scene_render_t *q = realloc(sc->renders, cap * sizeof *q);
+		if (!q)
+			return scene_lex_error(lx, t.line, t.col, "out of memory");
+		sc->renders = q;
+		sc->rcap = cap;
+	}
+	scene_render_t *r = &sc->renders[sc->nrenders++];
+	memset(r, 0, sizeof *r);
+	r->kind = kind;
+	r->line = kw->line;
+	r->col = kw->col;
+	r->accuracy = 1e-3;
+	r->step = 0.5;
+	r->threshold = 8;
+	r->depth = 6;
+	r->test = SCENE_SPHERICAL;
+	r->shading = RT_GOURAUD;
+	r->slices = 16;
+	r->axis = 1;
+	r->resolution = 96;
+	r->line_width = 1;
+	r->window[0] = r->window[1] = -3;
+	r->window[2] = r->window[3] = 3;
+	r->nlevels = 10;
+	r->level_from = 1;
+	r->level_to = 10;
+	r->cells = r->boundaries = 1;
+	while (scene_lex_line(lx)) {
+		scene_lex_tok(lx, &t);
+		if (scene_tok_is(&t, "end"))
+			return scene_lex_eol(lx);
+		int rc = 0;
+		if (scene_tok_is(&t, "accuracy")) {
+			rc = scene_lex_number(lx, &r->accuracy, "an accuracy in pixels");
+			if (!rc && !(r->accuracy >= 1e-6 && r->accuracy <= 1))
+				rc = scene_lex_error(lx, t.line, t.col, "expected an accuracy from 1e-6 to 1 pixel");
+		} else if (scene_tok_is(&t, "step")) {
+			rc = scene_lex_number(lx, &r->step, "a fallback step in pixels");
+			if (!rc && !(r->step >= 0.01 && r->step <= 100))
+				rc = scene_lex_error(lx, t.line, t.col, "expected a step from 0.01 to 100 pixels");
+		} else if (scene_tok_is(&t, "supersample")) {
+			rc = whole(lx, &r->supersample, 0, 8, "supersample N");
+		} else if (scene_tok_is(&t, "threshold")) {
+			rc = scene_lex_number(lx, &r->threshold, "a colour difference 0..255");
+		} else if (scene_tok_is(&t, "depth")) {
+			rc = whole(lx, &r->depth, 1, 12, "an octree depth");
+		} else if (scene_tok_is(&t, "test")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "spherical"))
+				r->test = SCENE_SPHERICAL;
+			else if (scene_tok_is(&t, "cubical"))
+				r->test = SCENE_CUBICAL;
+			else
+				rc = scene_lex_expected(lx, &t, "spherical or cubical");
+		} else if (scene_tok_is(&t, "shading")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "constant"))
+				r->shading = RT_CONSTANT;
+			else if (scene_tok_is(&t, "gouraud"))
+				r->shading = RT_GOURAUD;
+			else
+				rc = scene_lex_expected(lx, &t, "constant or gouraud");
+		} else if (scene_tok_is(&t, "slices")) {
+			rc = whole(lx, &r->slices, 1, 1000, "a number of slices");
+		} else if (scene_tok_is(&t, "axis")) {
+			scene_lex_tok(lx, &t);
+			r->axis = scene_tok_is(&t, "x") ? 0 : scene_tok_is(&t, "y") ? 1 : scene_tok_is(&t, "z") ? 2 : -1;
+			if (r->axis < 0)
+				rc = scene_lex_expected(lx, &t, "x, y or z");
+		} else if (scene_tok_is(&t, "resolution")) {
+			rc = whole(lx, &r->resolution, 4, 4096, "a grid resolution");
+		} else if (scene_tok_is(&t, "width")) {
+			rc = scene_lex_number(lx, &r->line_width, "a line width in pixels");
+			if (!rc && !(r->line_width > 0 && r->line_width <= 100))
+				rc = scene_lex_error(lx, t.line, t.col, "expected a line width from 0 to 100 pixels");
+		} else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
+			rc = scene_lex_numbers(lx, r->line_colour, 3, "a colour component 0..1");
+		} else if (scene_tok_is(&t, "field")) {
+			scene_lex_tok(lx, &t);
+			if (!t.len || t.len >= sizeof r->field)
+				rc = scene_lex_expected(lx, &t, "an object or shape name");
+			else
+				memcpy(r->field, t.s, t.len);
+		} else if (scene_tok_is(&t, "window")) {
+			rc = scene_lex_numbers(lx, r->window, 4, "window X0 Y0 X1 Y1");
+			if (!rc && !(r->window[0] < r->window[2] && r->window[1] < r->window[3]))
+				rc = scene_lex_error(lx, t.line, t.col, "expected window X0 Y0 X1 Y1 with X0 < X1 and Y0 < Y1");
+		} else if (scene_tok_is(&t, "plane")) {
+			rc = scene_lex_number(lx, &r->plane, "the z of the plane");
+		} else if (scene_tok_is(&t, "levels")) {
+			int n;
+			rc = whole(lx, &n, 1, 1000, "a number of levels");
+			if (!rc) {
+				r->nlevels = (unsigned)n;
+				tok_t a;
+				scene_lex_tok(lx, &a);
+				if (!scene_tok_is(&a, "from"))
+					rc = scene_lex_expected(lx, &a, "'from'");
+				else if (!(rc = scene_lex_number(lx, &r->level_from, "the first level"))) {
+					scene_lex_tok(lx, &a);
+					if (!scene_tok_is(&a, "to"))
+						rc = scene_lex_expected(lx, &a, "'to'");
+					else
+						rc = scene_lex_number(lx, &r->level_to, "the last level");
+				}
+			}
+		} else if (scene_tok_is(&t, "bands")) {
+			rc = yes_no(lx, &r->bands);
+		} else if (scene_tok_is(&t, "metric")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "additive"))
+				r->metric = VORONOI_ADDITIVE;
+			else if (scene_tok_is(&t, "multiplicative"))
+				r->metric = VORONOI_MULTIPLICATIVE;
+			else
+				rc = scene_lex_expected(lx, &t, "additive or multiplicative");
+		} else if (scene_tok_is(&t, "cells")) {
+			rc = yes_no(lx, &r->cells);
+		} else if (scene_tok_is(&t, "boundaries")) {
+			rc = yes_no(lx, &r->boundaries);
+		} else if (scene_tok_is(&t, "point") || scene_tok_is(&t, "segment")) {
+			rc = nucleus(lx, r, &t);
+		} else {
+			rc = scene_lex_expected(lx, &t, "a render option or 'end'");
+		}
+		if (rc < 0 || scene_lex_eol(lx) < 0)
+			return -1;
+	}
+	return scene_lex_expected(lx, &(tok_t){"", 0, lx->line, 1}, "'end' closing the render block");
+}
+
+/* ---- rendering ---- */
+
+static double now(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static void add_warning(scene_t *s, const char *msg)
+{
+	if (s->nwarnings >= SCENE_MAX_WARNINGS)
+		return;
+	char tmp[sizeof s->warnbuf[0]];
+	snprintf(tmp, sizeof tmp, "%.200s: warning: %.250s", s->name, msg);
+	memcpy(s->warnbuf[s->nwarnings], tmp, sizeof tmp);
+	s->warnings[s->nwarnings] = s->warnbuf[s->nwarnings];
+	s->nwarnings++;
+}
+
+static int drawn_objects(const scene_t *s, rt_object_t *out)
+{
+	int n = 0;
+	for (size_t i = 0; i < s->nobjs; i++)
+		if (s->objs[i].drawn)
+			out[n++] = s->objs[i].mat;
+	return n;
+}
+
+static int meta_fail(meta_writer_t *w, char *err, size_t errlen)
+{
+	snprintf(err, errlen, "%s", meta_writer_error(w));
+	return -1;
+}
+
+/* One view (an eye) of a 3D visualisation at page offset xoff. */
+static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, unsigned xoff,
+                       meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st, char *err, size_t errlen)
+{
+	rt_object_t *objs = malloc((s->nobjs + 1) * sizeof *objs);
+	if (!objs) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	int nobj = drawn_objects(s, objs), rc = 0;
+	double t0 = now();
+	if (r->kind == SCENE_RAYTRACE) {
+		rt_params_t p;
+		memset(&p, 0, sizeof p);
+		p.cam = *cam;
+		p.objects = objs;
+		p.nobjects = (size_t)nobj;
+		p.lights = s->lights;
+		p.nlights = s->nlights;
+		memcpy(p.background, s->background, sizeof p.background);
+		p.accuracy = r->accuracy;
+		p.step_pixels = r->step;
+		p.supersample = r->supersample;
+		p.aa_threshold = r->threshold;
+		p.threads = o ? o->threads : 0;
+		p.progress = o ? o->progress : NULL;
+		p.progress_user = o ? o->progress_user : NULL;
+		size_t n = (size_t)cam->nxpix * cam->nypix;
+		meta_rgb_t *img = malloc(n * sizeof *img);
+		rt_stats_t rs;
+		if (!img)
+			rc = -1, snprintf(err, errlen, "out of memory for a %ux%u picture", cam->nxpix, cam->nypix);
+		else if ((rc = rt_render(&p, img, &rs, err, errlen)) == 0) {
+			st->seconds_trace += now() - t0;
+			st->pixels += (unsigned)n;
+			st->rt.evals += rs.evals;
+			st->rt.lane_evals += rs.lane_evals;
+			st->rt.primary_evals += rs.primary_evals;
+			st->rt.shadow_evals += rs.shadow_evals;
+			st->rt.normal_evals += rs.normal_evals;
+			st->rt.aa_evals += rs.aa_evals;
+			st->rt.hits += rs.hits;
+			st->rt.aa_pixels += rs.aa_pixels;
+			if (rs.hits == 0 && nobj > 0)
+				add_warning(s, "no object is visible: the picture shows only the background");
+			if (rt_write_image(w, img, cam->nxpix, cam->nypix, xoff, 0) < 0)
+				rc = meta_fail(w, err, errlen);
+		}
+		free(img);
+	} else if (r->kind == SCENE_OCTREE) {
+		oct_face_t *faces = NULL;
+		size_t nf = 0, cap = 0;
+		for (int i = 0; i < nobj && rc == 0; i++) {
+			oct_leaf_t *leaves = NULL;
+			size_t nl = 0;
+			oct_stats_t os = {0, 0, 0};
+			rc = oct_build(objs[i].shape, r->depth, r->test == SCENE_CUBICAL ? OCT_CUBICAL : OCT_SPHERICAL,
+			               &leaves, &nl, &os, err, errlen);
+			st->oct_visited += os.visited;
+			st->oct_leaves += os.leaves;
+			st->oct_evals += os.evals;
+			if (rc == 0 && oct_faces(cam, &objs[i], s->lights, s->nlights, leaves, nl, r->shading, &faces, &nf, &cap) < 0)
+				rc = -1, snprintf(err, errlen, "out of memory for the octree faces");
+			free(leaves);
+		}
+		st->seconds_trace += now() - t0;
+		if (rc == 0 && nf == 0 && nobj > 0)
+			add_warning(s, "the octree has no leaves: the picture shows only the background");
+		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
+			rc = meta_fail(w, err, errlen);
+		free(faces);
+	} else {
+		meta_rgb_t c = rgb3(r->line_colour);
+		for (int i = 0; i < nobj && rc == 0; i++)
+			rc = wire_draw(w, cam, objs[i].shape, r->axis, r->slices, r->resolution, r->line_width,
+			               c, xoff, &st->wire_segments, err, errlen);
+		st->seconds_trace += now() - t0;
+	}
+	free(objs);
+	return rc;
+}
+
+int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
+                    scene_stats_t *st, char *err, size_t errlen);
+
+static int render_block(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
+                        scene_stats_t *st, char *err, size_t errlen)
+{
+	const cam_t *cam = &s->cam;
+	meta_rgb_t bg = rgb3(s->background);
+	if (r->kind == SCENE_CONTOUR || r->kind == SCENE_VORONOI) {
+		if (meta_page(w, cam->nxpix, cam->nypix) < 0 || meta_clear(w, bg) < 0)
+			return meta_fail(w, err, errlen);
+		if (scene_render_2d(s, r, w, o, st, err, errlen) < 0)
+			return -1;
+		return meta_end_page(w) < 0 ? meta_fail(w, err, errlen) : 0;
+	}
+	int views = s->stereo == SCENE_MONO ? 1 : 2;
+	for (int v = 0; v < views; v++) {
+		cam_t c = *cam;
+		if (views == 2) {
+			char e[200];
+			c = cam_shifted(cam, (v == 0 ? -0.5 : 0.5) * s->eye_separation);
+			if (cam_setup(&c, e, sizeof e) < 0) {
+				snprintf(err, errlen, "%s: stereo eye: %s", s->name, e);
+				return -1;
+			}
+		}
+		int side = s->stereo == SCENE_STEREO_SIDE;
+		if (v == 0 || !side) {
+			if (meta_page(w, side ? 2 * cam->nxpix : cam->nxpix, cam->nypix) < 0)
+				return meta_fail(w, err, errlen);
+			if (r->kind != SCENE_RAYTRACE && meta_clear(w, bg) < 0)
+				return meta_fail(w, err, errlen);
+		}
+		if (render_view(s, r, &c, side ? v * cam->nxpix : 0, w, o, st, err, errlen) < 0)
+			return -1;
+		if ((v == views - 1 || !side) && meta_end_page(w) < 0)
+			return meta_fail(w, err, errlen);
+	}
+	return 0;
+}
+
+int scene_render(scene_t *s, meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st,
+                 char *err, size_t errlen)
+{
+	scene_stats_t local;
+	if (!st)
+		st = &local;
+	memset(st, 0, sizeof *st);
+	if (s->nrenders == 0) {
+		scene_render_t r;
+		memset(&r, 0, sizeof r);
+		r.kind = SCENE_RAYTRACE;
+		r.accuracy = 1e-3;
+		r.step = 0.5;
+		r.threshold = 8;
+		return render_block(s, &r, w, o, st, err, errlen);
+	}
+	for (size_t i = 0; i < s->nrenders; i++)
+		if (render_block(s, &s->renders[i], w, o, st, err, errlen) < 0)
+			return -1;
+	return 0;
+}
