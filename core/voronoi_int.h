@@ -1,0 +1,53 @@
+/* voronoi_int.h: internals shared by the voronoi*.c files (not part of the public API). */
+#ifndef LOCUS_VORONOI_INT_H
+#define LOCUS_VORONOI_INT_H
+
+#include <math.h>
+
+#include "voronoi.h"
+
+/* d(P, N), inlined where it is hot; voronoi_distance() is this function, so
+ * every caller gets bit-identical results (ISO C mode: no FMA contraction). */
+static inline double voronoi_dist(const voronoi_nucleus_t *n, const double p[3])
+{
+	double dx = p[0] - n->a[0], dy = p[1] - n->a[1], dz = p[2] - n->a[2];
+	if (n->kind == VORONOI_SEGMENT) {
+		double ux = n->b[0] - n->a[0], uy = n->b[1] - n->a[1], uz = n->b[2] - n->a[2];
+		double uu = ux * ux + uy * uy + uz * uz;
+		if (uu > 0) {
+			double t = (dx * ux + dy * uy + dz * uz) / uu;
+			t = t < 0 ? 0 : t > 1 ? 1 : t;
+			dx -= t * ux;
+			dy -= t * uy;
+			dz -= t * uz;
+		}
+	}
+	return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+/* Record a printf-style error message for voronoi_error() and return code. */
+int voronoi_fail(int code, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+
+/* The inverse of v->m: page point (px, py) to plane point (*X, *Y). */
+typedef struct {
+	double m0, m3;          /* page origin offsets */
+	double a, b, c, d;      /* X = a (px - m0) + b (py - m3); Y = c (px - m0) + d (py - m3) */
+} voronoi_inv_t;
+
+/* Fill inv from v->m; returns VORONOI_EARG when m is singular. */
+int voronoi_invert(const voronoi_t *v, voronoi_inv_t *inv);
+
+/* Plane point of a page point, z = 0. */
+static inline void voronoi_unmap(const voronoi_inv_t *inv, double px, double py, double p[3])
+{
+	double dx = px - inv->m0, dy = py - inv->m3;
+	p[0] = inv->a * dx + inv->b * dy;
+	p[1] = inv->c * dx + inv->d * dy;
+	p[2] = 0;
+}
+
+#endif

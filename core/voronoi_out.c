@@ -1,0 +1,110 @@
+/* voronoi_out.c: Voronoi tessellations to the meta-language: cells as image rows, boundaries as strokes. */
+#include "voronoi_int.h"
+
+#include <stdlib.h>
+
+static int fail_meta(meta_writer_t *w, const char *what)
+{
+	const char *msg = meta_writer_error(w);
+	return voronoi_fail(VORONOI_EMETA, "voronoi: %s: %s", what, msg && *msg ? msg : "meta writer failed");
+}
+
+static int check_rect(const voronoi_rect_t *r)
+{
+	if (!r || r->width == 0 || r->height == 0 || r->width > META_MAX_DIM || r->height > META_MAX_DIM)
+		return voronoi_fail(VORONOI_EARG, "voronoi: rectangle must be 1..%d pixels each way", META_MAX_DIM);
+	return 0;
+}
+
+/* Write the labelled rectangle as one image, top row first. */
+static int write_image(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
+                       const int32_t *labels)
+{
+	meta_rgb_t *row = malloc(r->width * sizeof *row);
+	int rc = 0;
+	if (!row)
+		return voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for a %u-pixel row", r->width);
+	if (meta_image(w, r->x, r->y, r->width, r->height) < 0) {
+		rc = fail_meta(w, "starting the cell image");
+		goto done;
+	}
+	for (unsigned k = 0; k < r->height; k++) {
+		const int32_t *lr = labels + (size_t)(r->height - 1 - k) * r->width;
+		for (unsigned i = 0; i < r->width; i++)
+			row[i] = v->nuclei[lr[i]].colour;
+		if (meta_row_pixels(w, row, r->width) < 0) {
+			rc = fail_meta(w, "writing a cell row");
+			goto done;
+		}
+	}
+done:
+	free(row);
+	return rc;
+}
+
+int voronoi_write_cells(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
+                        unsigned threads)
+{
+	voronoi_style_t st = { 1, 0, 0, 1, threads };
+	return voronoi_write_meta(w, v, r, &st, NULL);
+}
+
+static int stroke_cb(void *user, int32_t left, int32_t right, const voronoi_point_t *p, size_t n, int closed)
+{
+	meta_writer_t *w = user;
+	(void)left;
+	(void)right;
+	/* a boundary is at most a few times the rectangle's perimeter, far
+	 * below META_MAX_PATH_POINTS; split anyway to stay within the limit */
+	size_t step = META_MAX_PATH_POINTS - 1;
+	for (size_t s = 0; s + 1 < n; s += step) {
+		size_t m = n - s < step + 1 ? n - s : step + 1;
+		if (meta_stroke(w) < 0 || meta_move(w, p[s].x, p[s].y) < 0)
+			return -1;
+		for (size_t i = 1; i < m; i++)
+			if (meta_draw(w, p[s + i].x, p[s + i].y) < 0)
+				return -1;
+		if (closed && m == n && meta_close(w) < 0)
+			return -1;
+		if (meta_end(w) < 0)
+			return -1;
+	}
+	if (closed && n > step + 1) {
+		if (meta_stroke(w) < 0 || meta_move(w, p[n - 1].x, p[n - 1].y) < 0 ||
+		    meta_draw(w, p[0].x, p[0].y) < 0 || meta_end(w) < 0)
+			return -1;
+	}
+	return 0;
+}
+
+int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
+                       const voronoi_style_t *style, voronoi_stats_t *stats)
+{
+	int rc = voronoi_check(v);
+	if (rc < 0)
+		return rc;
+	if ((rc = check_rect(r)) < 0)
+		return rc;
+	if (!w || !style)
+		return voronoi_fail(VORONOI_EARG, "voronoi: no meta writer or no style");
+	int32_t *labels = malloc((size_t)r->width * r->height * sizeof *labels);
+	if (!labels)
+		return voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %ux%u labels", r->width, r->height);
+	if ((rc = voronoi_label(v, r, style->threads, labels)) < 0)
+		goto done;
+	if (style->cells && (rc = write_image(w, v, r, labels)) < 0)
+		goto done;
+	if (style->boundaries) {
+		if (meta_colour(w, style->line_colour) < 0 ||
+		    meta_width(w, style->line_width > 0 ? style->line_width : 1) < 0) {
+			rc = fail_meta(w, "setting the boundary style");
+			goto done;
+		}
+		rc = voronoi_boundaries(v, r, labels, stroke_cb, w, stats);
+		if (rc == VORONOI_ECALLBACK)
+			rc = fail_meta(w, "writing a boundary");
+	}
+done:
+	free(labels);
+	return rc;
+}

@@ -1,0 +1,410 @@
+/* voronoi_trace.c: Voronoi cell boundaries traced from a label image into joined sub-pixel polylines. */
+#include "voronoi_int.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The dual grid: cell (i, j) has the pixel centres (i, j), (i+1, j),
+ * (i+1, j+1), (i, j+1) as corners 0..3; edge k joins corner k to k+1. A cell
+ * whose corners carry two labels is crossed by one boundary (or two, for a
+ * diagonal pair) and traced like a marching-squares cell with the smaller
+ * label "above"; a cell with three or more labels is a junction: its crossed
+ * edges all join one junction point. */
+
+#define JUNCTION 0x10u
+#define MIXED 0x20u
+
+typedef struct {
+	const voronoi_t *v;
+	const voronoi_rect_t *r;
+	const int32_t *lab;
+	voronoi_inv_t inv;
+	size_t w, h, cx, cy;       /* pixels, cells */
+	uint8_t *flags;            /* per cell: visited entries (bits 0..3), JUNCTION, MIXED */
+	voronoi_point_t *pts;
+	size_t npts, cap;
+	voronoi_fn fn;
+	void *user;
+	voronoi_stats_t st;
+} tctx_t;
+
+/* exit_of[s][case][entry], as in contour.c: case bit k = corner k has the
+ * smaller label; s = 1 when the smaller label owns the cell centre. */
+static _Thread_local signed char exit_of[2][16][4];
+static _Thread_local int table_ready;
+
+static void build_table(void)
+{
+	for (int s = 0; s < 2; s++)
+		for (int c = 0; c < 16; c++) {
+			int bit[4], ent[4], ext[4], ne = 0, nx = 0;
+			for (int k = 0; k < 4; k++)
+				bit[k] = (c >> k) & 1;
+			for (int e = 0; e < 4; e++) {
+				exit_of[s][c][e] = -1;
+				if (bit[e] && !bit[(e + 1) & 3])
+					ent[ne++] = e;
+				else if (!bit[e] && bit[(e + 1) & 3])
+					ext[nx++] = e;
+			}
+			if (ne == 1) {
+				exit_of[s][c][ent[0]] = (signed char)ext[0];
+			} else if (ne == 2) {
+				int iso = s ? 0 : 1;
+				for (int k = 0; k < 4; k++) {
+					if (bit[k] != iso)
+						continue;
+					int ea = (k + 3) & 3, eb = k;
+					if (bit[ea] && !bit[(ea + 1) & 3])
+						exit_of[s][c][ea] = (signed char)eb;
+					else
+						exit_of[s][c][eb] = (signed char)ea;
+				}
+			}
+		}
+	table_ready = 1;
+}
+
+/* Corner labels of cell c. */
+static inline void corners(const tctx_t *x, size_t c, int32_t L[4])
+{
+	size_t i = c % x->cx, j = c / x->cx;
+	const int32_t *r0 = x->lab + j * x->w + i, *r1 = r0 + x->w;
+	L[0] = r0[0];
+	L[1] = r0[1];
+	L[2] = r1[1];
+	L[3] = r1[0];
+}
+
+static double wdist(const tctx_t *x, int32_t k, double px, double py)
+{
+	double p[3];
+	voronoi_unmap(&x->inv, px, py, p);
+	return voronoi_weighted_distance(&x->v->nuclei[k], x->v->metric, p);
+}
+
+/* Case index (bit 4: centre owned by the smaller label) of a two-label cell. */
+static int cell_case(const tctx_t *x, size_t c, int32_t *lo, int32_t *hi)
+{
+	int32_t L[4];
+	corners(x, c, L);
+	int32_t a = L[0], b = L[0];
+	for (int k = 1; k < 4; k++) {
+		a = L[k] < a ? L[k] : a;
+		b = L[k] > b ? L[k] : b;
+	}
+	int cs = (L[0] == a) | (L[1] == a) << 1 | (L[2] == a) << 2 | (L[3] == a) << 3;
+	if (cs == 5 || cs == 10) {
+		double px = x->r->x + (double)(c % x->cx) + 1, py = x->r->y + (double)(c / x->cx) + 1;
+		if (wdist(x, a, px, py) <= wdist(x, b, px, py))
+			cs |= 16;
+	}
+	*lo = a;
+	*hi = b;
+	return cs;
+}
+
+/* The boundary point on edge e of cell c: where the two labels' weighted
+ * distances are equal on the segment between the edge's pixel centres,
+ * always solved from the left/bottom pixel so both cells agree. */
+static voronoi_point_t crossing(const tctx_t *x, size_t c, int e)
+{
+	size_t i = c % x->cx, j = c / x->cx, i2, j2;
+	if (e == 0 || e == 2) {
+		j += e == 2;
+		i2 = i + 1;
+		j2 = j;
+	} else {
+		i += e == 1;
+		i2 = i;
+		j2 = j + 1;
+	}
+	int32_t la = x->lab[j * x->w + i], lb = x->lab[j2 * x->w + i2];
+	double x0 = x->r->x + (double)i + 0.5, y0 = x->r->y + (double)j + 0.5;
+	double dx = (double)i2 - (double)i, dy = (double)j2 - (double)j;
+	/* g(t) = dw_a - dw_b: <= 0 at t = 0, >= 0 at t = 1; Illinois regula falsi */
+	double t0 = 0, t1 = 1;
+	double g0 = wdist(x, la, x0, y0) - wdist(x, lb, x0, y0);
+	double g1 = wdist(x, la, x0 + dx, y0 + dy) - wdist(x, lb, x0 + dx, y0 + dy);
+	double t = 0.5;
+	int side = 0;
+	if (g0 >= 0)
+		t1 = 0; /* a tie at the first pixel centre */
+	else if (g1 <= 0)
+		t0 = 1; /* a tie at the second */
+	for (int it = 0; it < 60 && t1 - t0 > 1e-7; it++) {
+		t = t0 - g0 * (t1 - t0) / (g1 - g0);
+		if (!(t > t0 && t < t1))
+			t = 0.5 * (t0 + t1);
+		double g = wdist(x, la, x0 + t * dx, y0 + t * dy) - wdist(x, lb, x0 + t * dx, y0 + t * dy);
+		if (g == 0) {
+			t0 = t1 = t;
+			break;
+		}
+		if (g < 0) {
+			t0 = t;
+			g0 = g;
+			if (side == -1)
+				g1 *= 0.5;
+			side = -1;
+		} else {
+			t1 = t;
+			g1 = g;
+			if (side == 1)
+				g0 *= 0.5;
+			side = 1;
+		}
+	}
+	t = 0.5 * (t0 + t1);
+	voronoi_point_t p = { x0 + t * dx, y0 + t * dy };
+	return p;
+}
+
+/* The junction point of a junction cell: the mean of its crossings. */
+static voronoi_point_t junction(const tctx_t *x, size_t c)
+{
+	int32_t L[4];
+	corners(x, c, L);
+	voronoi_point_t s = { 0, 0 };
+	int n = 0;
+	for (int e = 0; e < 4; e++)
+		if (L[e] != L[(e + 1) & 3]) {
+			voronoi_point_t p = crossing(x, c, e);
+			s.x += p.x;
+			s.y += p.y;
+			n++;
+		}
+	s.x /= n;
+	s.y /= n;
+	return s;
+}
+
+/* Cell across edge e of c, or SIZE_MAX outside. */
+static inline size_t across(const tctx_t *x, size_t c, int e)
+{
+	size_t i = c % x->cx, j = c / x->cx;
+	switch (e) {
+	case 0: return j == 0 ? SIZE_MAX : c - x->cx;
+	case 1: return i + 1 == x->cx ? SIZE_MAX : c + 1;
+	case 2: return j + 1 == x->cy ? SIZE_MAX : c + x->cx;
+	default: return i == 0 ? SIZE_MAX : c - 1;
+	}
+}
+
+static int push(tctx_t *x, voronoi_point_t p)
+{
+	if (x->npts && x->pts[x->npts - 1].x == p.x && x->pts[x->npts - 1].y == p.y)
+		return 0;
+	if (x->npts == x->cap) {
+		size_t cap = x->cap ? x->cap * 2 : 1024;
+		voronoi_point_t *q = realloc(x->pts, cap * sizeof *q);
+		if (!q)
+			return voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %zu boundary points", cap);
+		x->pts = q;
+		x->cap = cap;
+	}
+	x->pts[x->npts++] = p;
+	return 0;
+}
+
+static int emit(tctx_t *x, int32_t left, int32_t right, int closed)
+{
+	size_t n = x->npts;
+	if (closed && n > 1 && x->pts[n - 1].x == x->pts[0].x && x->pts[n - 1].y == x->pts[0].y)
+		n--;
+	if (n < 2)
+		return 0;
+	x->st.polylines++;
+	x->st.closed += closed != 0;
+	x->st.points += n;
+	if (x->fn(x->user, left, right, x->pts, n, closed) < 0)
+		return voronoi_fail(VORONOI_ECALLBACK, "voronoi: stopped by the caller");
+	return 0;
+}
+
+/* Follow a chain of two-label cells entering cell c by edge e; the polyline
+ * already holds its first point(s). */
+static int trace(tctx_t *x, size_t c, int e)
+{
+	size_t c0 = c;
+	int e0 = e, closed = 0, rc;
+	int32_t a = 0, b = 0;
+	for (;;) {
+		if (x->flags[c] & (1u << e))
+			break;
+		int cs = cell_case(x, c, &a, &b), out = exit_of[cs >> 4][cs & 15][e];
+		if (out < 0)
+			break;
+		x->flags[c] |= (uint8_t)(1u << e);
+		size_t n = across(x, c, out);
+		if (n == c0 && ((out + 2) & 3) == e0) {
+			closed = 1;
+			break;
+		}
+		if ((rc = push(x, crossing(x, c, out))) < 0)
+			return rc;
+		if (n == SIZE_MAX)
+			break;
+		if (x->flags[n] & JUNCTION) {
+			if ((rc = push(x, junction(x, n))) < 0)
+				return rc;
+			break;
+		}
+		c = n;
+		e = (out + 2) & 3;
+	}
+	return emit(x, a, b, closed); /* the smaller label is on the left */
+}
+
+int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_t *labels,
+                       voronoi_fn fn, void *user, voronoi_stats_t *stats)
+{
+	tctx_t x = { 0 };
+	uint32_t *mixed = NULL;
+	size_t nmixed = 0;
+	int rc = voronoi_check(v);
+	if (stats)
+		memset(stats, 0, sizeof *stats);
+	if (rc < 0)
+		return rc;
+	if (!r || !labels || !fn || r->width == 0 || r->height == 0)
+		return voronoi_fail(VORONOI_EARG, "voronoi: boundaries need a rectangle, labels and a callback");
+	if (r->width < 2 || r->height < 2)
+		return 0;
+	if ((uint64_t)r->width * r->height >= UINT32_MAX)
+		return voronoi_fail(VORONOI_EARG, "voronoi: rectangle of %ux%u pixels is too large", r->width, r->height);
+	if (!table_ready)
+		build_table();
+	x.v = v;
+	x.r = r;
+	x.lab = labels;
+	voronoi_invert(v, &x.inv);
+	x.w = r->width;
+	x.h = r->height;
+	x.cx = x.w - 1;
+	x.cy = x.h - 1;
+	x.fn = fn;
+	x.user = user;
+	size_t ncells = x.cx * x.cy, capm = 0;
+	x.flags = calloc(ncells, 1);
+	if (!x.flags) {
+		rc = voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %zu cells", ncells);
+		goto done;
+	}
+	/* one pass: check the labels, count crossings, list the mixed cells */
+	for (size_t j = 0; j < x.h; j++) {
+		const int32_t *r0 = labels + j * x.w, *r1 = j + 1 < x.h ? r0 + x.w : NULL;
+		for (size_t i = 0; i < x.w; i++)
+			if (r0[i] < 0 || (size_t)r0[i] >= v->count) {
+				rc = voronoi_fail(VORONOI_EARG, "voronoi: label %ld at pixel (%zu, %zu) is not a nucleus",
+				                  (long)r0[i], i, j);
+				goto done;
+			}
+		for (size_t i = 0; i + 1 < x.w; i++)
+			x.st.crossings += r0[i] != r0[i + 1];
+		if (!r1)
+			break;
+		for (size_t i = 0; i < x.w; i++)
+			x.st.crossings += r0[i] != r1[i];
+		for (size_t i = 0; i < x.cx; i++) {
+			int32_t L[4] = { r0[i], r0[i + 1], r1[i + 1], r1[i] };
+			if (L[0] == L[1] && L[0] == L[2] && L[0] == L[3])
+				continue;
+			int distinct = 1 + (L[1] != L[0]) + (L[2] != L[0] && L[2] != L[1]) +
+			               (L[3] != L[0] && L[3] != L[1] && L[3] != L[2]);
+			size_t c = j * x.cx + i;
+			x.flags[c] = (uint8_t)(MIXED | (distinct > 2 ? JUNCTION : 0));
+			x.st.junctions += distinct > 2;
+			if (nmixed == capm) {
+				size_t nc = capm ? capm * 2 : 4096;
+				uint32_t *p = realloc(mixed, nc * sizeof *p);
+				if (!p) {
+					rc = voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %zu mixed cells", nc);
+					goto done;
+				}
+				mixed = p;
+				capm = nc;
+			}
+			mixed[nmixed++] = (uint32_t)c;
+		}
+	}
+	/* 1: chains of two-label cells that start at the border or at a junction */
+	for (size_t q = 0; q < nmixed && rc == 0; q++) {
+		size_t c = mixed[q];
+		if (x.flags[c] & JUNCTION)
+			continue;
+		int32_t a, b;
+		int cs = cell_case(&x, c, &a, &b);
+		for (int e = 0; e < 4 && rc == 0; e++) {
+			if (exit_of[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+				continue;
+			size_t n = across(&x, c, e);
+			if (n != SIZE_MAX && !(x.flags[n] & JUNCTION))
+				continue;
+			x.npts = 0;
+			if (n != SIZE_MAX)
+				rc = push(&x, junction(&x, n));
+			if (rc == 0)
+				rc = push(&x, crossing(&x, c, e));
+			if (rc == 0)
+				rc = trace(&x, c, e);
+		}
+	}
+	/* 2: closed loops of two-label cells */
+	for (size_t q = 0; q < nmixed && rc == 0; q++) {
+		size_t c = mixed[q];
+		if (x.flags[c] & JUNCTION)
+			continue;
+		int32_t a, b;
+		int cs = cell_case(&x, c, &a, &b);
+		for (int e = 0; e < 4 && rc == 0; e++) {
+			if (exit_of[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+				continue;
+			x.npts = 0;
+			rc = push(&x, crossing(&x, c, e));
+			if (rc == 0)
+				rc = trace(&x, c, e);
+		}
+	}
+	/* 3: short pieces from a junction to the border or to a neighbouring
+	 * junction (each junction pair once, from the lower cell index) */
+	for (size_t q = 0; q < nmixed && rc == 0; q++) {
+		size_t c = mixed[q];
+		if (!(x.flags[c] & JUNCTION))
+			continue;
+		int32_t L[4];
+		corners(&x, c, L);
+		for (int e = 0; e < 4 && rc == 0; e++) {
+			if (L[e] == L[(e + 1) & 3])
+				continue;
+			size_t n = across(&x, c, e);
+			if (n != SIZE_MAX && (!(x.flags[n] & JUNCTION) || n < c))
+				continue;
+			voronoi_point_t jp = junction(&x, c), xp = crossing(&x, c, e);
+			x.npts = 0;
+			rc = push(&x, jp);
+			if (rc == 0)
+				rc = push(&x, xp);
+			if (rc == 0 && n != SIZE_MAX)
+				rc = push(&x, junction(&x, n));
+			if (rc < 0)
+				break;
+			/* corner e of the cell lies left of the walk J -> X when the
+			 * cross product of (X - J) and (corner - X) is positive */
+			double cxp = r->x + (double)(c % x.cx) + ((e == 1 || e == 2) ? 1.5 : 0.5);
+			double cyp = r->y + (double)(c / x.cx) + ((e >= 2) ? 1.5 : 0.5);
+			double cr = (xp.x - jp.x) * (cyp - xp.y) - (xp.y - jp.y) * (cxp - xp.x);
+			int32_t l = cr > 0 ? L[e] : L[(e + 1) & 3], rt = cr > 0 ? L[(e + 1) & 3] : L[e];
+			rc = emit(&x, l, rt, 0);
+		}
+	}
+done:
+	if (stats)
+		*stats = x.st;
+	free(x.flags);
+	free(x.pts);
+	free(mixed);
+	return rc;
+}
