@@ -117,7 +117,8 @@ int voronoi_check(const voronoi_t *v)
 
 /* ---- labelling ------------------------------------------------------- */
 
-#define TILE 16
+#define TILE 16  /* pixels per tile side (the unit of work) */
+#define SUB 4    /* pixels per sub-block side in tiles with several candidates */
 
 /* Shared state of one labelling; workers take tile rows t, t+T, t+2T... */
 typedef struct {
@@ -135,19 +136,21 @@ typedef struct {
 	int rc;
 } worker_t;
 
-/* Label the pixels of one tile: cull with distance bounds at the tile
- * centre (distances are 1-Lipschitz), then test only the survivors, in index
- * order with a strict <, exactly as voronoi_nearest does. */
-static int label_tile(job_t *jb, unsigned tx, unsigned ty, size_t *cand, double *lower)
+/* Label the pixels [i0, i1) x [j0, j1) of the rectangle. The nuclei in[0..nin)
+ * (all nuclei when in is NULL) are culled with distance bounds at the block
+ * centre (distances are 1-Lipschitz: |d(P) - d(C)| <= |P - C|) into out; one
+ * survivor owns the whole block; otherwise a large block is split into
+ * SUB x SUB blocks culled again, and a small one is labelled pixel by pixel
+ * over the survivors, in index order with a strict <, exactly as
+ * voronoi_nearest does. out has room for 2 * count entries. */
+static void label_block(job_t *jb, unsigned i0, unsigned j0, unsigned i1, unsigned j1,
+                        const size_t *in, size_t nin, size_t *out, double *lower)
 {
 	const voronoi_t *v = jb->v;
 	const voronoi_rect_t *r = jb->r;
-	unsigned i0 = tx * TILE, j0 = ty * TILE;
-	unsigned i1 = i0 + TILE < r->width ? i0 + TILE : r->width;
-	unsigned j1 = j0 + TILE < r->height ? j0 + TILE : r->height;
 	double cxp = r->x + (i0 + i1) * 0.5, cyp = r->y + (j0 + j1) * 0.5, c[3], q[3];
 	voronoi_unmap(&jb->inv, cxp, cyp, c);
-	/* radius: farthest pixel centre of the tile from its centre, in the plane */
+	/* radius: farthest pixel centre of the block from its centre, in the plane */
 	double rad = 0;
 	for (int k = 0; k < 4; k++) {
 		double px = r->x + ((k & 1) ? i1 - 0.5 : i0 + 0.5), py = r->y + ((k & 2) ? j1 - 0.5 : j0 + 0.5);
@@ -156,45 +159,51 @@ static int label_tile(job_t *jb, unsigned tx, unsigned ty, size_t *cand, double 
 		rad = dd > rad ? dd : rad;
 	}
 	double ubest = INFINITY;
-	for (size_t k = 0; k < v->count; k++) {
-		const voronoi_nucleus_t *n = &v->nuclei[k];
+	for (size_t s = 0; s < nin; s++) {
+		const voronoi_nucleus_t *n = &v->nuclei[in ? in[s] : s];
 		double d = voronoi_dist(n, c);
 		double lo = d - rad, hi = d + rad;
 		lo = lo < 0 ? 0 : lo;
-		double wlo = weigh(n, v->metric, lo), whi = weigh(n, v->metric, hi);
-		lower[k] = wlo;
+		double whi = weigh(n, v->metric, hi);
+		lower[s] = weigh(n, v->metric, lo);
 		ubest = whi < ubest ? whi : ubest;
 	}
 	/* a margin for rounding: a nucleus is dropped only when it surely loses */
 	double margin = 1e-9 * (fabs(ubest) + rad + 1);
 	size_t nc = 0;
-	for (size_t k = 0; k < v->count; k++)
-		if (lower[k] <= ubest + margin)
-			cand[nc++] = k;
-	if (nc == 1) { /* the usual case: the whole tile belongs to one nucleus */
+	for (size_t s = 0; s < nin; s++)
+		if (lower[s] <= ubest + margin)
+			out[nc++] = in ? in[s] : s;
+	if (nc == 1) { /* the usual case: the whole block belongs to one nucleus */
 		for (unsigned j = j0; j < j1; j++)
 			for (unsigned i = i0; i < i1; i++)
-				jb->labels[(size_t)j * r->width + i] = (int32_t)cand[0];
-		return 0;
+				jb->labels[(size_t)j * r->width + i] = (int32_t)out[0];
+		return;
+	}
+	if (i1 - i0 > SUB || j1 - j0 > SUB) {
+		for (unsigned sj = j0; sj < j1; sj += SUB)
+			for (unsigned si = i0; si < i1; si += SUB)
+				label_block(jb, si, sj, si + SUB < i1 ? si + SUB : i1, sj + SUB < j1 ? sj + SUB : j1,
+				            out, nc, out + nc, lower);
+		return;
 	}
 	for (unsigned j = j0; j < j1; j++) {
 		int32_t *row = jb->labels + (size_t)j * r->width;
 		for (unsigned i = i0; i < i1; i++) {
 			voronoi_unmap(&jb->inv, r->x + i + 0.5, r->y + j + 0.5, q);
-			size_t best = cand[0];
+			size_t best = out[0];
 			double bd = INFINITY;
 			for (size_t s = 0; s < nc; s++) {
-				const voronoi_nucleus_t *n = &v->nuclei[cand[s]];
+				const voronoi_nucleus_t *n = &v->nuclei[out[s]];
 				double d = weigh(n, v->metric, voronoi_dist(n, q));
 				if (d < bd) {
 					bd = d;
-					best = cand[s];
+					best = out[s];
 				}
 			}
 			row[i] = (int32_t)best;
 		}
 	}
-	return 0;
 }
 
 static void *work(void *arg)
@@ -202,15 +211,19 @@ static void *work(void *arg)
 	worker_t *wk = arg;
 	job_t *jb = wk->job;
 	size_t n = jb->v->count;
-	size_t *cand = malloc(n * sizeof *cand);
+	size_t *cand = malloc(2 * n * sizeof *cand);
 	double *lower = malloc(n * sizeof *lower);
 	if (!cand || !lower) {
 		wk->rc = VORONOI_ENOMEM;
 	} else {
 		unsigned tiles_x = (jb->r->width + TILE - 1) / TILE;
 		for (size_t ty = wk->index; ty < jb->tiles_y; ty += jb->nthreads)
-			for (unsigned tx = 0; tx < tiles_x; tx++)
-				label_tile(jb, tx, (unsigned)ty, cand, lower);
+			for (unsigned tx = 0; tx < tiles_x; tx++) {
+				unsigned i0 = tx * TILE, j0 = (unsigned)ty * TILE;
+				unsigned i1 = i0 + TILE < jb->r->width ? i0 + TILE : jb->r->width;
+				unsigned j1 = j0 + TILE < jb->r->height ? j0 + TILE : jb->r->height;
+				label_block(jb, i0, j0, i1, j1, NULL, n, cand, lower);
+			}
 	}
 	free(cand);
 	free(lower);

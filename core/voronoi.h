@@ -154,11 +154,15 @@ typedef struct {
 	meta_rgb_t line_colour;
 	double line_width;  /* pixels (<= 0 means 1) */
 	unsigned threads;   /* as for voronoi_label */
+	int nuclei;         /* non-zero: mark the nuclei on top (points as discs,
+	                     * segments as round-capped strokes; z ignored) */
+	meta_rgb_t nucleus_colour;
+	double nucleus_radius; /* pixels (<= 0 means 2) */
 } voronoi_style_t;
 
 /* Label r once and write cells and/or boundaries to w on the current page:
- * the image first, then one stroked path per boundary polyline. stats may be
- * NULL. */
+ * the image first, then one stroked path per boundary polyline, then the
+ * nuclei. stats may be NULL. */
 int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                        const voronoi_style_t *style, voronoi_stats_t *stats);
 

@@ -45,7 +45,7 @@ done:
 int voronoi_write_cells(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                         unsigned threads)
 {
-	voronoi_style_t st = { 1, 0, 0, 1, threads };
+	voronoi_style_t st = { 1, 0, 0, 1, threads, 0, 0, 0 };
 	return voronoi_write_meta(w, v, r, &st, NULL);
 }
 
@@ -77,6 +77,30 @@ static int stroke_cb(void *user, int32_t left, int32_t right, const voronoi_poin
 	return 0;
 }
 
+/* Mark every nucleus: a disc for a point, a round-capped stroke for a segment. */
+static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_style_t *style)
+{
+	double rad = style->nucleus_radius > 0 ? style->nucleus_radius : 2;
+	const double *m = v->m;
+	if (meta_colour(w, style->nucleus_colour) < 0)
+		return fail_meta(w, "setting the nucleus colour");
+	for (size_t k = 0; k < v->count; k++) {
+		const voronoi_nucleus_t *n = &v->nuclei[k];
+		double ax = m[0] + m[1] * n->a[0] + m[2] * n->a[1], ay = m[3] + m[4] * n->a[0] + m[5] * n->a[1];
+		int rc;
+		if (n->kind == VORONOI_SEGMENT) {
+			double bx = m[0] + m[1] * n->b[0] + m[2] * n->b[1], by = m[3] + m[4] * n->b[0] + m[5] * n->b[1];
+			rc = meta_width(w, 2 * rad) < 0 || meta_cap(w, META_CAP_ROUND) < 0 || meta_stroke(w) < 0 ||
+			     meta_move(w, ax, ay) < 0 || meta_draw(w, bx, by) < 0 || meta_end(w) < 0;
+		} else {
+			rc = meta_fill(w) < 0 || meta_circle(w, ax, ay, rad) < 0 || meta_end(w) < 0;
+		}
+		if (rc)
+			return fail_meta(w, "writing a nucleus");
+	}
+	return 0;
+}
+
 int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                        const voronoi_style_t *style, voronoi_stats_t *stats)
 {
@@ -104,6 +128,8 @@ int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_
 		if (rc == VORONOI_ECALLBACK)
 			rc = fail_meta(w, "writing a boundary");
 	}
+	if (rc == 0 && style->nuclei)
+		rc = write_nuclei(w, v, style);
 done:
 	free(labels);
 	return rc;

@@ -82,7 +82,9 @@ static double wdist(const tctx_t *x, int32_t k, double px, double py)
 {
 	double p[3];
 	voronoi_unmap(&x->inv, px, py, p);
-	return voronoi_weighted_distance(&x->v->nuclei[k], x->v->metric, p);
+	const voronoi_nucleus_t *n = &x->v->nuclei[k];
+	double d = voronoi_dist(n, p);
+	return x->v->metric == VORONOI_MULTIPLICATIVE ? d / n->weight : d - n->weight;
 }
 
 /* Case index (bit 4: centre owned by the smaller label) of a two-label cell. */
@@ -294,20 +296,26 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 		goto done;
 	}
 	/* one pass: check the labels, count crossings, list the mixed cells */
+	size_t ncross = 0;
 	for (size_t j = 0; j < x.h; j++) {
 		const int32_t *r0 = labels + j * x.w, *r1 = j + 1 < x.h ? r0 + x.w : NULL;
+		size_t bad = 0;
 		for (size_t i = 0; i < x.w; i++)
-			if (r0[i] < 0 || (size_t)r0[i] >= v->count) {
-				rc = voronoi_fail(VORONOI_EARG, "voronoi: label %ld at pixel (%zu, %zu) is not a nucleus",
-				                  (long)r0[i], i, j);
-				goto done;
-			}
+			bad += (uint32_t)r0[i] >= v->count;
+		if (bad) {
+			size_t i = 0;
+			while ((uint32_t)r0[i] < v->count)
+				i++;
+			rc = voronoi_fail(VORONOI_EARG, "voronoi: label %ld at pixel (%zu, %zu) is not a nucleus",
+			                  (long)r0[i], i, j);
+			goto done;
+		}
 		for (size_t i = 0; i + 1 < x.w; i++)
-			x.st.crossings += r0[i] != r0[i + 1];
+			ncross += r0[i] != r0[i + 1];
 		if (!r1)
 			break;
 		for (size_t i = 0; i < x.w; i++)
-			x.st.crossings += r0[i] != r1[i];
+			ncross += r0[i] != r1[i];
 		for (size_t i = 0; i < x.cx; i++) {
 			int32_t L[4] = { r0[i], r0[i + 1], r1[i + 1], r1[i] };
 			if (L[0] == L[1] && L[0] == L[2] && L[0] == L[3])
@@ -330,6 +338,7 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 			mixed[nmixed++] = (uint32_t)c;
 		}
 	}
+	x.st.crossings = ncross;
 	/* 1: chains of two-label cells that start at the border or at a junction */
 	for (size_t q = 0; q < nmixed && rc == 0; q++) {
 		size_t c = mixed[q];

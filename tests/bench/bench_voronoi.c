@@ -78,7 +78,7 @@ static int write_meta(const char *path, const voronoi_t *v, const voronoi_rect_t
 		return 74;
 	}
 	meta_writer_t *w = meta_writer_new(fwrite_cb, f, META_ENC_TEXT);
-	voronoi_style_t st = { 1, 1, 0x000000, 1.5, threads };
+	voronoi_style_t st = { 1, 1, 0x000000, 1.5, threads, 1, 0x000000, 3 };
 	int rc = w ? meta_page(w, N, N) : -1;
 	if (rc == 0)
 		rc = voronoi_write_meta(w, v, r, &st, NULL);

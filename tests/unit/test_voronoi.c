@@ -286,7 +286,7 @@ static void test_meta(void)
 	voronoi_t v = { nuc, 2, VORONOI_ADDITIVE, { 0 } };
 	voronoi_map_window(v.m, -2, -2, 2, 2, 0, 0, 8, 8);
 	voronoi_rect_t r = { 0, 0, 8, 8 };
-	voronoi_style_t st = { 1, 1, 0x00ff00, 0.5, 1 };
+	voronoi_style_t st = { 1, 1, 0x00ff00, 0.5, 1, 0, 0, 0 };
 	meta_writer_t *w = meta_writer_new(mem_write, &mem, META_ENC_TEXT);
 	int rc = meta_page(w, 8, 8);
 	rc = rc < 0 ? rc : voronoi_write_meta(w, &v, &r, &st, NULL);
