@@ -28,7 +28,9 @@ static meta_reader_t *reader_alloc(const char *name)
 		free(r);
 		return NULL;
 	}
-	if (!name || strcmp(name, "-") == 0)
+	if (!name)
+		name = "<input>";
+	else if (strcmp(name, "-") == 0)
 		name = "<stdin>";
 	meta_fmt(r->name, sizeof r->name, "%s", name);
 	return r;

@@ -31,5 +31,16 @@ grep -q "^colours: 7 distinct #000000 #0000ff #00c000 #00ffff #e8e8e8 #ff0000 #f
 # the colour set is capped: 2000 distinct span colours
 awk 'BEGIN { print "LOCUS-META 1"; print "page 64 64"; for (i = 0; i < 2000; i++) printf "span 0 %d 1 #%06x\n", i % 64, i * 97; print "end-page" }' > "$T/many.meta"
 "$M" info "$T/many.meta" | grep -q "^colours: more than 1024 distinct" && ok "info: colour set capped" || notok "info: colour cap"
+# streaming: a 300,000-statement file read from a pipe, memory independent of its size
+gen() { awk -v n="$1" 'BEGIN { print "LOCUS-META 1"; print "page 1024 768"; print "stroke"; print "move 0 0";
+	for (i = 0; i < n; i++) printf "draw %d.%03d %d.5\n", i % 1024, i % 1000, (i * 7) % 768; print "end"; print "end-page" }'; }
+gen 300000 | "$M" check - && ok "300k statements through a pipe" || notok "300k statements through a pipe"
+if [ "${SANITIZE:-}" != 1 ] && [ -x /usr/bin/time ]; then
+	gen 300000 > "$T/big.meta"
+	gen 30000 > "$T/small.meta"
+	big=$( { /usr/bin/time -f %M "$M" check "$T/big.meta"; } 2>&1 | tail -1)
+	small=$( { /usr/bin/time -f %M "$M" check "$T/small.meta"; } 2>&1 | tail -1)
+	if [ "$big" -lt 8192 ] && [ "$big" -lt $((small + 1024)) ]; then ok "memory bounded: ${big} KB for 10x the ${small} KB input"; else notok "memory grows with the file: $small KB -> $big KB"; fi
+fi
 expect_exit 65 "info of a bad file" "$M" info fixtures/bad/nan.meta
 done_tests
