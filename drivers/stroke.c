@@ -192,6 +192,13 @@ static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 /* Split the subpath into dash pieces (each stroked solid and open). */
 static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, size_t n, int closed)
 {
+	size_t same = 1;
+	while (same < n && pts[same].x == pts[0].x && pts[same].y == pts[0].y)
+		same++;
+	if (same == n) {
+		solid(s, pts, n, closed);   /* all points equal: the dot, as when solid */
+		return;
+	}
 	scan_path_t *dp = scan_ctx_dashed(s->c);
 	scan_path_reset(dp);
 	size_t idx = 0;
@@ -254,8 +261,8 @@ int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const
 	for (size_t k = 0; k < p->nsubs && s.rc == 0; k++) {
 		const scan_pt_t *q = p->pts + p->subs[k].start;
 		size_t n = p->subs[k].n;
-		if (n < 2)
-			continue;
+		if (n < 2 && !p->subs[k].closed)
+			continue;   /* a lone move paints nothing; move + close is a dot */
 		int64_t y0 = q[0].y, y1 = q[0].y;
 		for (size_t i = 1; i < n; i++) {
 			if (q[i].y < y0) y0 = q[i].y;
