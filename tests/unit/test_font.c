@@ -48,7 +48,7 @@ int main(void)
 		"rotated 90 degrees: the L's top points to -x");
 	scan_path_reset(&p);
 	scan_text_path(&p, ".", 1, 0, 0, 6000, 0);
-	CHECK(p.nsubs == 1 && p.subs[0].n == 2 && p.pts[0].x == p.pts[1].x, "a dot is a zero-length stroke");
+	CHECK(p.nsubs == 1 && p.subs[0].n == 5 && p.pts[0].x == p.pts[4].x, "a dot is a small closed square (visible at any size)");
 	scan_path_free(&p);
 	return UNIT_DONE();
 }
