@@ -163,36 +163,46 @@ int meta_write(meta_writer_t *w, const meta_cmd_t *cmd);
  * failed (META_EIO) or the output is incomplete (META_ESTATE: a page or path
  * left open, or no page at all after something was written). */
 int meta_writer_close(meta_writer_t *w);
+/* The last error of the writer as one line ("meta_write: 'page' operand 1:
+ * expected a page width from 1 to 32768, found 0"); empty if none. A refused
+ * statement writes nothing and the writer stays usable; a write failure of
+ * the callback is sticky. */
 const char *meta_writer_error(const meta_writer_t *w);
 
 /* Convenience calls for producers (the renderer). State setters write a
  * statement only when the value differs from the current state of the page,
- * so that output is canonical and small. Coordinates are in pixels (double)
- * and rounded to the nearest thousandth, ties away from zero. */
-int meta_page(meta_writer_t *w, unsigned width, unsigned height);
-int meta_page_size_mm(meta_writer_t *w, double width_mm, double height_mm);
-int meta_clear(meta_writer_t *w, meta_rgb_t rgb);
-int meta_end_page(meta_writer_t *w);
-int meta_colour(meta_writer_t *w, meta_rgb_t rgb);
-int meta_width(meta_writer_t *w, double width);
-int meta_dash(meta_writer_t *w, const double *lengths, size_t n);
-int meta_cap(meta_writer_t *w, int cap);
-int meta_join(meta_writer_t *w, int join);
-int meta_fill_rule(meta_writer_t *w, int rule);
-int meta_miter_limit(meta_writer_t *w, double limit);
+ * so that output is canonical and small (the state is tracked per page and
+ * reset to the defaults by meta_page). Coordinates are in pixels (double)
+ * and rounded to the nearest thousandth, ties away from zero; a NaN, infinite
+ * or out-of-range value is refused with META_EARG. All return 0 or <0. */
+int meta_page(meta_writer_t *w, unsigned width, unsigned height);          /* begin a page */
+int meta_page_size_mm(meta_writer_t *w, double width_mm, double height_mm); /* directly after meta_page */
+int meta_clear(meta_writer_t *w, meta_rgb_t rgb);                          /* paint the whole page */
+int meta_end_page(meta_writer_t *w);                                       /* the device outputs the page */
+int meta_colour(meta_writer_t *w, meta_rgb_t rgb);          /* state: colour of strokes, fills, text */
+int meta_width(meta_writer_t *w, double width);             /* state: line width in pixels, >= 0 */
+int meta_dash(meta_writer_t *w, const double *lengths, size_t n); /* state: dash lengths, n == 0 solid */
+int meta_cap(meta_writer_t *w, int cap);                    /* state: META_CAP_* */
+int meta_join(meta_writer_t *w, int join);                  /* state: META_JOIN_* */
+int meta_fill_rule(meta_writer_t *w, int rule);             /* state: META_RULE_* */
+int meta_miter_limit(meta_writer_t *w, double limit);       /* state: miter limit, >= 1 */
 int meta_stroke(meta_writer_t *w);          /* begin a stroked path */
 int meta_fill(meta_writer_t *w);            /* begin a filled path */
-int meta_move(meta_writer_t *w, double x, double y);
-int meta_draw(meta_writer_t *w, double x, double y);
+int meta_move(meta_writer_t *w, double x, double y);        /* begin a subpath at (x, y) */
+int meta_draw(meta_writer_t *w, double x, double y);        /* segment to (x, y) */
+/* Arc of centre (cx, cy), radius r > 0, from start_deg through sweep_deg (|sweep| <= 360). */
 int meta_arc(meta_writer_t *w, double cx, double cy, double r, double start_deg, double sweep_deg);
-int meta_circle(meta_writer_t *w, double cx, double cy, double r);
-int meta_close(meta_writer_t *w);
+int meta_circle(meta_writer_t *w, double cx, double cy, double r); /* a closed circular subpath */
+int meta_close(meta_writer_t *w);           /* close the current subpath */
 int meta_end(meta_writer_t *w);             /* end the path: draw it */
+/* Stroke-font text s (NUL-terminated, at most 4096 bytes) at baseline origin (x, y). */
 int meta_text(meta_writer_t *w, double x, double y, double size, double angle_deg, const char *s);
-int meta_span(meta_writer_t *w, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
+int meta_span(meta_writer_t *w, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb); /* n pixels of a row */
+/* Begin a width x height image at (x, y); then exactly height rows, top row first. */
 int meta_image(meta_writer_t *w, unsigned x, unsigned y, unsigned width, unsigned height);
 /* Write one image row from width RGB pixels (0xRRGGBB each), run-length encoded. */
 int meta_row_pixels(meta_writer_t *w, const meta_rgb_t *pixels, size_t width);
+/* A comment line (no line breaks; at most 4096 bytes). */
 int meta_comment(meta_writer_t *w, const char *text);
 
 /* ---- Numbers ---------------------------------------------------------- */
@@ -204,8 +214,9 @@ int meta_fix_format(meta_fix_t v, char *buf);
 meta_fix_t meta_fix_from_double(double v, int *ok);
 static inline double meta_fix_to_double(meta_fix_t v) { return v / 1000.0; }
 
-/* Keyword spelling of statement kinds and keyword operands (for tools and docs). */
+/* Keyword spelling of a statement kind ("fill-rule"; "#" for comments; "?" if unknown). */
 const char *meta_op_name(meta_op_t op);
+/* Spelling of keyword operand k of op ("square" for META_CAP, META_CAP_SQUARE); NULL if none. */
 const char *meta_keyword_name(meta_op_t op, int k);
 
 #ifdef __cplusplus
