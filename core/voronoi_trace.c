@@ -25,6 +25,7 @@ typedef struct {
 	uint8_t *flags;            /* per cell: visited entries (bits 0..3), JUNCTION, MIXED */
 	voronoi_point_t *pts;
 	size_t npts, cap;
+	int start_border, end_border; /* the polyline being built starts/ends at the rectangle's edge */
 	voronoi_fn fn;
 	void *user;
 	voronoi_stats_t st;
@@ -164,22 +165,59 @@ static voronoi_point_t crossing(const tctx_t *x, size_t c, int e)
 	return p;
 }
 
-/* The junction point of a junction cell: the mean of its crossings. */
+/* The junction point of a junction cell. Where exactly three cells meet it is
+ * the Voronoi vertex, solved by Newton's method (dw_a = dw_b = dw_c) from the
+ * mean of the cell's crossings, accepted when it converges inside the cell
+ * (with half a pixel of slack); otherwise (four cells, or no convergence) the
+ * mean of the crossings. */
 static voronoi_point_t junction(const tctx_t *x, size_t c)
 {
-	int32_t L[4];
+	int32_t L[4], u[4];
 	corners(x, c, L);
 	voronoi_point_t s = { 0, 0 };
-	int n = 0;
-	for (int e = 0; e < 4; e++)
+	int n = 0, nu = 0;
+	for (int e = 0; e < 4; e++) {
+		int seen = 0;
+		for (int k = 0; k < nu; k++)
+			seen |= u[k] == L[e];
+		if (!seen)
+			u[nu++] = L[e];
 		if (L[e] != L[(e + 1) & 3]) {
 			voronoi_point_t p = crossing(x, c, e);
 			s.x += p.x;
 			s.y += p.y;
 			n++;
 		}
+	}
 	s.x /= n;
 	s.y /= n;
+	if (nu != 3)
+		return s;
+	double px = s.x, py = s.y, h = 1e-4;
+	double x0 = x->r->x + (double)(c % x->cx), y0 = x->r->y + (double)(c / x->cx);
+	for (int it = 0; it < 12; it++) {
+		double f[3][2];
+		for (int k = 0; k < 3; k++) { /* F at P, P + h x, P + h y */
+			double qx = px + (k == 1 ? h : 0), qy = py + (k == 2 ? h : 0);
+			double da = wdist(x, u[0], qx, qy);
+			f[k][0] = da - wdist(x, u[1], qx, qy);
+			f[k][1] = da - wdist(x, u[2], qx, qy);
+		}
+		double j00 = (f[1][0] - f[0][0]) / h, j01 = (f[2][0] - f[0][0]) / h;
+		double j10 = (f[1][1] - f[0][1]) / h, j11 = (f[2][1] - f[0][1]) / h;
+		double det = j00 * j11 - j01 * j10;
+		if (!(fabs(det) > 1e-12))
+			return s;
+		double dx = -(j11 * f[0][0] - j01 * f[0][1]) / det, dy = -(-j10 * f[0][0] + j00 * f[0][1]) / det;
+		px += dx;
+		py += dy;
+		if (!(px > x0 && px < x0 + 2 && py > y0 && py < y0 + 2))
+			return s; /* left the cell (plus slack): keep the mean */
+		if (fabs(dx) + fabs(dy) < 1e-9) {
+			voronoi_point_t v = { px, py };
+			return v;
+		}
+	}
 	return s;
 }
 
@@ -211,9 +249,55 @@ static int push(tctx_t *x, voronoi_point_t p)
 	return 0;
 }
 
+/* The point where the ray from q through p leaves the rectangle, when it is
+ * at most one pixel beyond p: boundaries are traced between pixel centres, so
+ * an open end lies half a pixel inside the rectangle; this carries it to the
+ * edge (skipped when the boundary runs nearly along the edge). */
+static int to_border(const tctx_t *x, voronoi_point_t q, voronoi_point_t p, voronoi_point_t *out)
+{
+	double dx = p.x - q.x, dy = p.y - q.y, len = hypot(dx, dy);
+	if (!(len > 0))
+		return 0;
+	dx /= len;
+	dy /= len;
+	double ex[2] = { x->r->x, (double)x->r->x + x->w }, ey[2] = { x->r->y, (double)x->r->y + x->h };
+	double t = INFINITY;
+	int side = -1;
+	for (int k = 0; k < 4; k++) {
+		double d = k < 2 ? dx : dy, e = k < 2 ? ex[k & 1] : ey[k & 1], c = k < 2 ? p.x : p.y;
+		if ((k & 1) ? d > 0 : d < 0) {
+			double tk = (e - c) / d;
+			if (tk < t) {
+				t = tk;
+				side = k;
+			}
+		}
+	}
+	if (side < 0 || !(t > 1e-9 && t <= 1.0))
+		return 0;
+	out->x = side < 2 ? ex[side & 1] : p.x + t * dx;
+	out->y = side < 2 ? p.y + t * dy : ey[side & 1];
+	return 1;
+}
+
 static int emit(tctx_t *x, int32_t left, int32_t right, int closed)
 {
 	size_t n = x->npts;
+	voronoi_point_t b;
+	if (!closed && n >= 2 && x->end_border && to_border(x, x->pts[n - 2], x->pts[n - 1], &b)) {
+		int rc = push(x, b);
+		if (rc < 0)
+			return rc;
+		n = x->npts;
+	}
+	if (!closed && n >= 2 && x->start_border && to_border(x, x->pts[1], x->pts[0], &b)) {
+		int rc = push(x, b); /* room for one more, then shift it to the front */
+		if (rc < 0)
+			return rc;
+		memmove(x->pts + 1, x->pts, (x->npts - 1) * sizeof *x->pts);
+		x->pts[0] = b;
+		n = x->npts;
+	}
 	if (closed && n > 1 && x->pts[n - 1].x == x->pts[0].x && x->pts[n - 1].y == x->pts[0].y)
 		n--;
 	if (n < 2)
@@ -233,6 +317,7 @@ static int trace(tctx_t *x, size_t c, int e)
 	size_t c0 = c;
 	int e0 = e, closed = 0, rc;
 	int32_t a = 0, b = 0;
+	x->end_border = 0;
 	for (;;) {
 		if (x->flags[c] & (1u << e))
 			break;
@@ -247,8 +332,10 @@ static int trace(tctx_t *x, size_t c, int e)
 		}
 		if ((rc = push(x, crossing(x, c, out))) < 0)
 			return rc;
-		if (n == SIZE_MAX)
+		if (n == SIZE_MAX) {
+			x->end_border = 1;
 			break;
+		}
 		if (x->flags[n] & JUNCTION) {
 			if ((rc = push(x, junction(x, n))) < 0)
 				return rc;
@@ -353,6 +440,7 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 			if (n != SIZE_MAX && !(x.flags[n] & JUNCTION))
 				continue;
 			x.npts = 0;
+			x.start_border = n == SIZE_MAX;
 			if (n != SIZE_MAX)
 				rc = push(&x, junction(&x, n));
 			if (rc == 0)
@@ -372,6 +460,7 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 			if (exit_of[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
 				continue;
 			x.npts = 0;
+			x.start_border = 0;
 			rc = push(&x, crossing(&x, c, e));
 			if (rc == 0)
 				rc = trace(&x, c, e);
@@ -393,6 +482,8 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 				continue;
 			voronoi_point_t jp = junction(&x, c), xp = crossing(&x, c, e);
 			x.npts = 0;
+			x.start_border = 0;
+			x.end_border = n == SIZE_MAX;
 			rc = push(&x, jp);
 			if (rc == 0)
 				rc = push(&x, xp);
