@@ -316,6 +316,12 @@ double model_param(const model_shape_t *s, const double p[3], const double q[3])
 	}
 }
 
+double model_elem_distance(const model_elem_t *e, const double q[3])
+{
+	double near[3];
+	return nearest(e, q, near);
+}
+
 double model_eval(const model_shape_t *s, const double p[3])
 {
 	double q[3], near[3], sum = 0;

@@ -110,6 +110,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 double model_eval(const model_shape_t *s, const double p[3]);
 /* f at 8 actual-frame points (float, vectorised). */
 void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* Distance from the setup-frame point q to a (non-shape) element. */
+double model_elem_distance(const model_elem_t *e, const double q[3]);
 /* Gradient of f at p (analytic for elements, central differences for c). */
 void model_grad(const model_shape_t *s, const double p[3], double g[3]);
 

@@ -101,6 +101,8 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 	return -1;
 }
 
+static void tighten_box(model_shape_t *s);
+
 int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 {
 	if (warn)
@@ -154,8 +156,12 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		s->has_lip = 0;
 	if (!s->has_lip && warn)
 		*warn = "no Lipschitz bound for this defining parameter: using step-and-bisect bracketing (slower)";
-	if (s->has_lip && model_is_empty(s) && warn)
-		*warn = "the shape is empty (the defining parameter is below the minimum of the distance sum)";
+	if (s->has_lip && model_is_empty(s)) {
+		if (warn)
+			*warn = "the shape is empty (the defining parameter is below the minimum of the distance sum)";
+	} else if (s->has_lip) {
+		tighten_box(s);
+	}
 	return 0;
 }
 
@@ -180,6 +186,41 @@ static int cell_may_hold(const model_shape_t *s, const double *p, double r, int 
 			return 1;
 	}
 	return *neg;
+}
+
+/* Grow lo/hi by the cells (centre p, half side h) that the spherical test cannot clear. */
+static void tight(const model_shape_t *s, const double *p, double h, int depth, double *lo, double *hi)
+{
+	double f = model_eval(s, p), r = h * sqrt(3.0);
+	if (f == f && fabs(f) > s->lip * r)
+		return;
+	if (depth == 0 || f != f) {
+		for (int i = 0; i < 3; i++) {
+			lo[i] = fmin(lo[i], p[i] - h);
+			hi[i] = fmax(hi[i], p[i] + h);
+		}
+		return;
+	}
+	for (int c = 0; c < 8; c++) {
+		double q[3] = {p[0] + ((c & 1) ? h : -h) / 2, p[1] + ((c & 2) ? h : -h) / 2, p[2] + ((c & 4) ? h : -h) / 2};
+		tight(s, q, h / 2, depth - 1, lo, hi);
+	}
+}
+
+/* Shrink the clip box to the cells of a depth-5 octree that may hold the surface. */
+static void tighten_box(model_shape_t *s)
+{
+	double *b = s->box, lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+	double h = fmax(b[3] - b[0], fmax(b[4] - b[1], b[5] - b[2])) / 2;
+	double p[3] = {(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2};
+	tight(s, p, h, 5, lo, hi);
+	if (!(lo[0] <= hi[0]))
+		return;
+	for (int i = 0; i < 3; i++) {
+		double pad = 1e-3 * h;
+		b[i] = fmax(b[i], lo[i] - pad);
+		b[3 + i] = fmin(b[3 + i], hi[i] + pad);
+	}
 }
 
 int model_is_empty(const model_shape_t *s)

@@ -61,6 +61,7 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 			}
 	}
 	double P[8][3], N[8][3], V[8][3];
+	const float *pko[3] = {pk->ox, pk->oy, pk->oz}, *pkd[3] = {pk->dx, pk->dy, pk->dz};
 	int hit[8];
 	for (int k = 0; k < 8; k++) {
 		hit[k] = pk->active[k] && obj[k] >= 0;
@@ -69,8 +70,8 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 		st->hits++;
 		const rt_object_t *ob = &p->objects[obj[k]];
 		for (int i = 0; i < 3; i++) {
-			P[k][i] = pk->o[k][i] + best[k] * pk->d[k][i];
-			V[k][i] = -pk->d[k][i];
+			P[k][i] = pko[i][k] + best[k] * pkd[i][k];
+			V[k][i] = -pkd[i][k];
 		}
 		model_grad(ob->shape, P[k], N[k]);
 		st->normal_evals++;
@@ -112,13 +113,15 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 			sp.active[k] = 1;
 			need = 1;
 			double fp = pk->fa[k] + pk->fb[k] * best[k];
-			for (int i = 0; i < 3; i++) {
-				sp.o[k][i] = P[k][i] + 0.5 * fp * N[k][i];
-				sp.d[k][i] = Ld[k][i];
-			}
+			sp.ox[k] = (float)(P[k][0] + 0.5 * fp * N[k][0]);
+			sp.oy[k] = (float)(P[k][1] + 0.5 * fp * N[k][1]);
+			sp.oz[k] = (float)(P[k][2] + 0.5 * fp * N[k][2]);
+			sp.dx[k] = (float)Ld[k][0];
+			sp.dy[k] = (float)Ld[k][1];
+			sp.dz[k] = (float)Ld[k][2];
 			sp.tmin[k] = 0;
-			sp.tmax[k] = dist[k];
-			sp.fa[k] = fp;
+			sp.tmax[k] = (float)dist[k];
+			sp.fa[k] = (float)fp;
 			sp.fb[k] = 0;
 		}
 		if (need && lt->shadows) {
@@ -154,24 +157,65 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 
 static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, double py)
 {
-	cam_ray(&p->cam, px, py, pk->o[k], pk->d[k]);
+	double o[3], d[3];
+	cam_ray(&p->cam, px, py, o, d);
+	pk->ox[k] = (float)o[0];
+	pk->oy[k] = (float)o[1];
+	pk->oz[k] = (float)o[2];
+	pk->dx[k] = (float)d[0];
+	pk->dy[k] = (float)d[1];
+	pk->dz[k] = (float)d[2];
 	pk->active[k] = 1;
 	pk->tmin[k] = 0;
 	pk->tmax[k] = INFINITY;
 	if (p->cam.projection == CAM_ORTHOGRAPHIC) {
-		pk->fa[k] = cam_footprint(&p->cam, 1);
+		pk->fa[k] = (float)cam_footprint(&p->cam, 1);
 		pk->fb[k] = 0;
 	} else {
 		pk->fa[k] = 0;
-		pk->fb[k] = cam_footprint(&p->cam, 1);
+		pk->fb[k] = (float)cam_footprint(&p->cam, 1);
+	}
+}
+
+/* Rays through the n <= 8 viewport points (px0 + k * dpx, py), in float lanes. */
+static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, double dpx, double py, int n)
+{
+	const cam_t *c = &p->cam;
+	float sx = (float)(c->horiz / c->nxpix), x0 = (float)(px0 / c->nxpix - 0.5) * (float)c->horiz;
+	float y = (float)((py / c->nypix - 0.5) * c->vert), dx = (float)dpx * sx;
+	float fw[3], rt[3], up[3], eye[3];
+	for (int i = 0; i < 3; i++) {
+		fw[i] = (float)c->fwd[i];
+		rt[i] = (float)c->right[i];
+		up[i] = (float)c->upv[i];
+		eye[i] = (float)c->eye[i];
+	}
+	float fp = (float)cam_footprint(c, 1);
+	int ortho = c->projection == CAM_ORTHOGRAPHIC;
+	for (int k = 0; k < 8; k++) {
+		float x = x0 + dx * (float)k;
+		float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
+		float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
+		float il = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
+		pk->ox[k] = ortho ? eye[0] + ax : eye[0];
+		pk->oy[k] = ortho ? eye[1] + ay : eye[1];
+		pk->oz[k] = ortho ? eye[2] + az : eye[2];
+		pk->dx[k] = ortho ? fw[0] : vx * il;
+		pk->dy[k] = ortho ? fw[1] : vy * il;
+		pk->dz[k] = ortho ? fw[2] : vz * il;
+		pk->tmin[k] = 0;
+		pk->tmax[k] = INFINITY;
+		pk->fa[k] = ortho ? fp : 0.0f;
+		pk->fb[k] = ortho ? 0.0f : fp;
+		pk->active[k] = k < n;
 	}
 }
 
 static void init_packet(const rt_params_t *p, rt_packet_t *pk)
 {
 	memset(pk, 0, sizeof *pk);
-	pk->acc = p->accuracy > 0 ? p->accuracy : 1e-3;
-	pk->step = p->step_pixels > 0 ? p->step_pixels : 0.5;
+	pk->acc = (float)(p->accuracy > 0 ? p->accuracy : 1e-3);
+	pk->step = (float)(p->step_pixels > 0 ? p->step_pixels : 0.5);
 }
 
 static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_stats_t *st)
@@ -181,8 +225,7 @@ static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_sta
 	double col[8][3];
 	for (unsigned x0 = 0; x0 < nx; x0 += 8) {
 		init_packet(p, &pk);
-		for (int k = 0; k < 8 && x0 + k < nx; k++)
-			setup_ray(p, &pk, k, x0 + k + 0.5, j + 0.5);
+		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < 8 ? (int)(nx - x0) : 8);
 		trace8(p, &pk, col, st);
 		for (int k = 0; k < 8 && x0 + k < nx; k++)
 			row[x0 + k] = to_rgb(col[k]);

@@ -5,16 +5,17 @@
 #include <stdint.h>
 #include "model.h"
 
-/* Eight rays marched together. The pixel footprint at parameter t is
- * fa + fb * t world units; acc is the hit tolerance in footprints and step
- * the bracketing-fallback step in footprints. */
+/* Eight rays marched together, structure of arrays in float (what the
+ * kernels take). The pixel footprint at parameter t is fa + fb * t world
+ * units; acc is the hit tolerance in footprints and step the
+ * bracketing-fallback step in footprints. */
 typedef struct {
-	double o[8][3], d[8][3];
-	double tmin[8], tmax[8];
-	double fa[8], fb[8];
+	float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8];
+	float tmin[8], tmax[8];
+	float fa[8], fb[8];
 	int active[8];
-	double acc, step;
-	double thit[8];          /* out: hit parameter, INFINITY when none */
+	float acc, step;
+	float thit[8];           /* out: hit parameter, INFINITY when none */
 } rt_packet_t;
 
 /* March the active rays against s. shadow != 0 stops at the first sample

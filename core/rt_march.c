@@ -4,181 +4,164 @@
 #include <math.h>
 #include <string.h>
 
-enum { S_IDLE, S_INIT, S_MARCH, S_BRACKET };
+enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
 
-/* Clip the ray to the object's region: box and (if bounded) sphere. */
-static int clip(const model_shape_t *s, const double *o, const double *d, double *t0, double *t1)
+static float minf(float a, float b) { return a < b ? a : b; }
+static float maxf(float a, float b) { return a > b ? a : b; }
+
+/* Clip the 8 rays to the object's region (box and, if bounded, sphere):
+ * [a, b] per lane, empty when a > b. Branch-free so that it vectorises. */
+static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict a, float *restrict b)
 {
-	double a = *t0, b = *t1;
-	for (int i = 0; i < 3; i++) {
-		double lo = s->box[i], hi = s->box[3 + i];
-		if (d[i] == 0) {
-			if (o[i] < lo || o[i] > hi)
-				return 0;
-			continue;
-		}
-		double u = (lo - o[i]) / d[i], v = (hi - o[i]) / d[i];
-		if (u > v) {
-			double w = u;
-			u = v;
-			v = w;
-		}
-		a = fmax(a, u);
-		b = fmin(b, v);
+	const float bx0 = (float)s->box[0], by0 = (float)s->box[1], bz0 = (float)s->box[2];
+	const float bx1 = (float)s->box[3], by1 = (float)s->box[4], bz1 = (float)s->box[5];
+	const float cx = (float)s->centre[0], cy = (float)s->centre[1], cz = (float)s->centre[2];
+	const float r2 = s->bounded ? (float)(s->radius * s->radius) : 0.0f, sph = s->bounded ? 1.0f : 0.0f;
+	for (int k = 0; k < 8; k++) {
+		float lo = pk->tmin[k], hi = pk->tmax[k];
+		float ix = 1.0f / pk->dx[k], iy = 1.0f / pk->dy[k], iz = 1.0f / pk->dz[k];
+		float u0 = (bx0 - pk->ox[k]) * ix, u1 = (bx1 - pk->ox[k]) * ix;
+		float v0 = (by0 - pk->oy[k]) * iy, v1 = (by1 - pk->oy[k]) * iy;
+		float w0 = (bz0 - pk->oz[k]) * iz, w1 = (bz1 - pk->oz[k]) * iz;
+		lo = maxf(lo, minf(u0, u1));
+		hi = minf(hi, maxf(u0, u1));
+		lo = maxf(lo, minf(v0, v1));
+		hi = minf(hi, maxf(v0, v1));
+		lo = maxf(lo, minf(w0, w1));
+		hi = minf(hi, maxf(w0, w1));
+		float ox = pk->ox[k] - cx, oy = pk->oy[k] - cy, oz = pk->oz[k] - cz;
+		float bb = ox * pk->dx[k] + oy * pk->dy[k] + oz * pk->dz[k];
+		float disc = bb * bb - (ox * ox + oy * oy + oz * oz - r2);
+		float q = sqrtf(maxf(disc, 0.0f));
+		float slo = disc >= 0.0f ? -bb - q : INFINITY, shi = disc >= 0.0f ? -bb + q : -INFINITY;
+		lo = sph > 0 ? maxf(lo, slo) : lo;
+		hi = sph > 0 ? minf(hi, shi) : hi;
+		/* NaN (a zero direction component with the origin on a slab face) counts as empty */
+		a[k] = lo == lo ? lo : INFINITY;
+		b[k] = hi == hi ? hi : -INFINITY;
 	}
-	if (s->bounded) {
-		double oc[3] = {o[0] - s->centre[0], o[1] - s->centre[1], o[2] - s->centre[2]};
-		double bb = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-		double cc = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - s->radius * s->radius;
-		double disc = bb * bb - cc;
-		if (disc < 0)
-			return 0;
-		double q = sqrt(disc);
-		a = fmax(a, -bb - q);
-		b = fmin(b, -bb + q);
+}
+
+/* The per-lane update after one evaluation: branch-free selects so that gcc
+ * can vectorise the 8 lanes. */
+static void update8(float *restrict mode, float *restrict t, float *restrict f, float *restrict s,
+                    float *restrict lo, float *restrict flo, float *restrict hi, float *restrict fhi,
+                    float *restrict side, float *restrict hit, const float *restrict u,
+                    const float *restrict val, const float *restrict fa, const float *restrict fb,
+                    const float *restrict t1, float L, float invL, float nolip, float acc,
+                    float step, float shadow)
+{
+	for (int k = 0; k < 8; k++) {
+		float uk = u[k], v = val[k];
+		float fp = fa[k] + fb[k] * uk, eps = acc * fp, emin = 0.05f * fp;
+		v = v == v ? v : emin * (nolip > 0 ? 1.0f : L);
+		float inm = mode[k] == M_MARCH ? 1.0f : 0.0f, inb = mode[k] == M_BRACKET ? 1.0f : 0.0f;
+		/* march */
+		float cross = v <= 0.0f ? 1.0f : 0.0f;
+		float cert = (nolip > 0 || (f[k] + v) * invL >= s[k] * 0.999999f || s[k] <= emin * 1.0001f) ? 1.0f : 0.0f;
+		float m = (v - f[k]) / s[k];
+		float safe = v * invL;
+		float sg = m < 0.0f ? -1.05f * v / m : (m < L ? 1.8f * v / (L - m) : safe);
+		sg = maxf(maxf(safe, minf(sg, 16.0f * safe)), emin);
+		sg = nolip > 0 ? step * fp : sg;
+		float rej = maxf(f[k] * invL, emin);
+		float m_brk = inm * cross * (1.0f - shadow);   /* march -> bracket */
+		float m_shd = inm * cross * shadow;            /* shadow ray blocked */
+		float m_acc = inm * (1.0f - cross) * cert;     /* step accepted */
+		float m_rej = inm * (1.0f - cross) * (1.0f - cert);
+		float m_out = m_acc * (uk > t1[k] ? 1.0f : 0.0f);
+		/* bracket */
+		float conv = (fabsf(v) < eps * (nolip > 0 ? 1.0f : L) || hi[k] - lo[k] < eps) ? 1.0f : 0.0f;
+		float pos = v > 0.0f ? 1.0f : 0.0f;
+		float b_hit = inb * conv;
+		float b_lo = inb * (1.0f - conv) * pos, b_hi = inb * (1.0f - conv) * (1.0f - pos);
+		/* new state */
+		float nlo = m_brk > 0 ? t[k] : (b_lo > 0 ? uk : lo[k]);
+		float nflo = m_brk > 0 ? f[k] : (b_lo > 0 ? v : (b_hi > 0 && side[k] < 0 ? 0.5f * flo[k] : flo[k]));
+		float nhi = m_brk > 0 ? uk : (b_hi > 0 ? uk : hi[k]);
+		float nfhi = m_brk > 0 ? v : (b_hi > 0 ? v : (b_lo > 0 && side[k] > 0 ? 0.5f * fhi[k] : fhi[k]));
+		side[k] = m_brk > 0 ? 0.0f : (b_lo > 0 ? 1.0f : (b_hi > 0 ? -1.0f : side[k]));
+		lo[k] = nlo;
+		flo[k] = nflo;
+		hi[k] = nhi;
+		fhi[k] = nfhi;
+		float narrow = (inb > 0 && b_hit == 0 && nhi - nlo < eps) ? 1.0f : 0.0f;
+		hit[k] = (m_shd > 0 || b_hit > 0) ? uk : (narrow > 0 ? 0.5f * (nlo + nhi) : hit[k]);
+		t[k] = m_acc > 0 ? uk : t[k];
+		f[k] = m_acc > 0 ? v : f[k];
+		s[k] = m_acc > 0 ? sg : (m_rej > 0 ? rej : s[k]);
+		float done = m_shd + m_out + b_hit + narrow;
+		mode[k] = done > 0 ? (float)M_DONE : (m_brk > 0 ? (float)M_BRACKET : mode[k]);
 	}
-	*t0 = a;
-	*t1 = b;
-	return a <= b;
 }
 
 void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *evals, uint64_t *lanes)
 {
-	int state[8];
-	double t[8], f[8], sstep[8], tlo[8], flo[8], thi[8], fhi[8], t0[8], t1[8], tt[8];
-	int side[8], iters[8];
-	double L = s->has_lip ? s->lip : 0;
-	int any = 0;
+	float mode[8], t[8], f[8], st[8], lo[8], flo[8], hi[8], fhi[8], side[8], u[8], t1[8];
+	float x[8], y[8], z[8], val[8];
+	float L = s->has_lip ? (float)s->lip : 0.0f, invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
+	int n = 0;
+	float ca[8], cb[8];
+	clip8(s, pk, ca, cb);
 	for (int k = 0; k < 8; k++) {
 		pk->thit[k] = INFINITY;
-		state[k] = S_IDLE;
+		mode[k] = M_DONE;
+		t[k] = f[k] = st[k] = lo[k] = flo[k] = hi[k] = fhi[k] = side[k] = 0;
+		t1[k] = 0;
+		u[k] = 0;
 		if (!pk->active[k])
 			continue;
-		t0[k] = pk->tmin[k];
-		t1[k] = pk->tmax[k];
-		if (!clip(s, pk->o[k], pk->d[k], &t0[k], &t1[k]))
+		if (!(ca[k] <= cb[k]))
 			continue;
-		state[k] = S_INIT;
-		iters[k] = 0;
-		side[k] = 0;
-		any = 1;
+		mode[k] = M_MARCH;
+		u[k] = ca[k];
+		t1[k] = cb[k];
+		n++;
 	}
-	float x[8], y[8], z[8], val[8];
-	while (any) {
-		int n = 0;
+	if (!n)
+		return;
+	/* first sample at the region entry */
+	for (int k = 0; k < 8; k++) {
+		x[k] = pk->ox[k] + u[k] * pk->dx[k];
+		y[k] = pk->oy[k] + u[k] * pk->dy[k];
+		z[k] = pk->oz[k] + u[k] * pk->dz[k];
+	}
+	model_eval8(s, x, y, z, val);
+	*evals += (uint64_t)n;
+	*lanes += 8;
+	for (int k = 0; k < 8; k++) {
+		if (mode[k] != M_MARCH)
+			continue;
+		float fp = pk->fa[k] + pk->fb[k] * u[k], emin = 0.05f * fp, v = val[k];
+		if (v == v && v <= 0) {
+			pk->thit[k] = u[k];
+			mode[k] = M_DONE;
+			n--;
+			continue;
+		}
+		if (v != v)
+			v = emin * (L > 0 ? L : 1);
+		t[k] = u[k];
+		f[k] = v;
+		st[k] = L > 0 ? maxf(v * invL, emin) : pk->step * fp;
+	}
+	int iter = 0;
+	while (n > 0 && iter++ < 4000) {
 		for (int k = 0; k < 8; k++) {
-			double u;
-			switch (state[k]) {
-			case S_INIT: u = t0[k]; break;
-			case S_MARCH: u = t[k] + sstep[k]; break;
-			case S_BRACKET:
-				u = tlo[k] + (thi[k] - tlo[k]) * flo[k] / (flo[k] - fhi[k]);
-				if (!(u > tlo[k] && u < thi[k]))
-					u = 0.5 * (tlo[k] + thi[k]);
-				break;
-			default: u = 0; break;
-			}
-			tt[k] = u;
-			if (state[k] != S_IDLE)
-				n++;
-			const double *o = pk->o[k], *d = pk->d[k];
-			if (state[k] == S_IDLE) {
-				x[k] = (float)o[0];
-				y[k] = (float)o[1];
-				z[k] = (float)o[2];
-			} else {
-				x[k] = (float)(o[0] + u * d[0]);
-				y[k] = (float)(o[1] + u * d[1]);
-				z[k] = (float)(o[2] + u * d[2]);
-			}
+			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
+			rf = (rf > lo[k] && rf < hi[k]) ? rf : 0.5f * (lo[k] + hi[k]);
+			u[k] = mode[k] == M_BRACKET ? rf : t[k] + st[k];
+			x[k] = pk->ox[k] + u[k] * pk->dx[k];
+			y[k] = pk->oy[k] + u[k] * pk->dy[k];
+			z[k] = pk->oz[k] + u[k] * pk->dz[k];
 		}
 		model_eval8(s, x, y, z, val);
 		*evals += (uint64_t)n;
 		*lanes += 8;
-		any = 0;
-		for (int k = 0; k < 8; k++) {
-			if (state[k] == S_IDLE)
-				continue;
-			double v = val[k], u = tt[k];
-			double fp = pk->fa[k] + pk->fb[k] * u;
-			double eps = pk->acc * fp, emin = 0.05 * fp;
-			if (v != v)
-				v = L > 0 ? emin * L : 1;  /* NaN: no information, move on by the minimum step */
-			if (++iters[k] > 4000) {
-				state[k] = S_IDLE;
-				continue;
-			}
-			if (state[k] == S_INIT) {
-				if (v <= 0) {
-					pk->thit[k] = u;
-					state[k] = S_IDLE;
-					continue;
-				}
-				t[k] = u;
-				f[k] = v;
-				state[k] = S_MARCH;
-				sstep[k] = L > 0 ? fmax(v / L, emin) : pk->step * fp;
-			} else if (state[k] == S_MARCH) {
-				if (v <= 0) {
-					if (shadow) {
-						pk->thit[k] = u;
-						state[k] = S_IDLE;
-						continue;
-					}
-					tlo[k] = t[k];
-					flo[k] = f[k];
-					thi[k] = u;
-					fhi[k] = v;
-					state[k] = S_BRACKET;
-				} else if (L <= 0 || (f[k] + v) / L >= sstep[k] * (1 - 1e-9) || sstep[k] <= emin * 1.0001) {
-					double m = (v - f[k]) / sstep[k];
-					t[k] = u;
-					f[k] = v;
-					if (u > t1[k]) {
-						state[k] = S_IDLE;
-						continue;
-					}
-					if (L <= 0) {
-						sstep[k] = pk->step * fp;
-					} else {
-						double safe = v / L, sg;
-						if (m < 0)
-							sg = 1.05 * v / -m;
-						else if (m < L)
-							sg = 0.9 * 2 * v / (L - m);
-						else
-							sg = safe;
-						sstep[k] = fmax(fmax(safe, fmin(sg, 16 * safe)), emin);
-					}
-				} else {
-					sstep[k] = fmax(f[k] / L, emin);
-				}
-			} else {
-				if (fabs(v) < eps * (L > 0 ? L : 1) || thi[k] - tlo[k] < eps) {
-					pk->thit[k] = u;
-					state[k] = S_IDLE;
-					continue;
-				}
-				if (v > 0) {
-					tlo[k] = u;
-					flo[k] = v;
-					if (side[k] == 1)
-						fhi[k] *= 0.5;
-					side[k] = 1;
-				} else {
-					thi[k] = u;
-					fhi[k] = v;
-					if (side[k] == -1)
-						flo[k] *= 0.5;
-					side[k] = -1;
-				}
-				if (thi[k] - tlo[k] < eps) {
-					pk->thit[k] = 0.5 * (tlo[k] + thi[k]);
-					state[k] = S_IDLE;
-					continue;
-				}
-			}
-			any = 1;
-		}
+		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1,
+		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f);
+		n = 0;
+		for (int k = 0; k < 8; k++)
+			n += mode[k] != M_DONE;
 	}
 }

@@ -1,0 +1,167 @@
+/* oct.c: octree conversion of a shape with spherical or cubical cell tests, and painter's drawing of the leaves. */
+#include "oct.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+	const model_shape_t *s;
+	int depth, test;
+	oct_leaf_t *leaves;
+	size_t n, cap;
+	oct_stats_t *st;
+	int oom;
+	int exact_points;        /* identity linear part: point ranges are exact */
+} build_t;
+
+static void add_leaf(build_t *b, const double *p, double h)
+{
+	if (b->n == b->cap) {
+		size_t cap = b->cap ? 2 * b->cap : 1024;
+		oct_leaf_t *q = realloc(b->leaves, cap * sizeof *q);
+		if (!q) {
+			b->oom = 1;
+			return;
+		}
+		b->leaves = q;
+		b->cap = cap;
+	}
+	oct_leaf_t *l = &b->leaves[b->n++];
+	for (int i = 0; i < 3; i++)
+		l->c[i] = (float)p[i];
+	l->h = (float)h;
+}
+
+/* Interval enclosure of f over the cube (centre p, half side h): 0 when it
+ * cannot contain 0, 1 when it may. */
+static int cubical(const build_t *b, const double *p, double h)
+{
+	const model_shape_t *s = b->s;
+	double q[3], lo = 0, hi = 0, r = sqrt(3.0) * h;
+	const double *mi = s->minv;
+	for (int i = 0; i < 3; i++)
+		q[i] = mi[i * 4] * p[0] + mi[i * 4 + 1] * p[1] + mi[i * 4 + 2] * p[2] + mi[i * 4 + 3];
+	double rs = r * s->norm_minv;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		double dlo, dhi;
+		if (e->kind == MODEL_POINT && b->exact_points) {
+			const double *a = e->p;
+			double mn = 0, mx = 0;
+			for (int j = 0; j < 3; j++) {
+				double l = q[j] - h, u = q[j] + h;
+				double c = a[j] < l ? l - a[j] : a[j] > u ? a[j] - u : 0;
+				double far = fmax(fabs(a[j] - l), fabs(a[j] - u));
+				mn += c * c;
+				mx += far * far;
+			}
+			dlo = sqrt(mn);
+			dhi = sqrt(mx);
+		} else if (e->kind == MODEL_SHAPE) {
+			double d = fabs(model_eval(e->shape, p)) / e->shape->lip;
+			dlo = fmax(d - r, 0);
+			dhi = d + r;
+		} else {
+			double d = model_elem_distance(e, q);
+			dlo = fmax(d - rs, 0);
+			dhi = d + rs;
+		}
+		if (e->w >= 0) {
+			lo += e->w * dlo;
+			hi += e->w * dhi;
+		} else {
+			lo += e->w * dhi;
+			hi += e->w * dlo;
+		}
+	}
+	/* the parameter: exact for constants, interval arithmetic for expressions,
+	 * its Lipschitz enclosure otherwise */
+	double clo, chi;
+	if (s->c.kind == MODEL_C_CONST) {
+		clo = chi = s->c.c0;
+	} else {
+		double g = s->lip, sum = 0;
+		for (size_t i = 0; i < s->nel; i++)
+			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE ? 1 : s->norm_minv);
+		g = fmax(s->lip - sum, 0);
+		double c = model_param(s, p, q);
+		clo = c - g * r;
+		chi = c + g * r;
+		if (s->c.kind == MODEL_C_EXPR) {
+			double bl[3], bh[3], v0, v1, gg;
+			for (int i = 0; i < 3; i++) {
+				double ext = h * (fabs(mi[i * 4]) + fabs(mi[i * 4 + 1]) + fabs(mi[i * 4 + 2]));
+				bl[i] = q[i] - ext;
+				bh[i] = q[i] + ext;
+			}
+			if (expr_bound(s->c.expr, bl, bh, &v0, &v1, &gg) == 0) {
+				clo = fmax(clo, v0);
+				chi = fmin(chi, v1);
+			}
+		}
+	}
+	lo -= chi;
+	hi -= clo;
+	return lo <= 0 && hi >= 0;
+}
+
+static void visit(build_t *b, const double *p, double h, int level)
+{
+	b->st->visited++;
+	b->st->evals++;
+	if (b->test == OCT_SPHERICAL) {
+		double f = model_eval(b->s, p);
+		if (f == f && fabs(f) > b->s->lip * sqrt(3.0) * h * (1 + 1e-9))
+			return;
+	} else if (!cubical(b, p, h)) {
+		return;
+	}
+	if (level == b->depth) {
+		b->st->leaves++;
+		add_leaf(b, p, h);
+		return;
+	}
+	for (int c = 0; c < 8 && !b->oom; c++) {
+		double q[3] = {p[0] + ((c & 1) ? h : -h) / 2, p[1] + ((c & 2) ? h : -h) / 2, p[2] + ((c & 4) ? h : -h) / 2};
+		visit(b, q, h / 2, level + 1);
+	}
+}
+
+int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, size_t *n,
+              oct_stats_t *st, char *err, size_t errlen)
+{
+	*leaves = NULL;
+	*n = 0;
+	memset(st, 0, sizeof *st);
+	if (depth < 1 || depth > 12) {
+		snprintf(err, errlen, "expected an octree depth from 1 to 12");
+		return -1;
+	}
+	if (!s->has_lip) {
+		snprintf(err, errlen, "the octree needs a Lipschitz bound, and this shape's defining parameter has none (use raytrace, which brackets)");
+		return -1;
+	}
+	build_t b;
+	memset(&b, 0, sizeof b);
+	b.s = s;
+	b.depth = depth;
+	b.test = test;
+	b.st = st;
+	const double *m = s->m;
+	b.exact_points = m[0] == 1 && m[1] == 0 && m[2] == 0 && m[4] == 0 && m[5] == 1 && m[6] == 0
+	              && m[8] == 0 && m[9] == 0 && m[10] == 1;
+	const double *x = s->box;
+	double h = fmax(x[3] - x[0], fmax(x[4] - x[1], x[5] - x[2])) / 2;
+	double p[3] = {(x[0] + x[3]) / 2, (x[1] + x[4]) / 2, (x[2] + x[5]) / 2};
+	visit(&b, p, h, 0);
+	if (b.oom) {
+		free(b.leaves);
+		snprintf(err, errlen, "out of memory for the octree leaves");
+		return -1;
+	}
+	*leaves = b.leaves;
+	*n = b.n;
+	return 0;
+}
