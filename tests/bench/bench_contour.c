@@ -40,7 +40,7 @@ static int count_cb(void *user, unsigned level, const contour_point_t *p, size_t
 {
 	(void)level;
 	size_t *sum = user;
-	sum[0] += closed ? n : n - 1;     /* segments */
+	sum[0] += closed ? n : n - 1;     /* drawn segments */
 	sum[1] += (size_t)(p[0].x >= 0);  /* touch the data */
 	return 0;
 }
@@ -162,7 +162,11 @@ int main(int argc, char **argv)
 	printf("contour 1024x1024, 19 levels: %.4f s (median of %d, best %.4f), %zu segments, "
 	       "%zu polylines (%zu closed), %zu points\n",
 	       med, runs, t[0], st.segments, st.polylines, st.closed, st.points);
-	printf("BENCH contour-locus %.6f s segments=%zu polylines=%zu\n", med, sum[0], st.polylines);
+	/* segments: marching-squares cell segments, as contourpy counts them (its
+	 * points - 1 per line); a few are zero-length where a sample equals a
+	 * level, and the polylines drop those repeated points */
+	printf("BENCH contour-locus %.6f s segments=%zu polylines=%zu points=%zu\n", med, st.segments, st.polylines,
+	       st.points);
 	int rc = out ? write_meta(out, &g, levels) : 0;
 	free(z);
 	free(t);
