@@ -4,8 +4,60 @@
 #include "scan.h"
 #include "unit.h"
 
-int main(void)
+/* The glyph table as markdown rows, as docs/stroke-font.md lists it. */
+static void listing_row(int ch, char *buf, size_t n)
 {
+	double adv;
+	const char *src = scan_glyph_source(ch, &adv);
+	char name[16];
+	if (ch < 0)
+		snprintf(name, sizeof name, "replacement");
+	else if (ch == '|')
+		snprintf(name, sizeof name, "`\\|`");
+	else if (ch == '`')
+		snprintf(name, sizeof name, "`` ` ``");
+	else if (ch == ' ')
+		snprintf(name, sizeof name, "space");
+	else
+		snprintf(name, sizeof name, "`%c`", ch);
+	snprintf(buf, n, "| %02x | %s | %g | `%s` |", ch < 0 ? 0 : ch, name, adv, *src ? src : " ");
+}
+
+/* Every row of the listing must be in the document, so doc and table cannot drift apart. */
+static int doc_matches(void)
+{
+	FILE *f = fopen("docs/stroke-font.md", "r");
+	if (!f)
+		return -1;
+	static char doc[200000];
+	size_t n = fread(doc, 1, sizeof doc - 1, f);
+	fclose(f);
+	doc[n] = 0;
+	int missing = 0;
+	char row[300];
+	for (int ch = 0x1f; ch <= 0x7e; ch++) {
+		listing_row(ch == 0x1f ? -1 : ch, row, sizeof row);
+		if (!strstr(doc, row)) {
+			printf("# not in docs/stroke-font.md: %s\n", row);
+			missing++;
+		}
+	}
+	return missing;
+}
+
+int main(int argc, char **argv)
+{
+	if (argc > 1 && strcmp(argv[1], "--listing") == 0) {
+		char row[300];
+		printf("| hex | char | advance | strokes |\n|---|---|---|---|\n");
+		for (int ch = 0x20; ch <= 0x7f; ch++) {
+			listing_row(ch == 0x7f ? -1 : ch, row, sizeof row);
+			printf("%s\n", row);
+		}
+		return 0;
+	}
+	int dm = doc_matches();
+	CHECK(dm == 0, "docs/stroke-font.md lists every glyph exactly as drivers/font.c (%d missing)", dm);
 	/* every printable character has a parseable glyph inside the font grid */
 	int ok = 1, strokes = 0;
 	for (int ch = 0x20; ch <= 0x7e; ch++) {
