@@ -298,6 +298,55 @@ static void test_palette(void)
 	CHECK(distinct && c[0] == 0x2c3e9e && c[6] == 0xa61c1c, "palette: 7 distinct colours, blue to red");
 }
 
+/* Meta output into memory. */
+typedef struct {
+	char buf[1 << 14];
+	size_t n;
+} mem_t;
+
+static int mem_write(void *user, const void *p, size_t n)
+{
+	mem_t *m = user;
+	if (m->n + n >= sizeof m->buf)
+		return -1;
+	memcpy(m->buf + m->n, p, n);
+	m->n += n;
+	m->buf[m->n] = 0;
+	return 0;
+}
+
+static void test_meta(void)
+{
+	static mem_t mem;
+	/* z = i on a 2 x 2 grid spread over x 0..2: bands 0 | 1 at x = 1, no data beyond x = 2 */
+	float z[4] = { 0, 1, 0, 1 };
+	contour_grid_t g = { z, 2, 2, { 0 } };
+	contour_map_rect(g.m, 2, 2, 0, 0, 2, 3);
+	double lv = 0.5;
+	meta_rgb_t bands[2] = { 0xaaaaaa, 0xbbbbbb }, lines[1] = { 0xff0000 };
+	contour_style_t st = { lines, 2 };
+	meta_writer_t *w = meta_writer_new(mem_write, &mem, META_ENC_TEXT);
+	int rc = meta_page(w, 3, 3);
+	rc = rc < 0 ? rc : contour_write_bands(w, &g, &lv, 1, bands, 0x123456, 0, 0, 3, 3);
+	rc = rc < 0 ? rc : contour_write_meta(w, &g, &lv, 1, &st, NULL);
+	rc = rc < 0 ? rc : meta_end_page(w);
+	int rc2 = meta_writer_close(w);
+	CHECK(rc == 0 && rc2 == 0, "bands and lines written (%d: %s)", rc, contour_error());
+	CHECK(strstr(mem.buf, "image 0 0 3 3\nrow 1 #aaaaaa 1 #bbbbbb 1 #123456\n"
+	                      "row 1 #aaaaaa 1 #bbbbbb 1 #123456\nrow 1 #aaaaaa 1 #bbbbbb 1 #123456\n") != NULL,
+	      "bands: one pixel per band, no data outside the grid");
+	CHECK(strstr(mem.buf, "width 2\ncolour #ff0000\nstroke\nmove 1 3\ndraw 1 0\nend\n") != NULL,
+	      "the iso-line x = 1 as one stroke, higher values on its left");
+	mem.n = 0;
+	w = meta_writer_new(mem_write, &mem, META_ENC_TEXT);
+	g.m[1] = 0;
+	g.m[2] = 0;
+	rc = meta_page(w, 3, 3);
+	CHECK(contour_write_bands(w, &g, &lv, 1, bands, 0, 0, 0, 3, 3) == CONTOUR_EARG &&
+	      strstr(contour_error(), "not invertible"), "bands need an invertible map: %s", contour_error());
+	meta_writer_close(w);
+}
+
 int main(void)
 {
 	test_circle();
@@ -307,5 +356,6 @@ int main(void)
 	test_nan();
 	test_errors();
 	test_palette();
+	test_meta();
 	return UNIT_DONE();
 }

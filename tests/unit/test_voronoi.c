@@ -309,6 +309,42 @@ static void test_meta(void)
 	      "boundary as one stroke on x = 4");
 }
 
+static void test_edges(void)
+{
+	voronoi_nucleus_t one = point(0, 0, 0);
+	voronoi_t v = { &one, 1, VORONOI_ADDITIVE, { 0 } };
+	voronoi_map_window(v.m, -1, -1, 1, 1, 0, 0, 20, 20);
+	voronoi_rect_t r = { 0, 0, 20, 20 };
+	int32_t lab[400];
+	sink_t s = { 0 };
+	voronoi_stats_t st;
+	int all0 = voronoi_label(&v, &r, 0, lab) == 0;
+	for (int q = 0; q < 400; q++)
+		all0 &= lab[q] == 0;
+	CHECK(all0 && voronoi_boundaries(&v, &r, lab, collect, &s, &st) == 0 && s.lines == 0 && st.crossings == 0,
+	      "one nucleus: one cell, no boundaries");
+	lab[123] = 5;
+	CHECK(voronoi_boundaries(&v, &r, lab, collect, &s, NULL) == VORONOI_EARG && strstr(voronoi_error(), "(3, 6)"),
+	      "a label that is no nucleus is refused: %s", voronoi_error());
+	voronoi_rect_t thin = { 4, 4, 1, 9 };
+	CHECK(voronoi_label(&v, &thin, 3, lab) == 0 && voronoi_boundaries(&v, &thin, lab, collect, &s, NULL) == 0 &&
+	      s.lines == 0, "a one-pixel-wide rectangle labels and has no boundary cells");
+	v.count = 0;
+	CHECK(voronoi_label(&v, &r, 1, lab) == VORONOI_EARG && strstr(voronoi_error(), "no nuclei"),
+	      "no nuclei is refused: %s", voronoi_error());
+	v.count = 1;
+	v.m[1] = 0;
+	CHECK(voronoi_label(&v, &r, 1, lab) == VORONOI_EARG && strstr(voronoi_error(), "invertible"),
+	      "a singular map is refused: %s", voronoi_error());
+	v.m[1] = 10;
+	one.kind = 7;
+	CHECK(voronoi_check(&v) == VORONOI_EARG && strstr(voronoi_error(), "kind 7"), "an unknown kind is refused: %s",
+	      voronoi_error());
+	one.kind = VORONOI_POINT;
+	v.metric = 9;
+	CHECK(voronoi_check(&v) == VORONOI_EARG, "an unknown metric is refused: %s", voronoi_error());
+}
+
 int main(void)
 {
 	test_distance();
@@ -317,5 +353,6 @@ int main(void)
 	test_segments_and_junctions();
 	test_exact();
 	test_meta();
+	test_edges();
 	return UNIT_DONE();
 }
