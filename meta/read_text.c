@@ -166,16 +166,12 @@ static inline int fast_number(const char **pp, const char *le, meta_fix_t *out)
 	return 0;
 }
 
-static int number(meta_reader_t *r, const char *ls, const char *p, const char *le, const char *kw, int i,
-                  meta_fix_t *out, const char **next)
+static int number_slow(meta_reader_t *r, const char *ls, const char *p, const char *le, const char *kw, int i,
+                       meta_fix_t *out, const char **next)
 {
 	char b1[64], b2[48];
 	const char *q;
 	int why, rc;
-	if (fast_number(&p, le, out) == 0) {
-		*next = p;
-		return 0;
-	}
 	q = tok_end(p, le);
 	rc = meta_fix_parse(p, q, out, &why);
 	if (rc == -2)
@@ -187,6 +183,16 @@ static int number(meta_reader_t *r, const char *ls, const char *p, const char *l
 		                    ctx(kw, i, b1, sizeof b1), found(p, le, b2, sizeof b2));
 	*next = q;
 	return 0;
+}
+
+static inline int number(meta_reader_t *r, const char *ls, const char *p, const char *le, const char *kw, int i,
+                         meta_fix_t *out, const char **next)
+{
+	if (fast_number(&p, le, out) == 0) {
+		*next = p;
+		return 0;
+	}
+	return number_slow(r, ls, p, le, kw, i, out, next);
 }
 
 static int string(meta_reader_t *r, const char *ls, const char *p, const char *le, const char *kw, int i,
@@ -364,6 +370,19 @@ int meta_read_text(meta_reader_t *r, meta_cmd_t *cmd)
 	}
 	q = tok_end(p, le);
 	op = lookup(p, (size_t)(q - p));
+	if (op == META_DRAW || op == META_MOVE) {
+		/* the bulk of any file: two numbers, single blanks, end of line */
+		const char *t = q + 1;
+		if (q < le && *q == ' ' && fast_number(&t, le, &cmd->f[0]) == 0 && t < le && *t == ' ') {
+			const char *u = t + 1;
+			if (fast_number(&u, le, &cmd->f[1]) == 0 && u == le) {
+				cmd->op = op;
+				r->opos[0] = COL(q + 1);
+				r->opos[1] = COL(t + 1);
+				return 1;
+			}
+		}
+	}
 	if (op == META_OP_COUNT)
 		return meta_rd_fail(r, META_ESYNTAX, COL(p), "expected a statement keyword, found %s",
 		                    found(p, le, b2, sizeof b2));
