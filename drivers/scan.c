@@ -344,6 +344,18 @@ int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, si
 	band_rows(b, &lo, &hi);
 	if (lo >= hi || m < 3)
 		return 0;
+	/* a covered centre lies inside the bounding box: skip pieces that hold no centre row or
+	 * column (most join pieces of thin lines) */
+	int64_t x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
+	for (size_t k = 1; k < m; k++) {
+		if (pts[k].x < x0) x0 = pts[k].x;
+		if (pts[k].x > x1) x1 = pts[k].x;
+		if (pts[k].y < y0) y0 = pts[k].y;
+		if (pts[k].y > y1) y1 = pts[k].y;
+	}
+	if (ceil_div(y0 - 500, 1000) > ceil_div(y1 - 500, 1000) - 1 ||
+			ceil_div(x0 - 500, 1000) > ceil_div(x1 - 500, 1000) - 1)
+		return 0;
 	if (grow((void **)&c->edges, &c->cap_edges, m, sizeof(edge_t)))
 		return META_ENOMEM;
 	size_t n = 0;
