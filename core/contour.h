@@ -122,6 +122,12 @@ int contour_write_bands(meta_writer_t *w, const contour_grid_t *g, const double 
                         unsigned nlevels, const meta_rgb_t *band_colours, meta_rgb_t nodata,
                         unsigned x, unsigned y, unsigned width, unsigned height);
 
+/* Choose n evenly spaced levels strictly inside the range of the grid's finite
+ * samples: levels[k] = min + (k + 1) (max - min) / (n + 1). Returns n, 0 when
+ * the grid has no two different finite samples (nothing to contour), or a
+ * CONTOUR_E* code. */
+int contour_auto_levels(const contour_grid_t *g, unsigned n, double *levels);
+
 /* Fill out[0..n-1] with a ramp of n distinct colours from dark blue through
  * green and yellow to dark red, good for levels or bands in order. */
 void contour_palette(meta_rgb_t *out, unsigned n);

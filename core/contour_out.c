@@ -180,6 +180,26 @@ done:
 	return rc;
 }
 
+int contour_auto_levels(const contour_grid_t *g, unsigned n, double *levels)
+{
+	if (!g || !g->z || (n && !levels))
+		return contour_fail(CONTOUR_EARG, "contour: auto levels need a grid and room for the levels");
+	size_t ns = (size_t)g->nx * g->ny;
+	double lo = INFINITY, hi = -INFINITY;
+	for (size_t s = 0; s < ns; s++) {
+		double v = g->z[s];
+		if (isfinite(v)) {
+			lo = v < lo ? v : lo;
+			hi = v > hi ? v : hi;
+		}
+	}
+	if (!(hi > lo))
+		return 0;
+	for (unsigned k = 0; k < n; k++)
+		levels[k] = lo + (k + 1) * (hi - lo) / (n + 1);
+	return (int)n;
+}
+
 void contour_palette(meta_rgb_t *out, unsigned n)
 {
 	static const unsigned char stop[6][3] = {

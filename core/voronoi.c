@@ -58,6 +58,32 @@ size_t voronoi_nearest(const voronoi_nucleus_t *nuclei, size_t count, int metric
 	return best;
 }
 
+size_t voronoi_nearest2(const voronoi_nucleus_t *nuclei, size_t count, int metric,
+                        const double p[3], double *dw1, size_t *second, double *dw2)
+{
+	size_t b1 = 0, b2 = SIZE_MAX;
+	double d1 = INFINITY, d2 = INFINITY;
+	for (size_t k = 0; k < count; k++) {
+		double d = voronoi_weighted_distance(&nuclei[k], metric, p);
+		if (d < d1) {
+			b2 = b1 == 0 && d1 == INFINITY ? SIZE_MAX : b1;
+			d2 = d1;
+			b1 = k;
+			d1 = d;
+		} else if (d < d2 || b2 == SIZE_MAX) {
+			b2 = k;
+			d2 = d;
+		}
+	}
+	if (dw1)
+		*dw1 = d1;
+	if (second)
+		*second = b2;
+	if (dw2)
+		*dw2 = d2;
+	return b1;
+}
+
 void voronoi_map_window(double m[6], double wx0, double wy0, double wx1, double wy1,
                         double px0, double py0, double px1, double py1)
 {
@@ -155,7 +181,7 @@ static void label_block(job_t *jb, unsigned i0, unsigned j0, unsigned i1, unsign
 	for (int k = 0; k < 4; k++) {
 		double px = r->x + ((k & 1) ? i1 - 0.5 : i0 + 0.5), py = r->y + ((k & 2) ? j1 - 0.5 : j0 + 0.5);
 		voronoi_unmap(&jb->inv, px, py, q);
-		double dd = hypot(q[0] - c[0], q[1] - c[1]);
+		double ex = q[0] - c[0], ey = q[1] - c[1], dd = sqrt(ex * ex + ey * ey);
 		rad = dd > rad ? dd : rad;
 	}
 	double ubest = INFINITY;
@@ -169,7 +195,7 @@ static void label_block(job_t *jb, unsigned i0, unsigned j0, unsigned i1, unsign
 		ubest = whi < ubest ? whi : ubest;
 	}
 	/* a margin for rounding: a nucleus is dropped only when it surely loses */
-	double margin = 1e-9 * (fabs(ubest) + rad + 1);
+	double margin = 1e-9 * (fabs(ubest) + rad + 1); /* also covers sqrt's rounding in rad */
 	size_t nc = 0;
 	for (size_t s = 0; s < nin; s++)
 		if (lower[s] <= ubest + margin)

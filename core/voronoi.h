@@ -107,6 +107,15 @@ double voronoi_weighted_distance(const voronoi_nucleus_t *n, int metric, const d
 size_t voronoi_nearest(const voronoi_nucleus_t *nuclei, size_t count, int metric,
                        const double p[3], double *dw);
 
+/* The nearest and second-nearest nuclei of p (lowest index first on ties):
+ * returns the nearest, *dw1 its weighted distance, *second the runner-up
+ * (SIZE_MAX when count == 1, with *dw2 = INFINITY). dw2 - dw1 >= 0 is zero
+ * exactly on cell boundaries, so a 3D renderer can show the boundary
+ * surfaces of a tessellation as the level set dw2 - dw1 = thickness (pointers
+ * may be NULL). */
+size_t voronoi_nearest2(const voronoi_nucleus_t *nuclei, size_t count, int metric,
+                        const double p[3], double *dw1, size_t *second, double *dw2);
+
 /* Set m so that the plane window [wx0, wx1] x [wy0, wy1] maps onto the page
  * rectangle [px0, px1] x [py0, py1] (axis-aligned; no aspect correction). */
 void voronoi_map_window(double m[6], double wx0, double wy0, double wx1, double wy1,

@@ -384,27 +384,29 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 	}
 	/* one pass: check the labels, count crossings, list the mixed cells */
 	size_t ncross = 0;
+	const uint32_t count = (uint32_t)v->count;
 	for (size_t j = 0; j < x.h; j++) {
 		const int32_t *r0 = labels + j * x.w, *r1 = j + 1 < x.h ? r0 + x.w : NULL;
-		size_t bad = 0;
+		uint32_t bad = 0;
 		for (size_t i = 0; i < x.w; i++)
-			bad += (uint32_t)r0[i] >= v->count;
+			bad |= (uint32_t)((uint32_t)r0[i] >= count);
 		if (bad) {
 			size_t i = 0;
-			while ((uint32_t)r0[i] < v->count)
+			while ((uint32_t)r0[i] < count)
 				i++;
 			rc = voronoi_fail(VORONOI_EARG, "voronoi: label %ld at pixel (%zu, %zu) is not a nucleus",
 			                  (long)r0[i], i, j);
 			goto done;
 		}
-		for (size_t i = 0; i + 1 < x.w; i++)
-			ncross += r0[i] != r0[i + 1];
-		if (!r1)
+		if (!r1) {
+			for (size_t i = 0; i + 1 < x.w; i++)
+				ncross += r0[i] != r0[i + 1];
 			break;
-		for (size_t i = 0; i < x.w; i++)
-			ncross += r0[i] != r1[i];
+		}
+		ncross += r0[x.cx] != r1[x.cx];
 		for (size_t i = 0; i < x.cx; i++) {
 			int32_t L[4] = { r0[i], r0[i + 1], r1[i + 1], r1[i] };
+			ncross += (size_t)(L[0] != L[1]) + (L[0] != L[3]);
 			if (L[0] == L[1] && L[0] == L[2] && L[0] == L[3])
 				continue;
 			int distinct = 1 + (L[1] != L[0]) + (L[2] != L[0] && L[2] != L[1]) +

@@ -286,6 +286,18 @@ static void test_errors(void)
 	CHECK(contour_extract(&g, two, 0, collect, &s, NULL) == 0 && s.lines == 0, "no levels, no lines");
 }
 
+static void test_auto_levels(void)
+{
+	float z[6] = { 2, NAN, 5, 3, 4, INFINITY };
+	contour_grid_t g = { z, 3, 2, { 0, 1, 0, 0, 0, 1 } };
+	double lv[3];
+	CHECK(contour_auto_levels(&g, 3, lv) == 3 && lv[0] == 2.75 && lv[1] == 3.5 && lv[2] == 4.25,
+	      "auto levels split the finite range [2, 5] evenly: %g %g %g", lv[0], lv[1], lv[2]);
+	float flat[4] = { 1, 1, NAN, 1 };
+	contour_grid_t f = { flat, 2, 2, { 0, 1, 0, 0, 0, 1 } };
+	CHECK(contour_auto_levels(&f, 3, lv) == 0, "a flat grid has no levels");
+}
+
 static void test_palette(void)
 {
 	meta_rgb_t c[7];
@@ -356,6 +368,7 @@ int main(void)
 	test_nan();
 	test_errors();
 	test_palette();
+	test_auto_levels();
 	test_meta();
 	return UNIT_DONE();
 }

@@ -76,6 +76,16 @@ static void test_distance(void)
 	double mid[3] = { 1, 5, 0 }, dw;
 	CHECK(voronoi_nearest(two, 2, VORONOI_ADDITIVE, mid, &dw) == 0 && fabs(dw - sqrt(26)) < 1e-12,
 	      "an exact tie goes to the lower index");
+	voronoi_nucleus_t three[3] = { point(0, 0, 0), point(3, 0, 0), point(1, 0, 0.5) };
+	double p0[3] = { 0.9, 0, 0 }, d1, d2;
+	size_t second;
+	size_t first = voronoi_nearest2(three, 3, VORONOI_ADDITIVE, p0, &d1, &second, &d2);
+	CHECK(first == 2 && second == 0 && fabs(d1 + 0.4) < 1e-12 && fabs(d2 - 0.9) < 1e-12,
+	      "nearest2: the weighted nearest and runner-up (%zu %g, %zu %g)", first, d1, second, d2);
+	first = voronoi_nearest2(two, 2, VORONOI_ADDITIVE, mid, &d1, &second, &d2);
+	CHECK(first == 0 && second == 1 && d1 == d2, "nearest2 on a tie: lower index first, the other second");
+	first = voronoi_nearest2(three, 1, VORONOI_ADDITIVE, p0, &d1, &second, &d2);
+	CHECK(first == 0 && second == SIZE_MAX && isinf(d2), "nearest2 of one nucleus: no runner-up");
 }
 
 /* Two points at (-1, 0) and (1, 0), window [-2, 2]^2 on 64 x 64 pixels. */
