@@ -181,6 +181,47 @@ static void test_random_consistency(void)
 	free(z);
 }
 
+/* Random field with NaN holes: every crossed edge of a valid cell gives one
+ * point, chains are open exactly where they meet a hole or the border. */
+static void test_random_holes(void)
+{
+	unsigned nx = 50, ny = 40;
+	float *z = malloc(nx * ny * sizeof *z);
+	unsigned long long r = 0x243f6a8885a308d3ULL;
+	for (unsigned q = 0; q < nx * ny; q++) {
+		r ^= r << 13; r ^= r >> 7; r ^= r << 17;
+		double u = (r >> 11) * (1.0 / 9007199254740992.0);
+		z[q] = u < 0.04 ? NAN : (float)u;
+	}
+	double lv = 0.5;
+	size_t crossed = 0;
+	/* an edge counts when a cell next to it has four finite corners */
+#define Z(i, j) z[(j) * nx + (i)]
+#define OK(i, j) ((i) < nx - 1 && (j) < ny - 1 && !isnan(Z(i, j)) && !isnan(Z((i) + 1, j)) && \
+                  !isnan(Z(i, (j) + 1)) && !isnan(Z((i) + 1, (j) + 1)))
+	for (unsigned j = 0; j < ny; j++)
+		for (unsigned i = 0; i < nx; i++) {
+			if (i + 1 < nx && (Z(i, j) >= lv) != (Z(i + 1, j) >= lv) &&
+			    (OK(i, j) || (j > 0 && OK(i, j - 1))))
+				crossed++;
+			if (j + 1 < ny && (Z(i, j) >= lv) != (Z(i, j + 1) >= lv) &&
+			    (OK(i, j) || (i > 0 && OK(i - 1, j))))
+				crossed++;
+		}
+#undef OK
+#undef Z
+	contour_grid_t g = { z, nx, ny, { 0, 1, 0, 0, 0, 1 } };
+	sink_t s = { 0 };
+	contour_stats_t st;
+	CHECK(contour_extract(&g, &lv, 1, collect, &s, &st) == 0, "holed random field extracts");
+	CHECK(st.points == crossed, "holes: each crossed edge of a valid cell gives one point (%zu, %zu)", st.points,
+	      crossed);
+	CHECK(st.segments + (st.polylines - st.closed) == st.points, "holes: open chains have one point more than segments");
+	CHECK(s.nan_points == 0 && st.closed < st.polylines, "holes: no NaN points, some chains opened");
+	sink_free(&s);
+	free(z);
+}
+
 static void test_saddle(void)
 {
 	/* corners 0 (0,0) and 2 (1,1) above, 1 and 3 below */
@@ -364,6 +405,7 @@ int main(void)
 	test_circle();
 	test_joining();
 	test_random_consistency();
+	test_random_holes();
 	test_saddle();
 	test_nan();
 	test_errors();

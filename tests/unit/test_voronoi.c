@@ -236,6 +236,37 @@ static void test_segments_and_junctions(void)
 	free(lab);
 }
 
+/* Checks every boundary polyline of a tessellation as it arrives. */
+typedef struct {
+	const voronoi_t *v;
+	size_t on_lines;   /* points on a pixel-centre line (crossings), not on the rectangle edge */
+	size_t lines;
+	int bad;
+} bcheck_t;
+
+static int bcheck(void *user, int32_t left, int32_t right, const voronoi_point_t *p, size_t n, int closed)
+{
+	bcheck_t *b = user;
+	const voronoi_t *v = b->v;
+	(void)closed;
+	b->lines++;
+	if (left == right || left < 0 || right < 0 || (size_t)left >= v->count || (size_t)right >= v->count)
+		b->bad++;
+	for (size_t k = 0; k < n; k++) {
+		double fx = p[k].x - 0.5 - floor(p[k].x - 0.5), fy = p[k].y - 0.5 - floor(p[k].y - 0.5);
+		if (fx == 0 || fy == 0)
+			b->on_lines++;
+		if (k == 0 || k + 1 == n)
+			continue; /* ends: junctions or extrapolated to the edge */
+		double q[3] = { (p[k].x - v->m[0]) / v->m[1], (p[k].y - v->m[3]) / v->m[5], 0 };
+		double dl = voronoi_weighted_distance(&v->nuclei[left], v->metric, q);
+		double dr = voronoi_weighted_distance(&v->nuclei[right], v->metric, q);
+		if (fabs(dl - dr) > 1e-6)
+			b->bad++;
+	}
+	return 0;
+}
+
 /* Accelerated labels equal brute force at every pixel, for any thread count. */
 static void test_exact(void)
 {
@@ -275,6 +306,13 @@ static void test_exact(void)
 		CHECK(bad == 0, "%s: culled labels equal brute force (%d pixels differ)",
 		      metric ? "multiplicative" : "additive", bad);
 		CHECK(same, "%s: 1 and 3 threads give the same labels", metric ? "multiplicative" : "additive");
+		bcheck_t bc = { &v, 0, 0, 0 };
+		voronoi_stats_t st;
+		CHECK(voronoi_boundaries(&v, &rc, a, bcheck, &bc, &st) == 0, "random boundaries trace");
+		CHECK(bc.on_lines == st.crossings, "%s: one point per crossed pixel edge (%zu, %zu)",
+		      metric ? "multiplicative" : "additive", bc.on_lines, st.crossings);
+		CHECK(bc.bad == 0 && bc.lines == st.polylines, "%s: %zu polylines, interior points equidistant from left and right",
+		      metric ? "multiplicative" : "additive", bc.lines);
 		free(a);
 		free(b);
 	}
