@@ -152,7 +152,8 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
                        voronoi_fn fn, void *user, voronoi_stats_t *stats);
 
 /* Write the filled cells of r to w as one `image` of r->height rows (each
- * pixel the colour of its nucleus). threads as for voronoi_label. */
+ * pixel the colour of its nucleus). threads as for voronoi_label. Labels are
+ * computed in bands of rows, so memory is O(r->width), not O(pixels). */
 int voronoi_write_cells(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                         unsigned threads);
 
@@ -171,7 +172,8 @@ typedef struct {
 
 /* Label r once and write cells and/or boundaries to w on the current page:
  * the image first, then one stroked path per boundary polyline, then the
- * nuclei. stats may be NULL. */
+ * nuclei. Boundaries need the whole label image (4 bytes per pixel); cells
+ * alone are written in bands. stats may be NULL. */
 int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                        const voronoi_style_t *style, voronoi_stats_t *stats);
 

@@ -42,6 +42,46 @@ done:
 	return rc;
 }
 
+#define BAND 64 /* rows labelled at a time when only cells are drawn */
+
+/* The cell image in bands of BAND rows from the top; labels are per pixel,
+ * so the picture is the same as labelling the whole rectangle at once. */
+static int write_banded(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r, unsigned threads)
+{
+	unsigned bh = r->height < BAND ? r->height : BAND;
+	int32_t *labels = malloc((size_t)r->width * bh * sizeof *labels);
+	meta_rgb_t *row = malloc(r->width * sizeof *row);
+	int rc = 0;
+	if (!labels || !row) {
+		rc = voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %ux%u labels", r->width, bh);
+		goto done;
+	}
+	if (meta_image(w, r->x, r->y, r->width, r->height) < 0) {
+		rc = fail_meta(w, "starting the cell image");
+		goto done;
+	}
+	for (unsigned top = r->height; top > 0;) {
+		unsigned n = top < bh ? top : bh;
+		voronoi_rect_t band = { r->x, r->y + top - n, r->width, n };
+		if ((rc = voronoi_label(v, &band, threads, labels)) < 0)
+			goto done;
+		for (unsigned k = 0; k < n; k++) {
+			const int32_t *lr = labels + (size_t)(n - 1 - k) * r->width;
+			for (unsigned i = 0; i < r->width; i++)
+				row[i] = v->nuclei[lr[i]].colour;
+			if (meta_row_pixels(w, row, r->width) < 0) {
+				rc = fail_meta(w, "writing a cell row");
+				goto done;
+			}
+		}
+		top -= n;
+	}
+done:
+	free(labels);
+	free(row);
+	return rc;
+}
+
 int voronoi_write_cells(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r,
                         unsigned threads)
 {
@@ -111,6 +151,12 @@ int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_
 		return rc;
 	if (!w || !style)
 		return voronoi_fail(VORONOI_EARG, "voronoi: no meta writer or no style");
+	if (!style->boundaries) {
+		/* cells only: label and write in bands, memory O(width) */
+		if (style->cells && (rc = write_banded(w, v, r, style->threads)) < 0)
+			return rc;
+		return style->nuclei ? write_nuclei(w, v, style) : 0;
+	}
 	int32_t *labels = malloc((size_t)r->width * r->height * sizeof *labels);
 	if (!labels)
 		return voronoi_fail(VORONOI_ENOMEM, "voronoi: out of memory for %ux%u labels", r->width, r->height);

@@ -357,6 +357,40 @@ static void test_meta(void)
 	      "boundary as one stroke on x = 4");
 }
 
+/* Cells alone are written in bands; the picture equals the one-piece labelling. */
+static void test_banded(void)
+{
+	static mem_t a, b;
+	voronoi_nucleus_t nuc[4] = { point(0.3, 0.2, 0), point(0.7, 0.8, 0.05), segment(0.1, 0.9, 0.4, 0.6, 0), point(0.9, 0.1, 0) };
+	for (int k = 0; k < 4; k++)
+		nuc[k].colour = 0x102030 * (meta_rgb_t)(k + 1);
+	voronoi_t v = { nuc, 4, VORONOI_ADDITIVE, { 0 } };
+	voronoi_map_window(v.m, 0, 0, 1, 1, 0, 0, 90, 150);
+	voronoi_rect_t r = { 0, 0, 90, 150 };
+	meta_writer_t *w = meta_writer_new(mem_write, &a, META_ENC_TEXT);
+	int rc = meta_page(w, 90, 150);
+	rc = rc < 0 ? rc : voronoi_write_cells(w, &v, &r, 2);
+	rc = rc < 0 ? rc : meta_end_page(w);
+	meta_writer_close(w);
+	/* reference: the image written from one full label buffer */
+	int32_t *lab = malloc(90 * 150 * sizeof *lab);
+	voronoi_label(&v, &r, 1, lab);
+	w = meta_writer_new(mem_write, &b, META_ENC_TEXT);
+	meta_page(w, 90, 150);
+	meta_image(w, 0, 0, 90, 150);
+	for (int k = 149; k >= 0; k--) {
+		meta_rgb_t row[90];
+		for (int i = 0; i < 90; i++)
+			row[i] = nuc[lab[k * 90 + i]].colour;
+		meta_row_pixels(w, row, 90);
+	}
+	meta_end_page(w);
+	meta_writer_close(w);
+	free(lab);
+	CHECK(rc == 0 && a.n == b.n && memcmp(a.buf, b.buf, a.n) == 0, "banded cells equal the one-piece image (%zu bytes)",
+	      a.n);
+}
+
 static void test_edges(void)
 {
 	voronoi_nucleus_t one = point(0, 0, 0);
@@ -401,6 +435,7 @@ int main(void)
 	test_segments_and_junctions();
 	test_exact();
 	test_meta();
+	test_banded();
 	test_edges();
 	return UNIT_DONE();
 }
