@@ -82,7 +82,7 @@ static int png_start(dev_imgw_t *w)
 	png_set_write_fn(w->png, w, png_out, png_flush_cb);
 	png_set_IHDR(w->png, w->info, w->width, w->height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
 		PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-	png_set_compression_level(w->png, 6);
+	png_set_compression_level(w->png, 3);
 	png_set_filter(w->png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
 	png_write_info(w->png, w->info);
 	return 0;

@@ -177,8 +177,6 @@ int io_close(io_transport_t *t, int how)
 	if (t->writing && how != IO_ABORT)
 		rc = io_flush(t);
 	if (!t->std && t->fd >= 0) {
-		if (t->writing && how != IO_ABORT && rc == 0 && fsync(t->fd) < 0 && errno != EINVAL)
-			rc = set_err(t, "sync failed");
 		if (close(t->fd) < 0 && rc == 0 && how != IO_ABORT)
 			rc = set_err(t, "close failed");
 	}

@@ -3,7 +3,8 @@
  * Names: "-" is stdout (stdin for reading); "serial:...", "usb:...", "hid:..." are reserved for
  * device links (not supported yet: a clear error); anything else is a file path. A file is
  * written to a temporary name in the same directory and renamed over the target only when the
- * job commits, so a failed job never leaves a partial file.
+ * job commits, so a failed job never leaves a partial file (no fsync: this protects against
+ * failed jobs, not against power loss).
  */
 #ifndef LOCUS_TRANSPORT_H
 #define LOCUS_TRANSPORT_H
