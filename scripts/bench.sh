@@ -10,43 +10,50 @@
 # script exit 1. A low ratio never fails: this is a measurement, not a test.
 # docs/benchmarks.md explains each workload. Environment: BIN (programs, default bin),
 # CC, BENCH_RUNS (runs per fast measurement, default 5), BENCH_ONLY (space-separated groups
-# to run: plot check pov contour voronoi; default all).
+# to run: plot check pov octree contour voronoi; default all), BENCH_KEEP=1 keeps the
+# run directory build/bench/run.PID (inputs and pictures) for looking at.
 set -u
-: "${BIN:=bin}" "${CC:=cc}" "${BENCH_RUNS:=5}" "${BENCH_ONLY:=plot check pov contour voronoi}"
+: "${BIN:=bin}" "${CC:=cc}" "${BENCH_RUNS:=5}" "${BENCH_ONLY:=plot check pov octree contour voronoi}"
 LIBDIR=build/native
 BB=build/bench
-W=$BB/work
+# one directory per run, so that two runs at once do not overwrite each other's files
+# (their timings still disturb each other); removed at the end unless BENCH_KEEP=1
+W=$BB/run.$$
 RESULTS=out/bench.txt
+RTMP=out/bench.txt.$$.tmp
 mkdir -p "$BB" "$W" out || exit 74
-: > "$RESULTS.tmp" || exit 74
+: > "$RTMP" || exit 74
+trap 'rm -f "$RTMP"; [ "${BENCH_KEEP:-0}" = 1 ] || rm -rf "$W"' EXIT
+trap 'exit 130' INT TERM
 FAILED=0
 SLOW_RUNS=3
 [ "$BENCH_RUNS" -lt "$SLOW_RUNS" ] && SLOW_RUNS=$BENCH_RUNS
 
 # ---- helpers -------------------------------------------------------------
 
-emit() { echo "$*"; echo "$*" >> "$RESULTS.tmp"; }
+emit() { echo "$*"; echo "$*" >> "$RTMP"; }
 words() { echo "$*" | tr ' =' '-:'; }
-skip() { n=$1; shift; emit "BENCH-SKIP name=$n reason=$(words "$*" | cut -c1-160)"; }
-fail() { n=$1; shift; emit "BENCH-FAIL name=$n reason=$(words "$*")"; FAILED=1; }
+skip() { s_n=$1; shift; emit "BENCH-SKIP name=$s_n reason=$(words "$*" | cut -c1-160)"; }
+fail() { f_n=$1; shift; emit "BENCH-FAIL name=$f_n reason=$(words "$*" | cut -c1-200)"; FAILED=1; }
 want() { case " $BENCH_ONLY " in *" $1 "*) return 0 ;; esac; return 1; }
 
 # measure N OUT CMD...: run CMD N times with stdout to OUT (stderr of the last run in $W/err).
 # Sets M_S (median wall seconds, from the clock around /usr/bin/time) and M_MIB (median peak
 # RSS in MiB, from /usr/bin/time %M). Returns 1 (M_ERR set) if any run fails.
 measure() {
-	n=$1; mout=$2; shift 2
+	m_n=$1 m_out=$2
+	shift 2
 	: > "$W/times"
-	i=0
-	while [ "$i" -lt "$n" ]; do
+	m_i=0
+	while [ "$m_i" -lt "$m_n" ]; do
 		t0=$(date +%s%N)
-		if ! /usr/bin/time -f '%e %M' -o "$W/time1" "$@" > "$mout" 2> "$W/err"; then
+		if ! /usr/bin/time -f '%e %M' -o "$W/time1" "$@" > "$m_out" 2> "$W/err"; then
 			M_ERR="$(basename "$1") failed: $(grep -v '^Command exited' "$W/err" | tail -1 | cut -c1-120)"
 			return 1
 		fi
 		t1=$(date +%s%N)
 		echo "$(( (t1 - t0) / 1000 )) $(tail -1 "$W/time1" | awk '{print $2}')" >> "$W/times"
-		i=$((i + 1))
+		m_i=$((m_i + 1))
 	done
 	M_S=$(sort -n -k1,1 "$W/times" | awk '{a[NR] = $1} END {printf "%.4f", a[int((NR + 1) / 2)] / 1e6}')
 	M_MIB=$(awk '{print $2}' "$W/times" | sort -n | awk '{a[NR] = $1} END {printf "%.1f", a[int((NR + 1) / 2)] / 1024}')
@@ -60,9 +67,10 @@ pass() { awk -v r="$1" -v t="$2" 'BEGIN {print (r != "inf" && r + 0 < t + 0) ? "
 
 # line NAME LOCUS_S ANCHOR ANCHOR_S LOCUS_MIB ANCHOR_MIB [key=value...]
 line() {
-	ln=$1 ls=$2 an=$3 as=$4 lm=$5 am=$6
+	l_n=$1 l_ls=$2 l_an=$3 l_as=$4 l_lm=$5 l_am=$6
 	shift 6
-	emit "BENCH name=$ln locus_s=$ls anchor=$an anchor_s=$as ratio=$(ratio "$as" "$ls") locus_rss_mib=$lm anchor_rss_mib=$am${*:+ $*}"
+	emit "BENCH name=$l_n locus_s=$l_ls anchor=$l_an anchor_s=$l_as ratio=$(ratio "$l_as" "$l_ls")" \
+		"locus_rss_mib=$l_lm anchor_rss_mib=$l_am${*:+ $*}"
 }
 
 # diffpct A B: percentage of pixels that differ between two same-size images (ImageMagick)
@@ -80,19 +88,19 @@ VERSION=$(sed -n 's/^VERSION *:= *//p' Makefile)
 BCFLAGS="-std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -O2 -march=native -fno-math-errno -Wall -Wextra -Imeta -Icore -Idrivers $(pkg-config --cflags libpng zlib 2>/dev/null)"
 # `make all` builds only the libraries its programs need: make sure all three are there
 # (a library that does not build yet just leaves its bench program skipped)
-${MAKE:-make} -s -j2 "$LIBDIR/libcore.a" "$LIBDIR/libdrivers.a" "$LIBDIR/libmeta.a" > "$BB/libs.log" 2>&1 ||
-	echo "bench: some libraries do not build yet (see $BB/libs.log)" >&2
+${MAKE:-make} -s -j2 "$LIBDIR/libcore.a" "$LIBDIR/libdrivers.a" "$LIBDIR/libmeta.a" > "$W/libs.log" 2>&1 ||
+	echo "bench: some libraries do not build yet (see $W/libs.log)" >&2
 BLIBS=""
 for l in core drivers meta; do
 	[ -f "$LIBDIR/lib$l.a" ] && BLIBS="$BLIBS $LIBDIR/lib$l.a"
 done
 BLDLIBS="$(pkg-config --libs libpng zlib 2>/dev/null) -lpthread -lm"
 
-# build NAME SRC: compile tests/bench/SRC into build/bench/NAME; 1 when it does not build
+# build NAME SRC: compile SRC into the run directory as NAME; 1 when it does not build
 build() {
 	# shellcheck disable=SC2086
-	$CC $BCFLAGS "-DLOCUS_VERSION=\"$VERSION\"" "$2" $BLIBS $BLDLIBS -o "$BB/$1" 2> "$BB/$1.log" && return 0
-	B_ERR="$(grep -m1 -E 'error|undefined' "$BB/$1.log" | cut -c1-160)"
+	$CC $BCFLAGS "-DLOCUS_VERSION=\"$VERSION\"" "$2" $BLIBS $BLDLIBS -o "$W/$1" 2> "$W/$1.log" && return 0
+	B_ERR="$(grep -m1 -E 'error|undefined' "$W/$1.log" | cut -c1-160)"
 	return 1
 }
 
@@ -101,7 +109,7 @@ have_bin() { [ -x "$BIN/$1" ]; }
 
 if ! [ -x /usr/bin/time ]; then
 	fail setup "/usr/bin/time missing (Debian package time)"
-	mv "$RESULTS.tmp" "$RESULTS"
+	mv "$RTMP" "$RESULTS"
 	exit 1
 fi
 echo "bench: $(date -u +%Y-%m-%dT%H:%M:%SZ) $(uname -m) $(nproc) cores, runs=$BENCH_RUNS (slow ones $SLOW_RUNS)" >&2
@@ -134,7 +142,7 @@ bench_plot() {
 	fi
 	for wl in a b c; do
 		for f in text:meta binary:lmb plot:plot; do
-			if ! "$BB/gen_workloads" "$wl" "${f%%:*}" -o "$W/$wl.${f#*:}" 2> "$W/gen.log"; then
+			if ! "$W/gen_workloads" "$wl" "${f%%:*}" -o "$W/$wl.${f#*:}" 2> "$W/gen.log"; then
 				fail "$wl" "gen_workloads $wl ${f%%:*}: $(tail -1 "$W/gen.log")"
 				continue 2
 			fi
@@ -161,13 +169,14 @@ bench_plot() {
 	done
 	# peak memory against input size: workload a at 4 times the polylines
 	if have_bin locus-raster && [ -n "${RASTER_a_MIB:-}" ]; then
-		if "$BB/gen_workloads" a text -s 4 -o "$W/a4.meta" 2> "$W/gen.log" &&
-			"$BB/gen_workloads" a plot -s 4 -o "$W/a4.plot" 2>> "$W/gen.log"; then
-			if measure "$SLOW_RUNS" "$W/a4.pnm" plot -T pnm --bitmap-size 1024x768 "$W/a4.plot"; then
+		if "$W/gen_workloads" a text -s 4 -o "$W/a4.meta" 2> "$W/gen.log" &&
+			"$W/gen_workloads" a plot -s 4 -o "$W/a4.plot" 2>> "$W/gen.log"; then
+			# the anchor once: it is the slowest run of the bench and only gives the ratio here
+			if measure 1 "$W/a4.pnm" plot -T pnm --bitmap-size 1024x768 "$W/a4.plot"; then
 				ps=$M_S pm=$M_MIB
 				if measure "$SLOW_RUNS" /dev/null "$BIN/locus-raster" "$W/a4.meta" -o "$W/a4.ppm"; then
 					r=$(ratio "$ps" "$M_S")
-					line a-4x "$M_S" plot-Tppm "$ps" "$M_MIB" "$pm" "target=2 pass=$(pass "$r" 2)" \
+					line a-4x "$M_S" plot-Tppm "$ps" "$M_MIB" "$pm" "target=2 pass=$(pass "$r" 2) anchor_runs=1" \
 						"bytes=$(wc -c < "$W/a4.meta") locus_rss_mib_1x=$RASTER_a_MIB" \
 						"rss_growth=$(ratio "$M_MIB" "$RASTER_a_MIB")"
 				else
@@ -206,6 +215,19 @@ bench_check() {
 # pov SCENE OUT.png [options]: one POV-Ray render at 1024x768, no anti-aliasing, linear file gamma
 POVOPTS="-D -V +W1024 +H768 -A +WT2 File_Gamma=1.0"
 
+# scene_with SCENE OUT LINES [OCTREE]: copy SCENE with LINES (separated by \n, which awk -v
+# turns into newlines) added to its `render raytrace`
+# block, or (OCTREE) with that block turned into `render octree` plus LINES
+scene_with() {
+	awk -v add="$3" -v oct="${4:-}" '
+		/^render raytrace *$/ { print (oct != "" ? "render octree" : $0); n = split(add, a, "\n")
+			for (i = 1; i <= n; i++) print "  " a[i]; next }
+		{ print }' "$1" > "$2"
+}
+
+# stat KEY FILE: value of KEY=VALUE in a locus-render --stats line
+stat() { grep -o -m1 -E "(^| )$1=[^ ]+" "$2" | head -1 | sed 's/.*=//'; }
+
 bench_pov() {
 	for s in trifocal segpoint; do
 		pov=fixtures/bench/$s.pov
@@ -229,34 +251,45 @@ bench_pov() {
 				"anchor_rss_mib=$pv_mib anchor_psnr_own_db=$pv_psnr"
 			continue
 		fi
-		if ! measure "$SLOW_RUNS" "$W/$s.stats" "$BIN/locus-render" "$scene" -o "$W/$s.meta" --stats; then
+		if ! measure "$SLOW_RUNS" /dev/null "$BIN/locus-render" "$scene" -o "$W/$s.meta" --stats; then
 			fail "$s" "$M_ERR"; continue
 		fi
 		lr_s=$M_S lr_mib=$M_MIB
-		cat "$W/err" >> "$W/$s.stats"
-		# evaluations per pixel, as locus-render --stats prints them ("evaluations per pixel: N",
-		# "evals/px=N" or similar): the first number on the first line that mentions it
-		l_epp=$(grep -i -m1 -E 'eval[a-z]*[ /_-]*(per[ _-]*)?(pixel|px)' "$W/$s.stats" |
-			sed 's/.*\(pixel\|px\)[^0-9]*//I' | grep -o -m1 -E '[0-9]+(\.[0-9]+)?' | head -1)
+		grep '^stats:' "$W/err" > "$W/$s.stats"
+		l_epp=$(stat evals_per_pixel "$W/$s.stats")
+		l_ms=$(stat trace_ms "$W/$s.stats")
 		"$BIN/locus-raster" "$W/$s.meta" -o "$W/$s.locus.png" 2> "$W/raster.err" ||
 			{ fail "$s" "locus-raster: $(tail -1 "$W/raster.err")"; continue; }
-		# accuracy: both images against a Locus reference at high accuracy, when the
-		# renderer offers an accuracy option
+		# accuracy: Locus against Locus at accuracy 1e-4 pixel (the scene's `accuracy`,
+		# default 1e-3 pixel), and POV-Ray against that reference too
 		l_psnr=na x_psnr=na
-		acc_opt=$("$BIN/locus-render" --help 2>&1 | grep -o -m1 -E -- '--(accuracy|epsilon|eps|tolerance)' | head -1)
-		if [ -n "$acc_opt" ] &&
-			"$BIN/locus-render" "$scene" -o "$W/$s.ref.meta" "$acc_opt" 0.00001 > /dev/null 2>&1 &&
+		scene_with "$scene" "$W/$s.ref.scene" "accuracy 0.0001"
+		if "$BIN/locus-render" "$W/$s.ref.scene" -o "$W/$s.ref.meta" --quiet 2> /dev/null &&
 			"$BIN/locus-raster" "$W/$s.ref.meta" -o "$W/$s.ref.png" 2> /dev/null; then
 			l_psnr=$(psnr "$W/$s.locus.png" "$W/$s.ref.png")
 			x_psnr=$(psnr "$W/$s.pov.png" "$W/$s.ref.png")
 		fi
 		line "$s" "$lr_s" povray "$pv_s" "$lr_mib" "$pv_mib" \
-			"anchor_trace_s=${pv_trace:-na} ratio_trace=$(ratio "${pv_trace:-0}" "$lr_s")" \
+			"anchor_trace_s=${pv_trace:-na} locus_trace_s=$(awk -v m="${l_ms:-0}" 'BEGIN {printf "%.4f", m / 1000}')" \
+			"ratio_trace=$(ratio "${pv_trace:-0}" "$(awk -v m="${l_ms:-0}" 'BEGIN {print m / 1000}')")" \
 			"locus_evals_per_px=${l_epp:-na} anchor_calls_per_px=$pv_epp" \
 			"locus_psnr_db=$l_psnr anchor_psnr_own_db=$pv_psnr anchor_psnr_vs_locus_ref_db=$x_psnr"
-		# octree figures, if --stats prints them: pass them through as an info line
-		oct=$(grep -i -E 'octree|cells|leaves' "$W/$s.stats" | tr -s ' \t' ' ' | tr ' =' '_:' | tr '\n' ' ')
-		[ -n "$oct" ] && emit "BENCH-INFO name=$s-octree stats=$(echo "$oct" | sed 's/ *$//; s/ /,/g')"
+	done
+}
+
+# octree of the trifocal at depth 10 (1024 cells a side), cubical vs spherical cell test:
+# figures from locus-render --stats (no anchor program: anchors.md has a prototype's)
+bench_octree() {
+	scene=fixtures/scenes/bench-trifocal.scene
+	if ! have_bin locus-render || [ ! -f "$scene" ]; then skip octree "$BIN/locus-render or $scene not there yet"; return; fi
+	for t in cubical spherical; do
+		scene_with "$scene" "$W/oct-$t.scene" "depth 10\\ntest $t" octree
+		if ! measure 1 /dev/null "$BIN/locus-render" "$W/oct-$t.scene" -o - --stats --quiet; then
+			fail "octree-$t" "$M_ERR"; continue
+		fi
+		emit "BENCH-INFO name=octree-d10-$t locus_s=$M_S locus_rss_mib=$M_MIB" \
+			"cells_visited=$(stat oct_visited "$W/err") leaves=$(stat oct_leaves "$W/err")" \
+			"octree_ms=$(stat trace_ms "$W/err") total_ms=$(stat total_ms "$W/err")"
 	done
 }
 
@@ -274,7 +307,7 @@ bench_contour() {
 	if ! build bench_contour tests/bench/bench_contour.c; then
 		skip contour "bench_contour does not build yet: $B_ERR"; return
 	fi
-	if ! measure 1 "$W/contour.out" "$BB/bench_contour" -n 7 -o "$W/contour.meta" ||
+	if ! measure 1 "$W/contour.out" "$W/bench_contour" -n 7 -o "$W/contour.meta" ||
 		! own_line "$W/contour.out" contour-locus; then
 		fail contour "bench_contour: ${M_ERR:-no BENCH contour-locus line}"; return
 	fi
@@ -305,14 +338,14 @@ bench_voronoi() {
 	if ! build bench_voronoi tests/bench/bench_voronoi.c; then
 		skip voronoi "bench_voronoi does not build yet: $B_ERR (qvoronoi $q_s s)"; return
 	fi
-	if ! measure 1 "$W/voronoi.out" "$BB/bench_voronoi"; then fail voronoi "$M_ERR"; return; fi
+	if ! measure 1 "$W/voronoi.out" "$W/bench_voronoi"; then fail voronoi "$M_ERR"; return; fi
 	l_mib=$M_MIB
 	if own_line "$W/voronoi.out" voronoi-locus; then
 		l_s=$(awk -v s="$O_S" 'BEGIN {printf "%.4f", s}')
 		line voronoi "$l_s" qvoronoi "$q_s" "$l_mib" "$q_mib" "$O_KV" "note=context_only_different_task"
 	else
 		# no BENCH line of its own: time the whole program
-		measure "$SLOW_RUNS" /dev/null "$BB/bench_voronoi" &&
+		measure "$SLOW_RUNS" /dev/null "$W/bench_voronoi" &&
 			line voronoi "$M_S" qvoronoi "$q_s" "$M_MIB" "$q_mib" "note=context_only_different_task"
 	fi
 }
@@ -324,9 +357,10 @@ RASTER_a_S="" RASTER_a_MIB="" RASTERB_a_S=""
 want plot && bench_plot
 want check && bench_check
 want pov && bench_pov
+want octree && bench_octree
 want contour && bench_contour
 want voronoi && bench_voronoi
-mv "$RESULTS.tmp" "$RESULTS"
+mv "$RTMP" "$RESULTS"
 echo "bench: $(grep -c '^BENCH ' "$RESULTS") comparisons, $(grep -c '^BENCH-SKIP' "$RESULTS") skipped," \
 	"$(grep -c '^BENCH-FAIL' "$RESULTS") failed; lines in $RESULTS" >&2
 exit "$FAILED"
