@@ -199,6 +199,47 @@ static int trace(ctx_t *x, size_t c, int e, double L, unsigned level, contour_fn
 	return 0;
 }
 
+/* out[i] = the number of sorted levels sl[0..nl) <= z[i] (KNAN for a
+ * non-finite sample): a cell is crossed by the sorted levels [min, max) of
+ * its corners' counts. Smooth fields change the count rarely between
+ * neighbours, so start from the previous sample's (*kk) and fall back to a
+ * binary search on a jump. */
+static void level_row(const float *z, size_t n, const double *sl, unsigned nl, unsigned *kk, uint16_t *out)
+{
+	unsigned kc = *kk;
+	for (size_t s = 0; s < n; s++) {
+		double v = z[s];
+		if (!isfinite(v)) {
+			out[s] = KNAN;
+			continue;
+		}
+		if ((kc == 0 || sl[kc - 1] <= v) && (kc == nl || v < sl[kc])) {
+			out[s] = (uint16_t)kc;
+			continue;
+		}
+		unsigned lo = 0, hi = nl;
+		if (kc < nl && v >= sl[kc]) {
+			lo = kc + 1;
+			if (lo < nl && v < sl[lo])
+				hi = lo;
+		} else {
+			hi = kc - 1;
+			if (hi > 0 && sl[hi - 1] <= v)
+				lo = hi;
+		}
+		while (lo < hi) { /* first level > v within [lo, hi] */
+			unsigned mid = lo + (hi - lo) / 2;
+			if (sl[mid] <= v)
+				lo = mid + 1;
+			else
+				hi = mid;
+		}
+		kc = lo;
+		out[s] = (uint16_t)kc;
+	}
+	*kk = kc;
+}
+
 /* A crossed cell and its range of sorted level indices [lo, hi). */
 typedef struct {
 	uint32_t cell;
@@ -263,13 +304,13 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 	x.ny = g->ny;
 	x.cx = x.nx - 1;
 	x.cy = x.ny - 1;
-	size_t ncells = x.cx * x.cy, ns = x.nx * x.ny;
+	size_t ncells = x.cx * x.cy;
 
 	order = malloc(nlevels * sizeof *order);
 	pos = malloc(nlevels * sizeof *pos);
 	sl = malloc(nlevels * sizeof *sl);
 	start = calloc((size_t)nlevels + 1, sizeof *start);
-	k = malloc(ns * sizeof *k);
+	k = malloc(2 * x.nx * sizeof *k); /* two rows of level counts */
 	x.flags = calloc(ncells, 1);
 	if (!order || !pos || !sl || !start || !k || !x.flags) {
 		rc = contour_fail(CONTOUR_ENOMEM, "contour: out of memory for a %ux%u grid", g->nx, g->ny);
@@ -284,48 +325,14 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 		pos[order[l]] = l;
 	}
 
-	/* k[s] = number of levels <= z[s]: the crossing levels of a cell are the
-	 * sorted levels [min k, max k) of its corners. */
-	{
-		/* Smooth fields change k rarely between neighbours: start from the
-		 * previous sample's k and step; a jump falls back to binary search. */
-		unsigned kk = 0;
-		for (size_t s = 0; s < ns; s++) {
-			double v = x.z[s];
-			if (!isfinite(v)) {
-				k[s] = KNAN;
-				continue;
-			}
-			if ((kk == 0 || sl[kk - 1] <= v) && (kk == nlevels || v < sl[kk])) {
-				k[s] = (uint16_t)kk;
-				continue;
-			}
-			unsigned lo = 0, hi = nlevels;
-			if (kk < nlevels && v >= sl[kk]) {
-				lo = kk + 1;
-				if (lo < nlevels && v < sl[lo])
-					hi = lo;
-			} else {
-				hi = kk - 1;
-				if (hi > 0 && sl[hi - 1] <= v)
-					lo = hi;
-			}
-			while (lo < hi) { /* first level > v within [lo, hi] */
-				unsigned mid = lo + (hi - lo) / 2;
-				if (sl[mid] <= v)
-					lo = mid + 1;
-				else
-					hi = mid;
-			}
-			kk = lo;
-			k[s] = (uint16_t)kk;
-		}
-	}
 	/* one scan: the crossed cells (most cells are not), then count and
 	 * bucket them per level in scan order */
 	size_t ncand = 0, capc = 0;
+	unsigned kk = 0;
+	uint16_t *k0 = k, *k1 = k + x.nx;
+	level_row(x.z, x.nx, sl, nlevels, &kk, k0);
 	for (size_t j = 0; j < x.cy; j++) {
-		const uint16_t *k0 = k + j * x.nx, *k1 = k0 + x.nx;
+		level_row(x.z + (j + 1) * x.nx, x.nx, sl, nlevels, &kk, k1);
 		for (size_t i = 0; i < x.cx; i++) {
 			unsigned a = k0[i], b = k0[i + 1], c = k1[i], d = k1[i + 1];
 			if (((a ^ b) | (a ^ c) | (a ^ d)) == 0 && a != KNAN)
@@ -353,6 +360,9 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 			cand[ncand].hi = (uint16_t)hi;
 			ncand++;
 		}
+		uint16_t *t = k0;
+		k0 = k1;
+		k1 = t;
 	}
 	for (size_t q = 0; q < ncand; q++)
 		for (unsigned l = cand[q].lo; l < cand[q].hi; l++)
