@@ -108,7 +108,17 @@ int main(int argc, char **argv)
 
 	FILE *f = stdout;
 	char *tmp = NULL;
-	if (strcmp(out, "-")) {
+	struct stat sb;
+	int special = strcmp(out, "-") && stat(out, &sb) == 0 && !S_ISREG(sb.st_mode);
+	if (special) {
+		/* a device or a pipe (e.g. /dev/null): written directly, never replaced */
+		f = fopen(out, "wb");
+		if (!f) {
+			fprintf(stderr, "%s: cannot open for writing: %s\n", out, strerror(errno));
+			scene_free(sc);
+			return EX_IOERR;
+		}
+	} else if (strcmp(out, "-")) {
 		size_t n = strlen(out);
 		tmp = malloc(n + 16);
 		if (!tmp) {
@@ -153,11 +163,11 @@ int main(int argc, char **argv)
 		fprintf(stderr, "%s: write error: %s\n", out, strerror(errno));
 		status = EX_IOERR;
 	}
+	if ((special || tmp) && fclose(f) != 0 && !status) {
+		fprintf(stderr, "%s: write error: %s\n", out, strerror(errno));
+		status = EX_IOERR;
+	}
 	if (tmp) {
-		if (fclose(f) != 0 && !status) {
-			fprintf(stderr, "%s: write error: %s\n", out, strerror(errno));
-			status = EX_IOERR;
-		}
 		if (status)
 			unlink(tmp);
 		else if (rename(tmp, out) != 0) {

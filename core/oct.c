@@ -14,6 +14,7 @@ typedef struct {
 	oct_stats_t *st;
 	int oom;
 	int exact_points;        /* identity linear part: point ranges are exact */
+	double margin;           /* float rounding allowance of the spherical test */
 } build_t;
 
 static void add_leaf(build_t *b, const double *p, double h)
@@ -107,25 +108,43 @@ static int cubical(const build_t *b, const double *p, double h)
 	return lo <= 0 && hi >= 0;
 }
 
-static void visit(build_t *b, const double *p, double h, int level)
+/* Test the 8 children of the cell (centre p, half side h) and recurse into those kept.
+ * The spherical test evaluates the 8 child centres in one model_eval8 call; its
+ * threshold carries a small margin for float rounding so that no cell holding
+ * the surface is dropped. */
+static void visit_children(build_t *b, const double *p, double h, int level)
 {
-	b->st->visited++;
-	b->st->evals++;
-	if (b->test == OCT_SPHERICAL) {
-		double f = model_eval(b->s, p);
-		if (f == f && fabs(f) > b->s->lip * sqrt(3.0) * h * (1 + 1e-9))
-			return;
-	} else if (!cubical(b, p, h)) {
-		return;
+	double q[8][3], hc = h / 2;
+	int keep[8];
+	float x[8], y[8], z[8], f[8];
+	for (int c = 0; c < 8; c++) {
+		q[c][0] = p[0] + ((c & 1) ? hc : -hc);
+		q[c][1] = p[1] + ((c & 2) ? hc : -hc);
+		q[c][2] = p[2] + ((c & 4) ? hc : -hc);
+		x[c] = (float)q[c][0];
+		y[c] = (float)q[c][1];
+		z[c] = (float)q[c][2];
 	}
-	if (level == b->depth) {
-		b->st->leaves++;
-		add_leaf(b, p, h);
-		return;
+	b->st->visited += 8;
+	b->st->evals += 8;
+	if (b->test == OCT_SPHERICAL) {
+		model_eval8(b->s, x, y, z, f);
+		double lim = b->s->lip * sqrt(3.0) * hc * (1 + 1e-4) + b->margin;
+		for (int c = 0; c < 8; c++)
+			keep[c] = !(f[c] == f[c]) || fabs(f[c]) <= lim;
+	} else {
+		for (int c = 0; c < 8; c++)
+			keep[c] = cubical(b, q[c], hc);
 	}
 	for (int c = 0; c < 8 && !b->oom; c++) {
-		double q[3] = {p[0] + ((c & 1) ? h : -h) / 2, p[1] + ((c & 2) ? h : -h) / 2, p[2] + ((c & 4) ? h : -h) / 2};
-		visit(b, q, h / 2, level + 1);
+		if (!keep[c])
+			continue;
+		if (level + 1 == b->depth) {
+			b->st->leaves++;
+			add_leaf(b, q[c], hc);
+		} else {
+			visit_children(b, q[c], hc, level + 1);
+		}
 	}
 }
 
@@ -155,7 +174,11 @@ int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, 
 	const double *x = s->box;
 	double h = fmax(x[3] - x[0], fmax(x[4] - x[1], x[5] - x[2])) / 2;
 	double p[3] = {(x[0] + x[3]) / 2, (x[1] + x[4]) / 2, (x[2] + x[5]) / 2};
-	visit(&b, p, h, 0);
+	b.margin = 1e-5 * (1 + fabs(s->c.c0));
+	for (size_t i = 0; i < s->nel; i++)
+		b.margin += 1e-5 * fabs(s->el[i].w) * (2 * h + 1);
+	st->visited = 1;   /* the root is kept without a test: it is the clip box */
+	visit_children(&b, p, h, 0);
 	if (b.oom) {
 		free(b.leaves);
 		snprintf(err, errlen, "out of memory for the octree leaves");

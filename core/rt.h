@@ -2,6 +2,8 @@
  *
  * Marching (per ray, 8 rays evaluated together by model_eval8):
  *   - the ray is clipped to the object's region (bounding sphere and box);
+ *     when it enters the region inside the solid (f < 0) it marches on -f,
+ *     so what is drawn is always the surface f = 0, never the clip box;
  *   - with a Lipschitz bound L, each accepted sample t certifies the ball of
  *     radius f(t)/L free of surface. A step s from t to t' is accepted only
  *     if the two balls overlap, f(t)/L + f(t')/L >= s (so the whole segment

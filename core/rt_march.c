@@ -57,6 +57,7 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		v = v == v ? v : emin * (nolip > 0 ? 1.0f : L);
 		float inm = mode[k] == M_MARCH ? 1.0f : 0.0f, inb = mode[k] == M_BRACKET ? 1.0f : 0.0f;
 		/* march */
+		float beyond = uk >= t1[k] ? 1.0f : 0.0f;  /* the sample is at the region's exit */
 		float cross = v <= 0.0f ? 1.0f : 0.0f;
 		float cert = (nolip > 0 || (f[k] + v) * invL >= s[k] * 0.999999f || s[k] <= emin * 1.0001f) ? 1.0f : 0.0f;
 		float m = (v - f[k]) / s[k];
@@ -67,9 +68,9 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		float rej = maxf(f[k] * invL, emin);
 		float m_brk = inm * cross * (1.0f - shadow);   /* march -> bracket */
 		float m_shd = inm * cross * shadow;            /* shadow ray blocked */
-		float m_acc = inm * (1.0f - cross) * cert;     /* step accepted */
+		float m_out = inm * (1.0f - cross) * beyond * cert;          /* certified to the exit: a miss */
+		float m_acc = inm * (1.0f - cross) * (1.0f - beyond) * cert; /* step accepted */
 		float m_rej = inm * (1.0f - cross) * (1.0f - cert);
-		float m_out = m_acc * (uk > t1[k] ? 1.0f : 0.0f);
 		/* bracket */
 		float conv = (fabsf(v) < eps * (nolip > 0 ? 1.0f : L) || hi[k] - lo[k] < eps) ? 1.0f : 0.0f;
 		float pos = v > 0.0f ? 1.0f : 0.0f;
@@ -101,7 +102,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	float x[8], y[8], z[8], val[8];
 	float L = s->has_lip ? (float)s->lip : 0.0f, invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
 	int n = 0;
-	float ca[8], cb[8];
+	float ca[8], cb[8], sgn[8] = {1, 1, 1, 1, 1, 1, 1, 1};
 	clip8(s, pk, ca, cb);
 	for (int k = 0; k < 8; k++) {
 		pk->thit[k] = INFINITY;
@@ -133,6 +134,10 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		if (mode[k] != M_MARCH)
 			continue;
 		float fp = pk->fa[k] + pk->fb[k] * u[k], emin = 0.05f * fp, v = val[k];
+		/* a ray that enters the region inside the solid looks for the surface as the
+		 * sign change from negative to positive: march on -f */
+		sgn[k] = v < 0 ? -1.0f : 1.0f;
+		v *= sgn[k];
 		if (v == v && v <= 0) {
 			pk->thit[k] = u[k];
 			mode[k] = M_DONE;
@@ -150,7 +155,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		for (int k = 0; k < 8; k++) {
 			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
 			rf = (rf > lo[k] && rf < hi[k]) ? rf : 0.5f * (lo[k] + hi[k]);
-			u[k] = mode[k] == M_BRACKET ? rf : t[k] + st[k];
+			u[k] = mode[k] == M_BRACKET ? rf : minf(t[k] + st[k], t1[k]);  /* never past the exit */
 			x[k] = pk->ox[k] + u[k] * pk->dx[k];
 			y[k] = pk->oy[k] + u[k] * pk->dy[k];
 			z[k] = pk->oz[k] + u[k] * pk->dz[k];
@@ -158,6 +163,8 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		model_eval8(s, x, y, z, val);
 		*evals += (uint64_t)n;
 		*lanes += 8;
+		for (int k = 0; k < 8; k++)
+			val[k] *= sgn[k];
 		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1,
 		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f);
 		n = 0;

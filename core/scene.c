@@ -269,7 +269,7 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 				snprintf(msg, sizeof msg, "%s (in '%s')", e, o->name);
 				return scene_lex_error(lx, o->line, o->col, msg);
 			}
-			if (w) {
+			if (w && (o->drawn || !strstr(w, "empty"))) {
 				snprintf(msg, sizeof msg, "'%s': %s", o->name, w);
 				warn(sc, o->line, o->col, msg);
 			}

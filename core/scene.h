@@ -38,6 +38,7 @@ typedef struct {
 	double threshold;
 	/* octree */
 	int depth, test, shading;  /* shading: RT_CONSTANT or RT_GOURAUD */
+	int draw;                  /* octree: 0 = count cells only, draw nothing */
 	/* wireframe */
 	int slices, axis, resolution;
 	double line_width;

@@ -129,6 +129,7 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 	r->level_from = 1;
 	r->level_to = 10;
 	r->cells = r->boundaries = 1;
+	r->draw = 1;
 	while (scene_lex_line(lx)) {
 		scene_lex_tok(lx, &t);
 		if (scene_tok_is(&t, "end"))
@@ -208,6 +209,8 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 						rc = scene_lex_number(lx, &r->level_to, "the last level");
 				}
 			}
+		} else if (scene_tok_is(&t, "draw")) {
+			rc = yes_no(lx, &r->draw);
 		} else if (scene_tok_is(&t, "bands")) {
 			rc = yes_no(lx, &r->bands);
 		} else if (scene_tok_is(&t, "metric")) {
@@ -329,12 +332,12 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			st->oct_visited += os.visited;
 			st->oct_leaves += os.leaves;
 			st->oct_evals += os.evals;
-			if (rc == 0 && oct_faces(cam, &objs[i], s->lights, s->nlights, leaves, nl, r->shading, &faces, &nf, &cap) < 0)
+			if (rc == 0 && r->draw && oct_faces(cam, &objs[i], s->lights, s->nlights, leaves, nl, r->shading, &faces, &nf, &cap) < 0)
 				rc = -1, snprintf(err, errlen, "out of memory for the octree faces");
 			free(leaves);
 		}
 		st->seconds_trace += now() - t0;
-		if (rc == 0 && nf == 0 && nobj > 0)
+		if (rc == 0 && r->draw && nf == 0 && nobj > 0)
 			add_warning(s, "the octree has no leaves: the picture shows only the background");
 		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
 			rc = meta_fail(w, err, errlen);
