@@ -48,8 +48,8 @@ typedef struct {
 	meta_rgb_t rgb;
 } oct_face_t;
 
-/* Append the visible faces of the leaves (faces between two leaves are
- * skipped only when the cube face points away from the eye), shaded with
+/* Append the visible faces of the leaves (the three faces turned towards the
+ * eye, minus those shared with another leaf, which can never show), shaded with
  * `shading`: RT_CONSTANT lights each face by its own normal (flat facets),
  * RT_GOURAUD by the surface normal grad f at the cell centre (smooth look).
  * *faces grows with realloc. Returns 0 or -1 (out of memory). */

@@ -2,6 +2,7 @@
 #include "oct.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,10 +32,34 @@ static meta_rgb_t shade(const rt_object_t *mat, const rt_light_t *lights, size_t
 	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
 }
 
+/* Integer cell coordinates packed in a key (21 bits each; leaves of one build share h). */
+static uint64_t leaf_key(const oct_leaf_t *l, int axis, int step)
+{
+	uint64_t k = 0;
+	for (int i = 0; i < 3; i++) {
+		long long c = llround(l->c[i] / (2.0 * l->h) - 0.5) + (i == axis ? step : 0);
+		k = (k << 21) | ((uint64_t)(c + (1 << 20)) & 0x1fffff);
+	}
+	return k;
+}
+
+static int cmp_key(const void *a, const void *b)
+{
+	uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+	return x < y ? -1 : x > y;
+}
+
 int oct_faces(const cam_t *cam, const rt_object_t *mat, const rt_light_t *lights, size_t nlights,
               const oct_leaf_t *leaves, size_t n, int shading,
               oct_face_t **faces, size_t *nfaces, size_t *cap)
 {
+	/* a face shared with another leaf is hidden: find neighbours by sorted keys */
+	uint64_t *keys = malloc((n ? n : 1) * sizeof *keys);
+	if (!keys)
+		return -1;
+	for (size_t i = 0; i < n; i++)
+		keys[i] = leaf_key(&leaves[i], 0, 0);
+	qsort(keys, n, sizeof *keys, cmp_key);
 	for (size_t li = 0; li < n; li++) {
 		const oct_leaf_t *l = &leaves[li];
 		double c[3] = {l->c[0], l->c[1], l->c[2]}, h = l->h, g[3];
@@ -54,11 +79,16 @@ int oct_faces(const cam_t *cam, const rt_object_t *mat, const rt_light_t *lights
 			if (view == 0)
 				continue;
 			double sgn = view > 0 ? 1 : -1;
+			uint64_t nk = leaf_key(l, axis, view > 0 ? 1 : -1);
+			if (bsearch(&nk, keys, n, sizeof *keys, cmp_key))
+				continue;
 			if (*nfaces == *cap) {
 				size_t nc = *cap ? 2 * *cap : 4096;
 				oct_face_t *q = realloc(*faces, nc * sizeof *q);
-				if (!q)
+				if (!q) {
+					free(keys);
 					return -1;
+				}
 				*faces = q;
 				*cap = nc;
 			}
@@ -89,6 +119,7 @@ int oct_faces(const cam_t *cam, const rt_object_t *mat, const rt_light_t *lights
 			(*nfaces)++;
 		}
 	}
+	free(keys);
 	return 0;
 }
 
