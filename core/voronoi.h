@@ -136,8 +136,9 @@ int voronoi_label(const voronoi_t *v, const voronoi_rect_t *r, unsigned threads,
 
 /* Receives one boundary polyline in page pixels, n >= 2 points; `left` and
  * `right` are the nuclei whose cells lie on either side (left of the
- * direction of travel, right of it). Open polylines end at junctions (where
- * three or more cells meet) or at the edge of the rectangle; closed != 0
+ * direction of travel, right of it; along a chain traced through two-label
+ * cells the smaller index is on the left). Open polylines end at junctions
+ * (where three or more cells meet) or on the edge of the rectangle; closed != 0
  * means the last point joins back to the first (not repeated). Points are
  * only valid during the call. Return 0 to continue, < 0 to stop. */
 typedef int (*voronoi_fn)(void *user, int32_t left, int32_t right,
@@ -147,7 +148,12 @@ typedef int (*voronoi_fn)(void *user, int32_t left, int32_t right,
  * voronoi_label for the same v and r) into joined polylines: each crossing
  * point lies on the segment between two pixel centres of different labels,
  * where the two weighted distances are equal (solved to 1e-6 pixel), so
- * boundaries are sub-pixel accurate, not staircases. stats may be NULL. */
+ * boundaries are sub-pixel accurate, not staircases. Where exactly three
+ * cells meet, the junction point is the Voronoi vertex (equal weighted
+ * distance to all three, by Newton's method; the mean of the crossings
+ * around it when that fails or four cells meet). Open ends half a pixel
+ * inside the rectangle are carried along their last segment to its edge.
+ * Cost: O(pixels) scan plus O(boundary length). stats may be NULL. */
 int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_t *labels,
                        voronoi_fn fn, void *user, voronoi_stats_t *stats);
 
