@@ -24,6 +24,12 @@ for f in fixtures/meta/*.meta; do
 done
 if [ "$n" -ge 5 ]; then ok "$n fixtures round-tripped"; else notok "only $n fixtures found"; fi
 
+# together the fixtures use every statement of opcodes.def
+for f in fixtures/meta/*.meta; do "$M" info "$f"; done | sed -n 's/^statements://p' | tr ' ' '\n' | grep '^[a-z#-]' | sort -u > "$T/used"
+sed -n 's/^META_OP([A-Z_]*, *"\([^"]*\)".*/\1/p' meta/opcodes.def | sed 's/^#$/comment/' | sort -u > "$T/all"
+missing=$(comm -23 "$T/all" "$T/used" | tr '\n' ' ')
+if [ -z "$missing" ] && [ -s "$T/all" ]; then ok "fixtures use all $(wc -l < "$T/all") statements"; else notok "statements no fixture uses: $missing"; fi
+
 # fmt canonicalises: blanks, case, numbers, empty lines, CRLF
 printf 'LOCUS-META   1\r\n\npage 10  10\n  colour\t#ABCDEF\nwidth +02.50000\nstroke\nmove -0.0004 .5\ndraw 1.0005 7.\nend\n# note\nend-page\n' > "$T/messy.meta"
 printf 'LOCUS-META 1\npage 10 10\ncolour #abcdef\nwidth 2.5\nstroke\nmove 0 0.5\ndraw 1.001 7\nend\n# note\nend-page\n' > "$T/clean.meta"
