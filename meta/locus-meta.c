@@ -1,5 +1,6 @@
 /* locus-meta.c: check, format, describe and convert Locus meta-language files. */
 #include <errno.h>
+#include <math.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -214,6 +215,20 @@ static void box_add(box_t *b, double x0, double y0, double x1, double y1)
 	b->any = 1;
 }
 
+/* Bounds of an arc: its end points and the axis points its sweep passes. */
+static void arc_box(box_t *b, double cx, double cy, double r, double start, double sweep)
+{
+	const double rad = 3.14159265358979323846 / 180.0;
+	double lo = sweep < 0 ? start + sweep : start, hi = sweep < 0 ? start : start + sweep, a;
+	box_add(b, cx + r * cos(lo * rad), cy + r * sin(lo * rad), cx + r * cos(lo * rad), cy + r * sin(lo * rad));
+	box_add(b, cx + r * cos(hi * rad), cy + r * sin(hi * rad), cx + r * cos(hi * rad), cy + r * sin(hi * rad));
+	for (a = ceil(lo / 90.0) * 90.0; a <= hi; a += 90.0) {
+		int q = ((int)fmod(a / 90.0, 4.0) + 4) % 4;
+		double x = cx + (q == 0 ? r : q == 2 ? -r : 0), y = cy + (q == 1 ? r : q == 3 ? -r : 0);
+		box_add(b, x, y, x, y);
+	}
+}
+
 static void print_page(unsigned page, const meta_cmd_t *pg, const meta_fix_t *size, unsigned long long nst, const box_t *b)
 {
 	char w[16], h[16];
@@ -267,7 +282,8 @@ static int cmd_info(const char *path)
 		case META_COLOUR: cur = c.rgb; break;
 		case META_END: colour_add(&cs, cur); break; /* the colour a path is painted with */
 		case META_MOVE: case META_DRAW: box_add(&box, f0, f1, f0, f1); break;
-		case META_ARC: case META_CIRCLE: box_add(&box, f0 - f2, f1 - f2, f0 + f2, f1 + f2); break;
+		case META_ARC: arc_box(&box, f0, f1, f2, c.f[3] / 1000.0, c.f[4] / 1000.0); break;
+		case META_CIRCLE: box_add(&box, f0 - f2, f1 - f2, f0 + f2, f1 + f2); break;
 		case META_TEXT:
 			colour_add(&cs, cur);
 			box_add(&box, f0, f1, f0, f1);

@@ -26,6 +26,8 @@ grep -q "^page 1: 160 x 120 px, 42.333 x 31.75 mm," "$T/info" && ok "info: page 
 grep -q "geometry bounds x 20.000 .. 144.000, y 10.000 .. 102.000" "$T/info" && ok "info: bounds" || notok "info: bounds: $(cat "$T/info")"
 grep -q "^statements:.* fill 2 .* draw 7 .* span 1 image 1 row 6" "$T/info" && ok "info: statement counts" || notok "info: counts"
 grep -q "^colours: 7 distinct #000000 #0000ff #00c000 #00ffff #e8e8e8 #ff0000 #ffff00" "$T/info" && ok "info: colours" || notok "info: colours: $(grep colours "$T/info")"
+printf 'LOCUS-META 1\npage 100 100\nstroke\narc 50 50 10 45 -180\nend\nend-page\n' | "$M" info - > "$T/arc"
+grep -q "bounds x 42.929 .. 60.000, y 40.000 .. 57.071" "$T/arc" && ok "info: arc bounds by its extent" || notok "info: arc bounds: $(cat "$T/arc")"
 "$M" info "$F/multipage.meta" | grep -c "^page [123]:" | grep -q 3 && ok "info: three pages" || notok "info: pages"
 
 # the colour set is capped: 2000 distinct span colours
