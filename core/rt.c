@@ -38,13 +38,13 @@ static meta_rgb_t to_rgb(const double *c)
 	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
 }
 
-/* Trace up to 8 rays (active[k]) and shade them into col. */
-static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_stats_t *st)
+/* Trace up to RT_LANES rays (active[k]) and shade them into col. */
+static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3], rt_stats_t *st)
 {
-	double best[8];
-	int obj[8];
+	double best[RT_LANES];
+	int obj[RT_LANES];
 	uint64_t lanes = 0;
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		best[k] = INFINITY;
 		obj[k] = -1;
 		for (int i = 0; i < 3; i++)
@@ -54,16 +54,16 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 		uint64_t ev = 0;
 		rt_march8(p->objects[i].shape, pk, 0, &ev, &lanes);
 		st->primary_evals += ev;
-		for (int k = 0; k < 8; k++)
+		for (int k = 0; k < RT_LANES; k++)
 			if (pk->active[k] && pk->thit[k] < best[k]) {
 				best[k] = pk->thit[k];
 				obj[k] = (int)i;
 			}
 	}
-	double P[8][3], N[8][3], V[8][3];
+	double P[RT_LANES][3], N[RT_LANES][3], V[RT_LANES][3];
 	const float *pko[3] = {pk->ox, pk->oy, pk->oz}, *pkd[3] = {pk->dx, pk->dy, pk->dz};
-	int hit[8];
-	for (int k = 0; k < 8; k++) {
+	int hit[RT_LANES];
+	for (int k = 0; k < RT_LANES; k++) {
 		hit[k] = pk->active[k] && obj[k] >= 0;
 		if (!hit[k])
 			continue;
@@ -90,13 +90,13 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 	}
 	for (size_t li = 0; li < p->nlights; li++) {
 		const rt_light_t *lt = &p->lights[li];
-		double Ld[8][3], dist[8];
+		double Ld[RT_LANES][3], dist[RT_LANES];
 		rt_packet_t sp;
 		memset(&sp, 0, sizeof sp);
 		sp.acc = pk->acc;
 		sp.step = pk->step;
 		int need = 0;
-		for (int k = 0; k < 8; k++) {
+		for (int k = 0; k < RT_LANES; k++) {
 			if (!hit[k] || p->objects[obj[k]].shading == RT_CONSTANT)
 				continue;
 			for (int i = 0; i < 3; i++)
@@ -119,7 +119,7 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 			sp.dx[k] = (float)Ld[k][0];
 			sp.dy[k] = (float)Ld[k][1];
 			sp.dz[k] = (float)Ld[k][2];
-			sp.tmin[k] = 0;
+			sp.tmin[k] = (float)(2 * fp);  /* skip 2 pixel footprints: the ray starts at the surface */
 			sp.tmax[k] = (float)dist[k];
 			sp.fa[k] = (float)fp;
 			sp.fb[k] = 0;
@@ -129,12 +129,12 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[8][3], rt_s
 				uint64_t ev = 0;
 				rt_march8(p->objects[i].shape, &sp, 1, &ev, &lanes);
 				st->shadow_evals += ev;
-				for (int k = 0; k < 8; k++)
+				for (int k = 0; k < RT_LANES; k++)
 					if (sp.active[k] && sp.thit[k] < INFINITY)
 						sp.active[k] = 0;
 			}
 		}
-		for (int k = 0; k < 8; k++) {
+		for (int k = 0; k < RT_LANES; k++) {
 			if (!sp.active[k])
 				continue;
 			const rt_object_t *ob = &p->objects[obj[k]];
@@ -177,7 +177,7 @@ static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, d
 	}
 }
 
-/* Rays through the n <= 8 viewport points (px0 + k * dpx, py), in float lanes. */
+/* Rays through the n <= RT_LANES viewport points (px0 + k * dpx, py), in float lanes. */
 static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, double dpx, double py, int n)
 {
 	const cam_t *c = &p->cam;
@@ -192,7 +192,7 @@ static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, doubl
 	}
 	float fp = (float)cam_footprint(c, 1);
 	int ortho = c->projection == CAM_ORTHOGRAPHIC;
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		float x = x0 + dx * (float)k;
 		float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
 		float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
@@ -222,12 +222,12 @@ static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_sta
 {
 	unsigned nx = p->cam.nxpix, j = p->cam.nypix - 1 - r;
 	rt_packet_t pk;
-	double col[8][3];
-	for (unsigned x0 = 0; x0 < nx; x0 += 8) {
+	double col[RT_LANES][3];
+	for (unsigned x0 = 0; x0 < nx; x0 += RT_LANES) {
 		init_packet(p, &pk);
-		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < 8 ? (int)(nx - x0) : 8);
+		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < RT_LANES ? (int)(nx - x0) : RT_LANES);
 		trace8(p, &pk, col, st);
-		for (int k = 0; k < 8 && x0 + k < nx; k++)
+		for (int k = 0; k < RT_LANES && x0 + k < nx; k++)
 			row[x0 + k] = to_rgb(col[k]);
 	}
 }
@@ -255,17 +255,17 @@ static void supersample_row(const rt_params_t *p, const meta_rgb_t *src, meta_rg
 		if (!need)
 			continue;
 		st->aa_pixels++;
-		double sum[3] = {0, 0, 0}, col[8][3];
+		double sum[3] = {0, 0, 0}, col[RT_LANES][3];
 		rt_packet_t pk;
 		uint64_t before = st->primary_evals + st->shadow_evals;
-		for (unsigned s0 = 0; s0 < n * n; s0 += 8) {
+		for (unsigned s0 = 0; s0 < n * n; s0 += RT_LANES) {
 			init_packet(p, &pk);
-			for (unsigned k = 0; k < 8 && s0 + k < n * n; k++) {
+			for (unsigned k = 0; k < RT_LANES && s0 + k < n * n; k++) {
 				unsigned a = (s0 + k) % n, b = (s0 + k) / n;
 				setup_ray(p, &pk, (int)k, i + (a + 0.5) / n, j + (b + 0.5) / n);
 			}
 			trace8(p, &pk, col, st);
-			for (unsigned k = 0; k < 8 && s0 + k < n * n; k++)
+			for (unsigned k = 0; k < RT_LANES && s0 + k < n * n; k++)
 				for (int q = 0; q < 3; q++)
 					sum[q] += col[k][q];
 		}

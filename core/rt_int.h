@@ -5,17 +5,21 @@
 #include <stdint.h>
 #include "model.h"
 
-/* Eight rays marched together, structure of arrays in float (what the
+/* Rays marched together: two groups of 8 (model_eval8 calls) whose
+ * independent dependency chains the processor overlaps. */
+#define RT_LANES 16
+
+/* RT_LANES rays marched together, structure of arrays in float (what the
  * kernels take). The pixel footprint at parameter t is fa + fb * t world
  * units; acc is the hit tolerance in footprints and step the
  * bracketing-fallback step in footprints. */
 typedef struct {
-	float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8];
-	float tmin[8], tmax[8];
-	float fa[8], fb[8];
-	int active[8];
+	float ox[RT_LANES], oy[RT_LANES], oz[RT_LANES], dx[RT_LANES], dy[RT_LANES], dz[RT_LANES];
+	float tmin[RT_LANES], tmax[RT_LANES];
+	float fa[RT_LANES], fb[RT_LANES];
+	int active[RT_LANES];
 	float acc, step;
-	float thit[8];           /* out: hit parameter, INFINITY when none */
+	float thit[RT_LANES];           /* out: hit parameter, INFINITY when none */
 } rt_packet_t;
 
 /* March the active rays against s. shadow != 0 stops at the first sample

@@ -17,7 +17,7 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 	const float bx1 = (float)s->box[3], by1 = (float)s->box[4], bz1 = (float)s->box[5];
 	const float cx = (float)s->centre[0], cy = (float)s->centre[1], cz = (float)s->centre[2];
 	const float r2 = s->bounded ? (float)(s->radius * s->radius) : 0.0f, sph = s->bounded ? 1.0f : 0.0f;
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		float lo = pk->tmin[k], hi = pk->tmax[k];
 		float ix = 1.0f / pk->dx[k], iy = 1.0f / pk->dy[k], iz = 1.0f / pk->dz[k];
 		float u0 = (bx0 - pk->ox[k]) * ix, u1 = (bx1 - pk->ox[k]) * ix;
@@ -51,7 +51,7 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
                     const float *restrict t1, float L, float invL, float nolip, float acc,
                     float step, float shadow)
 {
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		float uk = u[k], v = val[k];
 		float fp = fa[k] + fb[k] * uk, eps = acc * fp, emin = 0.05f * fp;
 		v = v == v ? v : emin * (nolip > 0 ? 1.0f : L);
@@ -59,10 +59,15 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		/* march */
 		float beyond = uk >= t1[k] ? 1.0f : 0.0f;  /* the sample is at the region's exit */
 		float cross = v <= 0.0f ? 1.0f : 0.0f;
-		float cert = (nolip > 0 || (f[k] + v) * invL >= s[k] * 0.999999f || s[k] <= emin * 1.0001f) ? 1.0f : 0.0f;
-		float m = (v - f[k]) / s[k];
+		float c1 = (f[k] + v) * invL >= s[k] * 0.999999f ? 1.0f : 0.0f;
+		float c2 = s[k] <= emin * 1.0001f ? 1.0f : 0.0f;
+		float cert = maxf(nolip, maxf(c1, c2));
+		/* slope m = (v - f)/s; secant step -1.05 v/m when falling, the largest step two
+		 * overlapping balls allow, 2 * 0.9 v/(L - m), when rising: one division */
+		float dv = v - f[k];
+		float den = dv < 0.0f ? -dv * (1.0f / 1.05f) : (L * s[k] - dv) * (1.0f / 1.8f);
 		float safe = v * invL;
-		float sg = m < 0.0f ? -1.05f * v / m : (m < L ? 1.8f * v / (L - m) : safe);
+		float sg = den > 0.0f ? v * s[k] / den : safe;
 		sg = maxf(maxf(safe, minf(sg, 16.0f * safe)), emin);
 		sg = nolip > 0 ? step * fp : sg;
 		float rej = maxf(f[k] * invL, emin);
@@ -72,7 +77,9 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		float m_acc = inm * (1.0f - cross) * (1.0f - beyond) * cert; /* step accepted */
 		float m_rej = inm * (1.0f - cross) * (1.0f - cert);
 		/* bracket */
-		float conv = (fabsf(v) < eps * (nolip > 0 ? 1.0f : L) || hi[k] - lo[k] < eps) ? 1.0f : 0.0f;
+		float cv1 = fabsf(v) < eps * (nolip > 0 ? 1.0f : L) ? 1.0f : 0.0f;
+		float cv2 = hi[k] - lo[k] < eps ? 1.0f : 0.0f;
+		float conv = maxf(cv1, cv2);
 		float pos = v > 0.0f ? 1.0f : 0.0f;
 		float b_hit = inb * conv;
 		float b_lo = inb * (1.0f - conv) * pos, b_hi = inb * (1.0f - conv) * (1.0f - pos);
@@ -86,7 +93,7 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		flo[k] = nflo;
 		hi[k] = nhi;
 		fhi[k] = nfhi;
-		float narrow = (inb > 0 && b_hit == 0 && nhi - nlo < eps) ? 1.0f : 0.0f;
+		float narrow = inb * (1.0f - b_hit) * (nhi - nlo < eps ? 1.0f : 0.0f);
 		hit[k] = (m_shd > 0 || b_hit > 0) ? uk : (narrow > 0 ? 0.5f * (nlo + nhi) : hit[k]);
 		t[k] = m_acc > 0 ? uk : t[k];
 		f[k] = m_acc > 0 ? v : f[k];
@@ -98,13 +105,15 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 
 void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *evals, uint64_t *lanes)
 {
-	float mode[8], t[8], f[8], st[8], lo[8], flo[8], hi[8], fhi[8], side[8], u[8], t1[8];
-	float x[8], y[8], z[8], val[8];
+	float mode[RT_LANES], t[RT_LANES], f[RT_LANES], st[RT_LANES], lo[RT_LANES], flo[RT_LANES], hi[RT_LANES], fhi[RT_LANES], side[RT_LANES], u[RT_LANES], t1[RT_LANES];
+	float x[RT_LANES], y[RT_LANES], z[RT_LANES], val[RT_LANES];
 	float L = s->has_lip ? (float)s->lip : 0.0f, invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
 	int n = 0;
-	float ca[8], cb[8], sgn[8] = {1, 1, 1, 1, 1, 1, 1, 1};
+	float ca[RT_LANES], cb[RT_LANES], sgn[RT_LANES];
+	for (int k = 0; k < RT_LANES; k++)
+		sgn[k] = 1;
 	clip8(s, pk, ca, cb);
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		pk->thit[k] = INFINITY;
 		mode[k] = M_DONE;
 		t[k] = f[k] = st[k] = lo[k] = flo[k] = hi[k] = fhi[k] = side[k] = 0;
@@ -122,15 +131,16 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	if (!n)
 		return;
 	/* first sample at the region entry */
-	for (int k = 0; k < 8; k++) {
+	for (int k = 0; k < RT_LANES; k++) {
 		x[k] = pk->ox[k] + u[k] * pk->dx[k];
 		y[k] = pk->oy[k] + u[k] * pk->dy[k];
 		z[k] = pk->oz[k] + u[k] * pk->dz[k];
 	}
-	model_eval8(s, x, y, z, val);
+	for (int g = 0; g < RT_LANES; g += 8)
+		model_eval8(s, x + g, y + g, z + g, val + g);
 	*evals += (uint64_t)n;
-	*lanes += 8;
-	for (int k = 0; k < 8; k++) {
+	*lanes += RT_LANES;
+	for (int k = 0; k < RT_LANES; k++) {
 		if (mode[k] != M_MARCH)
 			continue;
 		float fp = pk->fa[k] + pk->fb[k] * u[k], emin = 0.05f * fp, v = val[k];
@@ -152,7 +162,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	}
 	int iter = 0;
 	while (n > 0 && iter++ < 4000) {
-		for (int k = 0; k < 8; k++) {
+		for (int k = 0; k < RT_LANES; k++) {
 			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
 			rf = (rf > lo[k] && rf < hi[k]) ? rf : 0.5f * (lo[k] + hi[k]);
 			u[k] = mode[k] == M_BRACKET ? rf : minf(t[k] + st[k], t1[k]);  /* never past the exit */
@@ -160,15 +170,16 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			y[k] = pk->oy[k] + u[k] * pk->dy[k];
 			z[k] = pk->oz[k] + u[k] * pk->dz[k];
 		}
-		model_eval8(s, x, y, z, val);
+		for (int g = 0; g < RT_LANES; g += 8)
+			model_eval8(s, x + g, y + g, z + g, val + g);
 		*evals += (uint64_t)n;
-		*lanes += 8;
-		for (int k = 0; k < 8; k++)
+		*lanes += RT_LANES;
+		for (int k = 0; k < RT_LANES; k++)
 			val[k] *= sgn[k];
 		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1,
 		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f);
 		n = 0;
-		for (int k = 0; k < 8; k++)
+		for (int k = 0; k < RT_LANES; k++)
 			n += mode[k] != M_DONE;
 	}
 }
