@@ -38,8 +38,9 @@ fail() { f_n=$1; shift; emit "BENCH-FAIL name=$f_n reason=$(words "$*" | cut -c1
 want() { case " $BENCH_ONLY " in *" $1 "*) return 0 ;; esac; return 1; }
 
 # measure N OUT CMD...: run CMD N times with stdout to OUT (stderr of the last run in $W/err).
-# Sets M_S (median wall seconds, from the clock around /usr/bin/time) and M_MIB (median peak
-# RSS in MiB, from /usr/bin/time %M). Returns 1 (M_ERR set) if any run fails.
+# Sets M_S (median wall seconds, from the clock around /usr/bin/time), M_CPU (median user +
+# system CPU seconds: less disturbed by other load on a shared machine) and M_MIB (median
+# peak RSS in MiB, from /usr/bin/time %M). Returns 1 (M_ERR set) if any run fails.
 measure() {
 	m_n=$1 m_out=$2
 	shift 2
@@ -47,18 +48,22 @@ measure() {
 	m_i=0
 	while [ "$m_i" -lt "$m_n" ]; do
 		t0=$(date +%s%N)
-		if ! /usr/bin/time -f '%e %M' -o "$W/time1" "$@" > "$m_out" 2> "$W/err"; then
+		if ! /usr/bin/time -f '%e %M %U %S' -o "$W/time1" "$@" > "$m_out" 2> "$W/err"; then
 			M_ERR="$(basename "$1") failed: $(grep -v '^Command exited' "$W/err" | tail -1 | cut -c1-120)"
 			return 1
 		fi
 		t1=$(date +%s%N)
-		echo "$(( (t1 - t0) / 1000 )) $(tail -1 "$W/time1" | awk '{print $2}')" >> "$W/times"
+		echo "$(( (t1 - t0) / 1000 )) $(tail -1 "$W/time1" | awk '{print $2, $3 + $4}')" >> "$W/times"
 		m_i=$((m_i + 1))
 	done
 	M_S=$(sort -n -k1,1 "$W/times" | awk '{a[NR] = $1} END {printf "%.4f", a[int((NR + 1) / 2)] / 1e6}')
 	M_MIB=$(awk '{print $2}' "$W/times" | sort -n | awk '{a[NR] = $1} END {printf "%.1f", a[int((NR + 1) / 2)] / 1024}')
+	M_CPU=$(awk '{print $3}' "$W/times" | sort -n | awk '{a[NR] = $1} END {printf "%.3f", a[int((NR + 1) / 2)]}')
 	return 0
 }
+
+# cpu LOCUS_CPU ANCHOR_CPU: the key=values of the CPU-time comparison
+cpu() { echo "locus_cpu_s=$1 anchor_cpu_s=$2 ratio_cpu=$(ratio "$2" "$1")"; }
 
 # ratio A L: A / L with 2 decimals
 ratio() { awk -v a="$1" -v l="$2" 'BEGIN {if (l > 0) printf "%.2f", a / l; else print "inf"}'; }
@@ -116,15 +121,17 @@ echo "bench: $(date -u +%Y-%m-%dT%H:%M:%SZ) $(uname -m) $(nproc) cores, runs=$BE
 
 # ---- issue 2: metafile replay, Locus meta vs plotutils #PLOT 2 ----------------
 
-# replay WL SUFFIX NAME: time locus-raster on $W/WL.SUFFIX against the plot run already measured
+# replay_pair WL IN NAME EXT PLOT_S PLOT_MIB PLOT_OUT PLOT_CPU: time locus-raster on IN (to
+# NAME.EXT) against the plot run already measured, and compare the two pictures
 replay_pair() {
-	wl=$1 in=$2 name=$3 ext=$4 ptime=$5 prss=$6 pout=$7
+	in=$2 name=$3 ext=$4 ptime=$5 prss=$6 pout=$7 pcpu=$8
 	if measure "$BENCH_RUNS" /dev/null "$BIN/locus-raster" "$in" -o "$W/$name.$ext"; then
 		r=$(ratio "$ptime" "$M_S")
 		line "$name" "$M_S" "plot-T$ext" "$ptime" "$M_MIB" "$prss" \
-			"target=2 pass=$(pass "$r" 2) bytes=$(wc -c < "$in") diff_px_pct=$(diffpct "$W/$name.$ext" "$pout")"
+			"target=2 pass=$(pass "$r" 2) $(cpu "$M_CPU" "$pcpu")" \
+			"bytes=$(wc -c < "$in") diff_px_pct=$(diffpct "$W/$name.$ext" "$pout")"
 		# shellcheck disable=SC2034 # read through eval by the caller
-		L_S=$M_S L_MIB=$M_MIB
+		L_S=$M_S L_MIB=$M_MIB L_CPU=$M_CPU
 		return 0
 	fi
 	fail "$name" "$M_ERR"
@@ -152,20 +159,22 @@ bench_plot() {
 		if ! measure "$BENCH_RUNS" "$W/$wl.pnm" plot -T pnm --bitmap-size 1024x768 "$W/$wl.plot"; then
 			fail "$wl" "$M_ERR"; continue
 		fi
-		pnm_s=$M_S pnm_mib=$M_MIB
+		pnm_s=$M_S pnm_mib=$M_MIB pnm_cpu=$M_CPU
 		if ! measure "$BENCH_RUNS" "$W/$wl.plot.png" plot -T png --bitmap-size 1024x768 "$W/$wl.plot"; then
 			fail "$wl-png" "$M_ERR"; continue
 		fi
-		png_s=$M_S png_mib=$M_MIB
+		png_s=$M_S png_mib=$M_MIB png_cpu=$M_CPU
 		if ! have_bin locus-raster; then
 			for n in "$wl" "$wl-binary" "$wl-png"; do
 				skip "$n" "$BIN/locus-raster not built yet (plot -T pnm $pnm_s s)"
 			done
 			continue
 		fi
-		replay_pair "$wl" "$W/$wl.meta" "$wl" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" && eval "RASTER_${wl}_S=\$L_S RASTER_${wl}_MIB=\$L_MIB"
-		replay_pair "$wl" "$W/$wl.lmb" "$wl-binary" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" && eval "RASTERB_${wl}_S=\$L_S"
-		replay_pair "$wl" "$W/$wl.meta" "$wl-png" png "$png_s" "$png_mib" "$W/$wl.plot.png"
+		replay_pair "$wl" "$W/$wl.meta" "$wl" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" "$pnm_cpu" &&
+			eval "RASTER_${wl}_S=\$L_S RASTER_${wl}_MIB=\$L_MIB RASTER_${wl}_CPU=\$L_CPU"
+		replay_pair "$wl" "$W/$wl.lmb" "$wl-binary" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" "$pnm_cpu" &&
+			eval "RASTERB_${wl}_S=\$L_S RASTERB_${wl}_CPU=\$L_CPU"
+		replay_pair "$wl" "$W/$wl.meta" "$wl-png" png "$png_s" "$png_mib" "$W/$wl.plot.png" "$png_cpu"
 	done
 	# peak memory against input size: workload a at 4 times the polylines
 	if have_bin locus-raster && [ -n "${RASTER_a_MIB:-}" ]; then
@@ -173,10 +182,11 @@ bench_plot() {
 			"$W/gen_workloads" a plot -s 4 -o "$W/a4.plot" 2>> "$W/gen.log"; then
 			# the anchor once: it is the slowest run of the bench and only gives the ratio here
 			if measure 1 "$W/a4.pnm" plot -T pnm --bitmap-size 1024x768 "$W/a4.plot"; then
-				ps=$M_S pm=$M_MIB
+				ps=$M_S pm=$M_MIB pc=$M_CPU
 				if measure "$SLOW_RUNS" /dev/null "$BIN/locus-raster" "$W/a4.meta" -o "$W/a4.ppm"; then
 					r=$(ratio "$ps" "$M_S")
 					line a-4x "$M_S" plot-Tppm "$ps" "$M_MIB" "$pm" "target=2 pass=$(pass "$r" 2) anchor_runs=1" \
+						"$(cpu "$M_CPU" "$pc")" \
 						"bytes=$(wc -c < "$W/a4.meta") locus_rss_mib_1x=$RASTER_a_MIB" \
 						"rss_growth=$(ratio "$M_MIB" "$RASTER_a_MIB")"
 				else
@@ -197,13 +207,15 @@ bench_check() {
 	if ! have_bin locus-meta; then skip a-check "$BIN/locus-meta not built yet"; return; fi
 	if [ ! -f "$W/a.meta" ]; then skip a-check "needs the plot group (workload a files)"; return; fi
 	if [ -z "${RASTER_a_S:-}" ]; then skip a-check "no locus-raster time of workload a to compare with"; return; fi
-	for v in a:meta:RASTER_a_S a-binary:lmb:RASTERB_a_S; do
+	for v in a:meta:RASTER_a a-binary:lmb:RASTERB_a; do
 		n=${v%%:*}-check; rest=${v#*:}; ext=${rest%%:*}; var=${rest#*:}
-		eval "rs=\${$var:-}"
+		rs="" rc=""
+		eval "rs=\${${var}_S:-} rc=\${${var}_CPU:-}"
 		[ -n "$rs" ] || continue
 		if measure "$BENCH_RUNS" /dev/null "$BIN/locus-meta" check "$W/a.$ext"; then
 			r=$(ratio "$rs" "$M_S")
-			line "$n" "$M_S" locus-raster "$rs" "$M_MIB" "${RASTER_a_MIB:-na}" "target=3 pass=$(pass "$r" 3)"
+			line "$n" "$M_S" locus-raster "$rs" "$M_MIB" "${RASTER_a_MIB:-na}" "target=3 pass=$(pass "$r" 3)" \
+				"$(cpu "$M_CPU" "$rc")"
 		else
 			fail "$n" "$M_ERR"
 		fi
@@ -236,7 +248,7 @@ bench_pov() {
 		if ! measure "$SLOW_RUNS" /dev/null povray $POVOPTS +I"$pov" +O"$W/$s.pov.png"; then
 			fail "$s" "$M_ERR"; continue
 		fi
-		pv_s=$M_S pv_mib=$M_MIB
+		pv_s=$M_S pv_mib=$M_MIB pv_cpu=$M_CPU
 		pv_trace=$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$W/err" | tail -1)
 		pv_calls=$(awk '/Function VM calls/ {print $NF}' "$W/err" | tail -1)
 		pv_epp=$(awk -v c="${pv_calls:-0}" 'BEGIN {printf "%.1f", c / (1024 * 768)}')
@@ -254,7 +266,7 @@ bench_pov() {
 		if ! measure "$SLOW_RUNS" /dev/null "$BIN/locus-render" "$scene" -o "$W/$s.meta" --stats; then
 			fail "$s" "$M_ERR"; continue
 		fi
-		lr_s=$M_S lr_mib=$M_MIB
+		lr_s=$M_S lr_mib=$M_MIB lr_cpu=$M_CPU
 		grep '^stats:' "$W/err" > "$W/$s.stats"
 		l_epp=$(stat evals_per_pixel "$W/$s.stats")
 		l_ms=$(stat trace_ms "$W/$s.stats")
@@ -272,7 +284,7 @@ bench_pov() {
 		line "$s" "$lr_s" povray "$pv_s" "$lr_mib" "$pv_mib" \
 			"anchor_trace_s=${pv_trace:-na} locus_trace_s=$(awk -v m="${l_ms:-0}" 'BEGIN {printf "%.4f", m / 1000}')" \
 			"ratio_trace=$(ratio "${pv_trace:-0}" "$(awk -v m="${l_ms:-0}" 'BEGIN {print m / 1000}')")" \
-			"locus_evals_per_px=${l_epp:-na} anchor_calls_per_px=$pv_epp" \
+			"$(cpu "$lr_cpu" "$pv_cpu") locus_evals_per_px=${l_epp:-na} anchor_calls_per_px=$pv_epp" \
 			"locus_psnr_db=$l_psnr anchor_psnr_own_db=$pv_psnr anchor_psnr_vs_locus_ref_db=$x_psnr"
 	done
 }
@@ -353,7 +365,7 @@ bench_voronoi() {
 # ---- main -------------------------------------------------------------------
 
 # shellcheck disable=SC2034 # RASTERB_a_S is read through eval
-RASTER_a_S="" RASTER_a_MIB="" RASTERB_a_S=""
+RASTER_a_S="" RASTER_a_MIB="" RASTER_a_CPU="" RASTERB_a_S="" RASTERB_a_CPU=""
 want plot && bench_plot
 want check && bench_check
 want pov && bench_pov
