@@ -77,6 +77,7 @@ struct model_shape {
 	float mf[12];              /* float copy of minv */
 	int user_box;              /* box[] given by the user */
 	double box[6];             /* actual-frame clip box: x0 y0 z0 x1 y1 z1 */
+	double root[6];            /* octree root region: the user's box as given, else the clip box */
 	/* set by model_prepare: */
 	double lip;                /* Lipschitz bound of f in the actual frame (0 if none) */
 	int has_lip;               /* 1 when lip is a valid bound inside box */

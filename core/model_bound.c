@@ -121,8 +121,10 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		snprintf(err, errlen, "an unbounded shape (negative weights, only infinite elements or an unbounded parameter) needs a 'bound' box");
 		return -1;
 	}
-	if (s->user_box)
+	if (s->user_box) {
+		memcpy(s->root, s->box, sizeof s->root);
 		box_to_setup(s, s->box, lo, hi);
+	}
 	if (s->bounded) {
 		for (int i = 0; i < 3; i++) {
 			double a = C[i] - R, b = C[i] + R;
@@ -162,6 +164,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	} else if (s->has_lip) {
 		tighten_box(s);
 	}
+	if (!s->user_box)
+		memcpy(s->root, s->box, sizeof s->root);
 	return 0;
 }
 

@@ -14,7 +14,8 @@ typedef struct {
 	oct_stats_t *st;
 	int oom;
 	int exact_points;        /* identity linear part: point ranges are exact */
-	double margin;           /* float rounding allowance of the spherical test */
+	double margin;           /* float rounding allowance of the float tests */
+	int fast_cubical;        /* points only, constant c, translation only */
 } build_t;
 
 static void add_leaf(build_t *b, const double *p, double h)
@@ -132,6 +133,37 @@ static void visit_children(build_t *b, const double *p, double h, int level)
 		double lim = b->s->lip * sqrt(3.0) * hc * (1 + 1e-4) + b->margin;
 		for (int c = 0; c < 8; c++)
 			keep[c] = !(f[c] == f[c]) || fabs(f[c]) <= lim;
+	} else if (b->fast_cubical) {
+		/* all elements are points, c is constant and the frame is only translated:
+		 * the exact range of each |P - A| over the 8 child cubes, in float lanes */
+		const model_shape_t *s = b->s;
+		float lo8[8], hi8[8];
+		float hx = (float)hc;
+		for (int c = 0; c < 8; c++) {
+			x[c] += (float)s->minv[3];
+			y[c] += (float)s->minv[7];
+			z[c] += (float)s->minv[11];
+			lo8[c] = hi8[c] = (float)-s->c.c0;
+		}
+		for (size_t i = 0; i < s->nel; i++) {
+			const float *a = s->el[i].pf, w = (float)s->el[i].w;
+			const float ax = a[0], ay = a[1], az = a[2];
+			for (int c = 0; c < 8; c++) {
+				float ex = fabsf(x[c] - ax), ey = fabsf(y[c] - ay), ez = fabsf(z[c] - az);
+				float nx = ex - hx, ny = ey - hx, nz = ez - hx;
+				nx = nx > 0.0f ? nx : 0.0f;
+				ny = ny > 0.0f ? ny : 0.0f;
+				nz = nz > 0.0f ? nz : 0.0f;
+				float fx = ex + hx, fy = ey + hx, fz = ez + hx;
+				float dmin = sqrtf(nx * nx + ny * ny + nz * nz), dmax = sqrtf(fx * fx + fy * fy + fz * fz);
+				float l = w >= 0 ? dmin : dmax, h = w >= 0 ? dmax : dmin;
+				lo8[c] += w * l;
+				hi8[c] += w * h;
+			}
+		}
+		float m = (float)b->margin;
+		for (int c = 0; c < 8; c++)
+			keep[c] = lo8[c] <= m && hi8[c] >= -m;
 	} else {
 		for (int c = 0; c < 8; c++)
 			keep[c] = cubical(b, q[c], hc);
@@ -171,9 +203,13 @@ int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, 
 	const double *m = s->m;
 	b.exact_points = m[0] == 1 && m[1] == 0 && m[2] == 0 && m[4] == 0 && m[5] == 1 && m[6] == 0
 	              && m[8] == 0 && m[9] == 0 && m[10] == 1;
-	const double *x = s->box;
+	const double *x = s->root;
 	double h = fmax(x[3] - x[0], fmax(x[4] - x[1], x[5] - x[2])) / 2;
 	double p[3] = {(x[0] + x[3]) / 2, (x[1] + x[4]) / 2, (x[2] + x[5]) / 2};
+	b.fast_cubical = b.exact_points && s->c.kind == MODEL_C_CONST;
+	for (size_t i = 0; i < s->nel; i++)
+		if (s->el[i].kind != MODEL_POINT)
+			b.fast_cubical = 0;
 	b.margin = 1e-5 * (1 + fabs(s->c.c0));
 	for (size_t i = 0; i < s->nel; i++)
 		b.margin += 1e-5 * fabs(s->el[i].w) * (2 * h + 1);

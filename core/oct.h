@@ -1,6 +1,6 @@
 /* oct.h: implicit-to-octree conversion (thesis chapter 6) and painter's-algorithm drawing of the leaves.
  *
- * The root cube is the shape's clip box made cubical. A cell of side a and
+ * The root cube is the shape's `bound` box as given (else its clip box) made cubical. A cell of side a and
  * centre p is kept (subdivided, or a leaf at the final depth) when the
  * surface may cross it:
  *   spherical test  |f(p)| <= L * (sqrt(3)/2) * a   (the cell's circumscribed
