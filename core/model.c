@@ -118,6 +118,7 @@ static int need_points(int kind, size_t np)
 	case MODEL_POINT: return np == 1;
 	case MODEL_SEGMENT: case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: return np == 2;
 	case MODEL_POINTS: return np >= 1;
+	case MODEL_VORONOI: return np >= 2;
 	case MODEL_POLYLINE: return np >= 2;
 	default: return np == 0;
 	}
@@ -214,6 +215,36 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 {
 	double best = INFINITY;
 	switch (e->kind) {
+	case MODEL_VORONOI: {
+		/* nearest point of the estimate: halfway between the two nearest nuclei's
+		 * directions, so that the gradient is (grad d2 - grad d1) / 2 */
+		double d1 = INFINITY, d2 = INFINITY;
+		size_t i1 = 0, i2 = 0;
+		for (size_t k = 0; k < e->np; k++) {
+			const double *a = e->p + 3 * k;
+			double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+			double l = len3(d);
+			if (l < d1) {
+				d2 = d1;
+				i2 = i1;
+				d1 = l;
+				i1 = k;
+			} else if (l < d2) {
+				d2 = l;
+				i2 = k;
+			}
+		}
+		double est = (d2 - d1) / 2, g[3];
+		for (int j = 0; j < 3; j++) {
+			double u1 = d1 > 0 ? (p[j] - e->p[3 * i1 + j]) / d1 : 0;
+			double u2 = d2 > 0 ? (p[j] - e->p[3 * i2 + j]) / d2 : 0;
+			g[j] = (u2 - u1) / 2;
+		}
+		/* q = p - est * g / |g|^2 * |g| ... expressed so that (p - q)/est = g */
+		for (int j = 0; j < 3; j++)
+			q[j] = p[j] - est * g[j];
+		return est;
+	}
 	case MODEL_POINT: case MODEL_POINTS:
 		for (size_t k = 0; k < e->np; k++) {
 			const double *a = e->p + 3 * k;

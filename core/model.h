@@ -6,7 +6,11 @@
  *   its segments), infinite line, plane (unsigned distance), planar disk
  *   (sqrt(h^2 + max(rho - r, 0)^2)), and another shape S, for which the
  *   estimate |f_S(P)| / L_S is used (never above the true distance to the
- *   surface of S, and 1-Lipschitz).
+ *   surface of S, and 1-Lipschitz), and the Voronoi boundaries of a point
+ *   set, estimated as (d2 - d1) / 2 with d1 <= d2 the two smallest point
+ *   distances (never more than the distance to the bisector of the two
+ *   nearest points, 1-Lipschitz; the locus (d2 - d1)/2 = c is a wall of half
+ *   thickness about c around every 3D Voronoi face).
  *
  * The defining parameter c(P) is one of
  *   constant              bound G_c = 0
@@ -36,7 +40,7 @@
 
 /* Element kinds. */
 enum { MODEL_POINT, MODEL_POINTS, MODEL_SEGMENT, MODEL_POLYLINE, MODEL_LINE,
-       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE };
+       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI };
 /* Parameter kinds. */
 enum { MODEL_C_CONST, MODEL_C_EXPR, MODEL_C_NOISE, MODEL_C_MANDEL, MODEL_C_SHAPE };
 

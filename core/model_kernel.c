@@ -76,6 +76,27 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 	case MODEL_SEGMENT:
 		segment8(f, x, y, z, d);
 		break;
+	case MODEL_VORONOI: {
+		v8 d2;
+		point8(f, x, y, z, d);
+		point8(f + 3, x, y, z, t);
+		for (int k = 0; k < 8; k++) {
+			float a = d[k], b = t[k];
+			d[k] = a < b ? a : b;
+			d2[k] = a < b ? b : a;
+		}
+		for (size_t i = 2; i < e->np; i++) {
+			point8(f + 3 * i, x, y, z, t);
+			for (int k = 0; k < 8; k++) {
+				float v = t[k], a = d[k], b = d2[k];
+				d2[k] = v < a ? a : (v < b ? v : b);
+				d[k] = v < a ? v : a;
+			}
+		}
+		for (int k = 0; k < 8; k++)
+			d[k] = 0.5f * (d2[k] - d[k]);
+		break;
+	}
 	case MODEL_POLYLINE:
 		segment8(f, x, y, z, d);
 		for (size_t i = 1; i + 1 < e->np; i++) {

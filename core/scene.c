@@ -278,10 +278,10 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 		if (scene_tok_is(&t, "point")) {
 			if (scene_lex_numbers(lx, v, 3, "a coordinate") < 0 || add_elem(lx, m, MODEL_POINT, v, 1, 0, NULL, &t) < 0)
 				return -1;
-		} else if (scene_tok_is(&t, "points") || scene_tok_is(&t, "polyline")) {
+		} else if (scene_tok_is(&t, "points") || scene_tok_is(&t, "polyline") || scene_tok_is(&t, "voronoi")) {
 			double *p = NULL;
 			size_t np = 0;
-			int kind = t.s[1] == 'o' && t.s[2] == 'i' ? MODEL_POINTS : MODEL_POLYLINE;
+			int kind = t.s[0] == 'v' ? MODEL_VORONOI : t.s[1] == 'o' && t.s[2] == 'i' ? MODEL_POINTS : MODEL_POLYLINE;
 			if (point_list(lx, &p, &np) < 0)
 				return -1;
 			int rc = add_elem(lx, m, kind, p, np, 0, NULL, &t);
@@ -362,7 +362,7 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 			if (*dst < 0)
 				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
 		} else {
-			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
 		}
 		if (!lx->failed && scene_lex_eol(lx) < 0)
 			return -1;

@@ -78,6 +78,21 @@ int main(void)
 	CHECK(fabs(dist(MODEL_DISK, disk, 2, 1, 0.5, 0, 2) - 2) < 1e-12, "disk: above the disk");
 	CHECK(fabs(dist(MODEL_DISK, disk, 2, 1, 4, 0, 4) - 5) < 1e-12, "disk: beyond the rim");
 
+	double vor[9] = {1, 0, 0, -1, 0, 0, 0, 3, 0};
+	CHECK(fabs(dist(MODEL_VORONOI, vor, 3, 0, 0.3, 0, 0) - 0.3) < 1e-12, "voronoi: (d2 - d1)/2 = distance to the bisector on the line of two nuclei");
+	CHECK(dist(MODEL_VORONOI, vor, 3, 0, 0.3, 0.2, 5) < 0.3, "voronoi: below the distance to the bisector elsewhere (an estimate from below)");
+	{
+		model_shape_t *s = shape1(MODEL_VORONOI, vor, 3, 0);
+		s->c.c0 = 0.05;
+		s->user_box = 1;
+		memcpy(s->box, (double[]){-2, -2, -2, 2, 4, 2}, sizeof s->box);
+		const char *w;
+		char e[128];
+		double kerr = 0, r = model_prepare(s, e, sizeof e, &w) == 0 ? lip_ratio(s, &kerr) : 9;
+		CHECK(s->lip == 1 && r <= 1 + 1e-9 && kerr < 1e-4, "voronoi walls: L = 1 holds (worst %.4f), float kernel agrees (%.2g)", r, kerr);
+		model_free(s);
+	}
+
 	/* another shape as a distance: |f| / L */
 	{
 		model_shape_t *ball = shape1(MODEL_POINT, (double[]){0, 0, 0}, 1, 0);
