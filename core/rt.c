@@ -39,7 +39,8 @@ static meta_rgb_t to_rgb(const double *c)
 }
 
 /* Trace up to RT_LANES rays (active[k]) and shade them into col. */
-static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3], rt_stats_t *st)
+static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3], rt_stats_t *st,
+                   const float *tstart, size_t stride)
 {
 	double best[RT_LANES];
 	int obj[RT_LANES];
@@ -52,6 +53,9 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 	}
 	for (size_t i = 0; i < p->nobjects; i++) {
 		uint64_t ev = 0;
+		if (tstart)
+			for (int k = 0; k < RT_LANES; k++)
+				pk->tmin[k] = tstart[i * stride];
 		rt_march8(p->objects[i].shape, pk, 0, &ev, &lanes);
 		st->primary_evals += ev;
 		for (int k = 0; k < RT_LANES; k++)
@@ -218,18 +222,94 @@ static void init_packet(const rt_params_t *p, rt_packet_t *pk)
 	pk->step = (float)(p->step_pixels > 0 ? p->step_pixels : 0.5);
 }
 
+/* Cone tracing ahead of the packets: for each packet of a row, the cone from
+ * the eye around its middle ray that holds all its rays (radius rr per unit
+ * distance). A point P on the axis at distance t is at least f(P)/L - rr*t
+ * from the surface, so every ray of the packet may start at the t where that
+ * bound first drops below half the cone radius; a cone that leaves the region
+ * with room to spare lets the whole packet skip the object. Eight cones are
+ * evaluated together. out[q] = start parameter, INFINITY = nothing to hit. */
+static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j, unsigned npk,
+                        float *out, rt_stats_t *st)
+{
+	const cam_t *c = &p->cam;
+	int ortho = c->projection == CAM_ORTHOGRAPHIC;
+	double fp = cam_footprint(c, 1), rr = (RT_LANES / 2 + 0.75) * fp * 1.05;
+	const double *b = s->box;
+	double bc[3] = {(b[0] + b[3]) / 2, (b[1] + b[4]) / 2, (b[2] + b[5]) / 2};
+	double half = 0.5 * sqrt((b[3] - b[0]) * (b[3] - b[0]) + (b[4] - b[1]) * (b[4] - b[1]) + (b[5] - b[2]) * (b[5] - b[2]));
+	if (s->bounded)
+		half = fmin(half, s->radius + sqrt((bc[0] - s->centre[0]) * (bc[0] - s->centre[0]) + (bc[1] - s->centre[1]) * (bc[1] - s->centre[1])
+		                                   + (bc[2] - s->centre[2]) * (bc[2] - s->centre[2])));
+	for (unsigned g = 0; g < npk; g += 8) {
+		float ox[8], oy[8], oz[8], dx[8], dy[8], dz[8], t[8], tfar[8], x[8], y[8], z[8], v[8];
+		int live[8], n = 0;
+		for (int k = 0; k < 8; k++) {
+			unsigned q = g + k < npk ? g + k : npk - 1;
+			double o[3], d[3];
+			cam_ray(c, q * (double)RT_LANES + RT_LANES / 2.0, j + 0.5, o, d);
+			ox[k] = (float)o[0];
+			oy[k] = (float)o[1];
+			oz[k] = (float)o[2];
+			dx[k] = (float)d[0];
+			dy[k] = (float)d[1];
+			dz[k] = (float)d[2];
+			double oc[3] = {o[0] - bc[0], o[1] - bc[1], o[2] - bc[2]};
+			tfar[k] = (float)(sqrt(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + half);
+			t[k] = 0;
+			live[k] = g + k < npk && s->has_lip;
+			n += live[k];
+			if (g + k < npk)
+				out[g + k] = 0;
+		}
+		for (int it = 0; n > 0 && it < 64; it++) {
+			for (int k = 0; k < 8; k++) {
+				x[k] = ox[k] + t[k] * dx[k];
+				y[k] = oy[k] + t[k] * dy[k];
+				z[k] = oz[k] + t[k] * dz[k];
+			}
+			model_eval8(s, x, y, z, v);
+			st->primary_evals += (uint64_t)n;
+			st->lane_evals += 8;
+			n = 0;
+			for (int k = 0; k < 8; k++) {
+				if (!live[k])
+					continue;
+				double r = ortho ? rr : rr * t[k], dd = v[k] / s->lip - r;
+				if (!(dd >= 0.5 * r)) {
+					out[g + k] = t[k];       /* near something (or inside, or NaN): start here */
+					live[k] = 0;
+				} else if (t[k] + dd > tfar[k]) {
+					out[g + k] = INFINITY;   /* the whole cone misses the region */
+					live[k] = 0;
+				} else {
+					t[k] = (float)(t[k] + dd);
+					n++;
+				}
+			}
+		}
+		for (int k = 0; k < 8; k++)
+			if (live[k])
+				out[g + k] = t[k];
+	}
+}
+
 static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_stats_t *st)
 {
-	unsigned nx = p->cam.nxpix, j = p->cam.nypix - 1 - r;
+	unsigned nx = p->cam.nxpix, j = p->cam.nypix - 1 - r, npk = (nx + RT_LANES - 1) / RT_LANES;
 	rt_packet_t pk;
 	double col[RT_LANES][3];
-	for (unsigned x0 = 0; x0 < nx; x0 += RT_LANES) {
+	float *start = malloc((p->nobjects * npk + 1) * sizeof *start);
+	for (size_t i = 0; start && i < p->nobjects; i++)
+		cone_starts(p, p->objects[i].shape, j, npk, start + i * npk, st);
+	for (unsigned x0 = 0, q = 0; x0 < nx; x0 += RT_LANES, q++) {
 		init_packet(p, &pk);
 		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < RT_LANES ? (int)(nx - x0) : RT_LANES);
-		trace8(p, &pk, col, st);
+		trace8(p, &pk, col, st, start ? start + q : NULL, npk);
 		for (int k = 0; k < RT_LANES && x0 + k < nx; k++)
 			row[x0 + k] = to_rgb(col[k]);
 	}
+	free(start);
 }
 
 static int differs(meta_rgb_t a, meta_rgb_t b, double th)
@@ -264,7 +344,7 @@ static void supersample_row(const rt_params_t *p, const meta_rgb_t *src, meta_rg
 				unsigned a = (s0 + k) % n, b = (s0 + k) / n;
 				setup_ray(p, &pk, (int)k, i + (a + 0.5) / n, j + (b + 0.5) / n);
 			}
-			trace8(p, &pk, col, st);
+			trace8(p, &pk, col, st, NULL, 0);
 			for (unsigned k = 0; k < RT_LANES && s0 + k < n * n; k++)
 				for (int q = 0; q < 3; q++)
 					sum[q] += col[k][q];

@@ -109,6 +109,14 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	float x[RT_LANES], y[RT_LANES], z[RT_LANES], val[RT_LANES];
 	float L = s->has_lip ? (float)s->lip : 0.0f, invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
 	int n = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		n += pk->active[k] && pk->tmin[k] < INFINITY;
+	if (!n) {   /* nothing to march (e.g. a cone found the object out of reach) */
+		for (int k = 0; k < RT_LANES; k++)
+			pk->thit[k] = INFINITY;
+		return;
+	}
+	n = 0;
 	float ca[RT_LANES], cb[RT_LANES], sgn[RT_LANES];
 	for (int k = 0; k < RT_LANES; k++)
 		sgn[k] = 1;
