@@ -140,6 +140,15 @@ static int rle_row(dev_imgw_t *w, const uint8_t *p)
 	return io_write(w->t, w->rle, (size_t)(o - w->rle));
 }
 
+static int png_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	for (unsigned k = 0; k < n; k++)
+		png_write_row(w->png, (png_const_bytep)(pix + k * stride));
+	return 0;
+}
+
 int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 {
 	int rc = 0;
@@ -148,10 +157,7 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 		return -1;
 	}
 	if (w->fmt == DEV_FMT_PNG) {
-		if (setjmp(png_jmpbuf(w->png)))
-			return -1;
-		for (unsigned k = 0; k < n; k++)
-			png_write_row(w->png, (png_const_bytep)(pix + k * stride));
+		rc = png_rows(w, pix, stride, n);
 	} else {
 		for (unsigned k = 0; k < n && rc == 0; k++)
 			rc = w->fmt == DEV_FMT_RLE ? rle_row(w, pix + k * stride)
@@ -163,6 +169,14 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 	return rc;
 }
 
+static int png_end(dev_imgw_t *w)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	png_write_end(w->png, w->info);
+	return 0;
+}
+
 int dev_imgw_finish(dev_imgw_t *w)
 {
 	int rc = 0;
@@ -170,10 +184,7 @@ int dev_imgw_finish(dev_imgw_t *w)
 		snprintf(w->err, sizeof w->err, "image incomplete (%u of %u rows)", w->rows, w->height);
 		rc = -1;
 	} else if (w->fmt == DEV_FMT_PNG) {
-		if (setjmp(png_jmpbuf(w->png)))
-			rc = -1;
-		else
-			png_write_end(w->png, w->info);
+		rc = png_end(w);
 	}
 	if (rc == 0)
 		rc = io_flush(w->t);

@@ -119,6 +119,8 @@ static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 		t = y0; y0 = y1; y1 = t;
 		dir = -1;
 	}
+	if (y1 <= (int64_t)lo * 1000 || y0 >= (int64_t)hi * 1000)
+		return 0;   /* no centre row of the band */
 	/* rows j with y0 <= 1000j + 500 < y1 */
 	int64_t jf = ceil_div(y0 - 500, 1000), jl = ceil_div(y1 - 500, 1000) - 1;
 	if (jf < lo)

@@ -11,7 +11,8 @@ typedef struct {
 	double h;              /* half width, thousandths */
 	int64_t hr;            /* h rounded, for square dots */
 	int cap, join;
-	double limit2;         /* miter limit squared (pixels/pixels) */
+	double limit2;
+	double ext;            /* farthest a piece reaches from its path, thousandths */         /* miter limit squared (pixels/pixels) */
 	scan_pt_t *disc;       /* disc offsets for radius h */
 	size_t ndisc;
 	int rc;
@@ -46,6 +47,10 @@ static int make_disc(stroker_t *s)
 
 static void disc(stroker_t *s, scan_pt_t v)
 {
+	double r = s->h + 2.0;   /* the polygon lies within h (+ rounding) of v */
+	if ((double)v.y + r < s->b->jlo * 1000.0 || (double)v.y - r > s->b->jhi * 1000.0 ||
+			(double)v.x + r < 0 || (double)v.x - r > s->b->width * 1000.0)
+		return;
 	if (!s->disc && (s->rc = make_disc(s)) != 0)
 		return;
 	scan_path_t *pc = scan_ctx_piece(s->c);
@@ -189,7 +194,28 @@ static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 		cap(s, p, prev_o, 0);
 }
 
-/* Split the subpath into dash pieces (each stroked solid and open). */
+/* 1 if the segment cannot reach the band's pixels (farther than the stroke's reach). */
+static int far_segment(const stroker_t *s, scan_pt_t p, scan_pt_t q)
+{
+	double lo = s->b->jlo * 1000.0 - s->ext, hi = s->b->jhi * 1000.0 + s->ext;
+	double right = s->b->width * 1000.0 + s->ext;
+	return ((double)p.y < lo && (double)q.y < lo) || ((double)p.y > hi && (double)q.y > hi) ||
+		((double)p.x < -s->ext && (double)q.x < -s->ext) || ((double)p.x > right && (double)q.x > right);
+}
+
+/* Stroke the finished dash piece and start afresh. */
+static void flush_piece(stroker_t *s, scan_path_t *dp)
+{
+	if (dp->nsubs && dp->subs[0].n == 2 && far_segment(s, dp->pts[0], dp->pts[1]))
+		dp->nsubs = 0;   /* a dash within one segment, out of reach */
+	if (dp->nsubs && dp->subs[0].n >= 2)
+		solid(s, dp->pts + dp->subs[0].start, dp->subs[0].n, 0);
+	scan_path_reset(dp);
+}
+
+/* Split the subpath into dash pieces, each stroked solid and open as soon as it ends. Along a
+ * segment that cannot reach the band the pattern is walked without making pieces (a piece
+ * running on from there starts at the segment's end: its cap and join there are out of reach). */
 static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, size_t n, int closed)
 {
 	size_t same = 1;
@@ -203,7 +229,7 @@ static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, s
 	scan_path_reset(dp);
 	size_t idx = 0;
 	double rem = (double)st->dash[0];
-	int on = 1, started = 0;
+	int on = 1;
 	size_t nseg = closed ? n : n - 1;
 	for (size_t i = 0; i < nseg && s->rc == 0; i++) {
 		scan_pt_t p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
@@ -211,34 +237,39 @@ static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, s
 			continue;
 		double dx = (double)(q.x - p.x), dy = (double)(q.y - p.y);
 		double len = sqrt(dx * dx + dy * dy), t = 0;
-		if (on && !started) {
-			if ((s->rc = scan_path_move(dp, p.x, p.y)))
-				return;
-			started = 1;
-		}
+		int far = far_segment(s, p, q);
+		if (on && dp->nsubs == 0 && (s->rc = scan_path_move(dp, p.x, p.y)))
+			return;
 		while (rem < len - t) {
 			t += rem;
-			double f = t / len;
-			int64_t bx = p.x + scan_round(dx * f), by = p.y + scan_round(dy * f);
-			int rc = on ? scan_path_draw(dp, bx, by) : scan_path_move(dp, bx, by);
-			if (rc) {
-				s->rc = rc;
-				return;
+			/* a piece already begun is always finished exactly; new pieces are made only
+			 * where they can be seen */
+			if (!far || dp->nsubs) {
+				double f = t / len;
+				int64_t bx = p.x + scan_round(dx * f), by = p.y + scan_round(dy * f);
+				int rc = on ? scan_path_draw(dp, bx, by) : scan_path_move(dp, bx, by);
+				if (rc) {
+					s->rc = rc;
+					return;
+				}
+				if (on)
+					flush_piece(s, dp);
 			}
 			on = !on;
-			started = on;
 			idx = (idx + 1) % st->ndash;
 			rem = (double)st->dash[idx];
 		}
 		rem -= len - t;
-		if (on && (s->rc = scan_path_draw(dp, q.x, q.y)))
-			return;
+		if (on) {
+			int rc = dp->nsubs ? scan_path_draw(dp, q.x, q.y) : scan_path_move(dp, q.x, q.y);
+			if (rc) {
+				s->rc = rc;
+				return;
+			}
+		}
 	}
-	if (!on && dp->nsubs && dp->subs[dp->nsubs - 1].n == 1)
-		dp->nsubs--;   /* an off stretch began a piece that never got drawn */
-	for (size_t k = 0; k < dp->nsubs && s->rc == 0; k++)
-		if (dp->subs[k].n >= 2)
-			solid(s, dp->pts + dp->subs[k].start, dp->subs[k].n, 0);
+	if (on && s->rc == 0)
+		flush_piece(s, dp);
 }
 
 int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
@@ -256,19 +287,23 @@ int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const
 	s.limit2 = lim * lim;
 	/* cull whole subpaths that cannot reach the band */
 	double ext = s.h * (lim > 1.5 ? lim : 1.5) + 2000.0;
+	s.ext = ext;
 	double lo = (double)b->jlo * 1000.0 - ext, hi = (double)b->jhi * 1000.0 + ext;
+	double right = (double)b->width * 1000.0 + ext;
 	int solid_only = st->ndash == 0 || st->dash == NULL;
 	for (size_t k = 0; k < p->nsubs && s.rc == 0; k++) {
 		const scan_pt_t *q = p->pts + p->subs[k].start;
 		size_t n = p->subs[k].n;
 		if (n < 2 && !p->subs[k].closed)
 			continue;   /* a lone move paints nothing; move + close is a dot */
-		int64_t y0 = q[0].y, y1 = q[0].y;
+		int64_t x0 = q[0].x, x1 = q[0].x, y0 = q[0].y, y1 = q[0].y;
 		for (size_t i = 1; i < n; i++) {
+			if (q[i].x < x0) x0 = q[i].x;
+			if (q[i].x > x1) x1 = q[i].x;
 			if (q[i].y < y0) y0 = q[i].y;
 			if (q[i].y > y1) y1 = q[i].y;
 		}
-		if ((double)y1 < lo || (double)y0 > hi)
+		if ((double)y1 < lo || (double)y0 > hi || (double)x1 < -ext || (double)x0 > right)
 			continue;
 		if (solid_only)
 			solid(&s, q, n, p->subs[k].closed);
