@@ -53,7 +53,9 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 {
 	for (int k = 0; k < RT_LANES; k++) {
 		float uk = u[k], v = val[k];
-		float fp = fa[k] + fb[k] * uk, eps = acc * fp, emin = 0.05f * fp;
+		float fp = fa[k] + fb[k] * uk, emin = 0.05f * fp;
+		/* the tolerance never goes below what float positions can resolve */
+		float eps = maxf(acc * fp, 2e-6f * (fabsf(uk) + 1.0f));
 		v = v == v ? v : emin * (nolip > 0 ? 1.0f : L);
 		float inm = mode[k] == M_MARCH ? 1.0f : 0.0f, inb = mode[k] == M_BRACKET ? 1.0f : 0.0f;
 		/* march */
