@@ -143,8 +143,10 @@ int voronoi_check(const voronoi_t *v)
 
 /* ---- labelling ------------------------------------------------------- */
 
-#define TILE 16  /* pixels per tile side (the unit of work) */
-#define SUB 4    /* pixels per sub-block side in tiles with several candidates */
+#define TILE 64  /* pixels per tile side (the unit of work) */
+#define SPLIT 4  /* a block with several candidates splits into SPLIT x SPLIT sub-blocks */
+#define LEAF 4   /* blocks of at most LEAF x LEAF pixels are labelled pixel by pixel */
+#define DEPTH 4  /* levels of splitting from TILE down to LEAF, plus one */
 
 /* Shared state of one labelling; workers take tile rows t, t+T, t+2T... */
 typedef struct {
@@ -166,9 +168,10 @@ typedef struct {
  * (all nuclei when in is NULL) are culled with distance bounds at the block
  * centre (distances are 1-Lipschitz: |d(P) - d(C)| <= |P - C|) into out; one
  * survivor owns the whole block; otherwise a large block is split into
- * SUB x SUB blocks culled again, and a small one is labelled pixel by pixel
+ * SPLIT x SPLIT sub-blocks culled again (64, 16, 4 pixels), and a small one
+ * is labelled pixel by pixel
  * over the survivors, in index order with a strict <, exactly as
- * voronoi_nearest does. out has room for 2 * count entries. */
+ * voronoi_nearest does. out has room for DEPTH * count entries. */
 static void label_block(job_t *jb, unsigned i0, unsigned j0, unsigned i1, unsigned j1,
                         const size_t *in, size_t nin, size_t *out, double *lower)
 {
@@ -206,10 +209,13 @@ static void label_block(job_t *jb, unsigned i0, unsigned j0, unsigned i1, unsign
 				jb->labels[(size_t)j * r->width + i] = (int32_t)out[0];
 		return;
 	}
-	if (i1 - i0 > SUB || j1 - j0 > SUB) {
-		for (unsigned sj = j0; sj < j1; sj += SUB)
-			for (unsigned si = i0; si < i1; si += SUB)
-				label_block(jb, si, sj, si + SUB < i1 ? si + SUB : i1, sj + SUB < j1 ? sj + SUB : j1,
+	unsigned side = (i1 - i0 > j1 - j0 ? i1 - i0 : j1 - j0);
+	if (side > LEAF) {
+		unsigned sub = (side + SPLIT - 1) / SPLIT;
+		sub = sub < LEAF ? LEAF : sub;
+		for (unsigned sj = j0; sj < j1; sj += sub)
+			for (unsigned si = i0; si < i1; si += sub)
+				label_block(jb, si, sj, si + sub < i1 ? si + sub : i1, sj + sub < j1 ? sj + sub : j1,
 				            out, nc, out + nc, lower);
 		return;
 	}
@@ -237,7 +243,7 @@ static void *work(void *arg)
 	worker_t *wk = arg;
 	job_t *jb = wk->job;
 	size_t n = jb->v->count;
-	size_t *cand = malloc(2 * n * sizeof *cand);
+	size_t *cand = malloc(DEPTH * n * sizeof *cand);
 	double *lower = malloc(n * sizeof *lower);
 	if (!cand || !lower) {
 		wk->rc = VORONOI_ENOMEM;
