@@ -137,10 +137,16 @@ static voronoi_point_t crossing(const tctx_t *x, size_t c, int e)
 		t1 = 0; /* a tie at the first pixel centre */
 	else if (g1 <= 0)
 		t0 = 1; /* a tie at the second */
+	double tprev = -1;
 	for (int it = 0; it < 60 && t1 - t0 > 1e-7; it++) {
 		t = t0 - g0 * (t1 - t0) / (g1 - g0);
 		if (!(t > t0 && t < t1))
 			t = 0.5 * (t0 + t1);
+		if (fabs(t - tprev) < 1e-8) { /* the estimates have converged */
+			t0 = t1 = t;
+			break;
+		}
+		tprev = t;
 		double g = wdist(x, la, x0 + t * dx, y0 + t * dy) - wdist(x, lb, x0 + t * dx, y0 + t * dy);
 		if (g == 0) {
 			t0 = t1 = t;
