@@ -127,8 +127,10 @@ int voronoi_check(const voronoi_t *v);
 
 /* Label every pixel of r: labels[j * r->width + i] is the index of the nucleus
  * owning pixel (r->x + i, r->y + j) (BOTTOM row first). Exact (equal to
- * voronoi_nearest at each pixel centre) but accelerated by culling nuclei per
- * tile with distance bounds, and spread over `threads` threads (0 = the
+ * voronoi_nearest at each pixel centre) but accelerated by culling nuclei
+ * with distance bounds per block of 64, then 16, then 4 pixels (most blocks
+ * keep one nucleus and need no per-pixel distance at all), and spread over
+ * `threads` threads (0 = the
  * number of online CPUs, at most 16); the result does not depend on the
  * thread count. */
 int voronoi_label(const voronoi_t *v, const voronoi_rect_t *r, unsigned threads,
