@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """contourpy_anchor.py: the contourpy anchor for bench_contour (same grid, same levels, serial).
 
-usage: contourpy_anchor.py [-n RUNS]
+usage: contourpy_anchor.py [-n RUNS] [--help] [--version]
 
 Workload (identical to tests/bench/bench_contour.c):
   grid   1024 x 1024 samples over [-3, 3] x [-3, 3]
@@ -37,6 +37,9 @@ def main():
     args = sys.argv[1:]
     if args[:1] in (["--help"], ["-h"]):
         print(__doc__.strip())
+        return 0
+    if args[:1] == ["--version"]:
+        print("contourpy_anchor.py (contourpy %s, numpy %s)" % (contourpy.__version__, np.__version__))
         return 0
     if len(args) == 2 and args[0] == "-n":
         runs = int(args[1])
