@@ -121,21 +121,33 @@ echo "bench: $(date -u +%Y-%m-%dT%H:%M:%SZ) $(uname -m) $(nproc) cores, runs=$BE
 
 # ---- issue 2: metafile replay, Locus meta vs plotutils #PLOT 2 ----------------
 
-# replay_pair WL IN NAME EXT PLOT_S PLOT_MIB PLOT_OUT PLOT_CPU: time locus-raster on IN (to
-# NAME.EXT) against the plot run already measured, and compare the two pictures
-replay_pair() {
-	in=$2 name=$3 ext=$4 ptime=$5 prss=$6 pout=$7 pcpu=$8
-	if measure "$BENCH_RUNS" /dev/null "$BIN/locus-raster" "$in" -o "$W/$name.$ext"; then
-		r=$(ratio "$ptime" "$M_S")
-		line "$name" "$M_S" "plot-T$ext" "$ptime" "$M_MIB" "$prss" \
-			"target=2 pass=$(pass "$r" 2) $(cpu "$M_CPU" "$pcpu")" \
-			"bytes=$(wc -c < "$in") diff_px_pct=$(diffpct "$W/$name.$ext" "$pout")"
-		# shellcheck disable=SC2034 # read through eval by the caller
-		L_S=$M_S L_MIB=$M_MIB L_CPU=$M_CPU
-		return 0
-	fi
-	fail "$name" "$M_ERR"
+# rec FILE: append the last measurement (M_S M_MIB M_CPU) to FILE
+rec() { echo "$M_S $M_MIB $M_CPU" >> "$1"; }
+
+# med FILE: set M_S, M_MIB and M_CPU to the medians of the runs recorded in FILE
+med() {
+	M_S=$(awk '{print $1}' "$1" | sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
+	M_MIB=$(awk '{print $2}' "$1" | sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
+	M_CPU=$(awk '{print $3}' "$1" | sort -n | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
+}
+
+# once TAG OUT CMD...: one timed run of CMD recorded in $W/r.TAG; after a failure (ERR set)
+# it does nothing more
+once() {
+	o_t=$1 o_o=$2
+	shift 2
+	[ -n "$ERR" ] && return 1
+	if measure 1 "$o_o" "$@"; then rec "$W/r.$o_t"; return 0; fi
+	ERR="$o_t: $M_ERR"
 	return 1
+}
+
+# pair_line NAME IN EXT PLOT_S PLOT_MIB PLOT_CPU LOCUS_OUT PLOT_OUT: the line of one
+# locus-raster variant (its medians in M_*) against plot, and how much the pictures differ
+pair_line() {
+	r=$(ratio "$4" "$M_S")
+	line "$1" "$M_S" "plot-T$3" "$4" "$M_MIB" "$5" "target=2 pass=$(pass "$r" 2) $(cpu "$M_CPU" "$6")" \
+		"bytes=$(wc -c < "$2") diff_px_pct=$(diffpct "$7" "$8")"
 }
 
 bench_plot() {
@@ -147,6 +159,8 @@ bench_plot() {
 		for wl in a b c; do skip "$wl" "gen_workloads does not build yet: $B_ERR"; done
 		return
 	fi
+	lr=0
+	have_bin locus-raster && lr=1
 	for wl in a b c; do
 		for f in text:meta binary:lmb plot:plot; do
 			if ! "$W/gen_workloads" "$wl" "${f%%:*}" -o "$W/$wl.${f#*:}" 2> "$W/gen.log"; then
@@ -155,26 +169,37 @@ bench_plot() {
 			fi
 		done
 		echo "bench: $(tail -1 "$W/gen.log")" >&2
-		# the anchor, PPM-like and PNG
-		if ! measure "$BENCH_RUNS" "$W/$wl.pnm" plot -T pnm --bitmap-size 1024x768 "$W/$wl.plot"; then
-			fail "$wl" "$M_ERR"; continue
-		fi
+		# rounds of: plot to PNM, locus-raster text and binary to PPM, plot to PNG, locus-raster
+		# to PNG, so that a change of load on the machine hits both sides alike
+		for v in pnm png text bin lpng; do : > "$W/r.$v"; done
+		ERR="" i=0
+		while [ "$i" -lt "$BENCH_RUNS" ] && [ -z "$ERR" ]; do
+			once pnm "$W/$wl.pnm" plot -T pnm --bitmap-size 1024x768 "$W/$wl.plot"
+			[ "$lr" = 1 ] && once text /dev/null "$BIN/locus-raster" "$W/$wl.meta" -o "$W/$wl.ppm"
+			[ "$lr" = 1 ] && once bin /dev/null "$BIN/locus-raster" "$W/$wl.lmb" -o "$W/$wl-binary.ppm"
+			once png "$W/$wl.plot.png" plot -T png --bitmap-size 1024x768 "$W/$wl.plot"
+			[ "$lr" = 1 ] && once lpng /dev/null "$BIN/locus-raster" "$W/$wl.meta" -o "$W/$wl-png.png"
+			i=$((i + 1))
+		done
+		if [ -n "$ERR" ]; then fail "$wl" "$ERR"; continue; fi
+		med "$W/r.pnm"
 		pnm_s=$M_S pnm_mib=$M_MIB pnm_cpu=$M_CPU
-		if ! measure "$BENCH_RUNS" "$W/$wl.plot.png" plot -T png --bitmap-size 1024x768 "$W/$wl.plot"; then
-			fail "$wl-png" "$M_ERR"; continue
-		fi
+		med "$W/r.png"
 		png_s=$M_S png_mib=$M_MIB png_cpu=$M_CPU
-		if ! have_bin locus-raster; then
+		if [ "$lr" = 0 ]; then
 			for n in "$wl" "$wl-binary" "$wl-png"; do
 				skip "$n" "$BIN/locus-raster not built yet (plot -T pnm $pnm_s s)"
 			done
 			continue
 		fi
-		replay_pair "$wl" "$W/$wl.meta" "$wl" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" "$pnm_cpu" &&
-			eval "RASTER_${wl}_S=\$L_S RASTER_${wl}_MIB=\$L_MIB RASTER_${wl}_CPU=\$L_CPU"
-		replay_pair "$wl" "$W/$wl.lmb" "$wl-binary" ppm "$pnm_s" "$pnm_mib" "$W/$wl.pnm" "$pnm_cpu" &&
-			eval "RASTERB_${wl}_S=\$L_S RASTERB_${wl}_CPU=\$L_CPU"
-		replay_pair "$wl" "$W/$wl.meta" "$wl-png" png "$png_s" "$png_mib" "$W/$wl.plot.png" "$png_cpu"
+		med "$W/r.text"
+		pair_line "$wl" "$W/$wl.meta" ppm "$pnm_s" "$pnm_mib" "$pnm_cpu" "$W/$wl.ppm" "$W/$wl.pnm"
+		eval "RASTER_${wl}_S=\$M_S RASTER_${wl}_MIB=\$M_MIB RASTER_${wl}_CPU=\$M_CPU"
+		med "$W/r.bin"
+		pair_line "$wl-binary" "$W/$wl.lmb" ppm "$pnm_s" "$pnm_mib" "$pnm_cpu" "$W/$wl-binary.ppm" "$W/$wl.pnm"
+		eval "RASTERB_${wl}_S=\$M_S RASTERB_${wl}_CPU=\$M_CPU"
+		med "$W/r.lpng"
+		pair_line "$wl-png" "$W/$wl.meta" png "$png_s" "$png_mib" "$png_cpu" "$W/$wl-png.png" "$W/$wl.plot.png"
 	done
 	# peak memory against input size: workload a at 4 times the polylines
 	if have_bin locus-raster && [ -n "${RASTER_a_MIB:-}" ]; then
