@@ -37,7 +37,9 @@ static uint64_t leaf_key(const oct_leaf_t *l, int axis, int step)
 {
 	uint64_t k = 0;
 	for (int i = 0; i < 3; i++) {
-		long long c = llround(l->c[i] / (2.0 * l->h) - 0.5) + (i == axis ? step : 0);
+		double v = l->c[i] / (2.0 * l->h) - 0.5;
+		v = v < -1e6 ? -1e6 : v > 1e6 ? 1e6 : v;   /* keys stay defined for absurd inputs */
+		long long c = llround(v) + (i == axis ? step : 0);
 		k = (k << 21) | ((uint64_t)(c + (1 << 20)) & 0x1fffff);
 	}
 	return k;
@@ -59,7 +61,8 @@ int oct_faces(const cam_t *cam, const rt_object_t *mat, const rt_light_t *lights
 		return -1;
 	for (size_t i = 0; i < n; i++)
 		keys[i] = leaf_key(&leaves[i], 0, 0);
-	qsort(keys, n, sizeof *keys, cmp_key);
+	if (n)
+		qsort(keys, n, sizeof *keys, cmp_key);
 	for (size_t li = 0; li < n; li++) {
 		const oct_leaf_t *l = &leaves[li];
 		double c[3] = {l->c[0], l->c[1], l->c[2]}, h = l->h, g[3];
@@ -137,6 +140,8 @@ static int far_first(const void *a, const void *b)
 
 int oct_draw(meta_writer_t *w, oct_face_t *faces, size_t n, double xoff)
 {
+	if (n == 0)
+		return 0;
 	qsort(faces, n, sizeof *faces, far_first);
 	for (size_t i = 0; i < n; i++) {
 		const oct_face_t *f = &faces[i];

@@ -16,8 +16,9 @@
  *     keeps stepping by 1/20 pixel so that the silhouette is decided by the
  *     sign of f, not by a tolerance;
  *   - without a Lipschitz bound (e.g. a Mandelbrot parameter) the ray is
- *     marched in fixed steps of `step_pixels` pixel footprints and sign
- *     changes are bisected (the bracketing fallback).
+ *     marched in fixed steps of `step_pixels` pixel footprints (but at least
+ *     1/1000 of its path through the region, so no ray takes more than about
+ *     1000 steps) and sign changes are bisected (the bracketing fallback).
  * Every evaluation of f is counted (rt_stats_t), per ray kind.
  *
  * Shading: RT_CONSTANT is the object colour, unlit; RT_GOURAUD ambient +

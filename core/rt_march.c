@@ -48,8 +48,8 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
                     float *restrict lo, float *restrict flo, float *restrict hi, float *restrict fhi,
                     float *restrict side, float *restrict hit, const float *restrict u,
                     const float *restrict val, const float *restrict fa, const float *restrict fb,
-                    const float *restrict t1, float L, float invL, float nolip, float acc,
-                    float step, float shadow)
+                    const float *restrict t1, const float *restrict smin, float L, float invL,
+                    float nolip, float acc, float step, float shadow)
 {
 	for (int k = 0; k < RT_LANES; k++) {
 		float uk = u[k], v = val[k];
@@ -71,7 +71,7 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		float safe = v * invL;
 		float sg = den > 0.0f ? v * s[k] / den : safe;
 		sg = maxf(maxf(safe, minf(sg, 16.0f * safe)), emin);
-		sg = nolip > 0 ? step * fp : sg;
+		sg = nolip > 0 ? maxf(step * fp, smin[k]) : sg;
 		float rej = maxf(f[k] * invL, emin);
 		float m_brk = inm * cross * (1.0f - shadow);   /* march -> bracket */
 		float m_shd = inm * cross * shadow;            /* shadow ray blocked */
@@ -119,7 +119,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		return;
 	}
 	n = 0;
-	float ca[RT_LANES], cb[RT_LANES], sgn[RT_LANES];
+	float ca[RT_LANES], cb[RT_LANES], sgn[RT_LANES], smin[RT_LANES];
 	for (int k = 0; k < RT_LANES; k++)
 		sgn[k] = 1;
 	clip8(s, pk, ca, cb);
@@ -129,6 +129,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		t[k] = f[k] = st[k] = lo[k] = flo[k] = hi[k] = fhi[k] = side[k] = 0;
 		t1[k] = 0;
 		u[k] = 0;
+		smin[k] = 0;
 		if (!pk->active[k])
 			continue;
 		if (!(ca[k] <= cb[k]))
@@ -168,7 +169,9 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			v = emin * (L > 0 ? L : 1);
 		t[k] = u[k];
 		f[k] = v;
-		st[k] = L > 0 ? maxf(v * invL, emin) : pk->step * fp;
+		/* bracketing: at most about 1000 steps through the region, whatever its depth */
+		smin[k] = (t1[k] - u[k]) * 1e-3f;
+		st[k] = L > 0 ? maxf(v * invL, emin) : maxf(pk->step * fp, smin[k]);
 	}
 	int iter = 0;
 	while (n > 0 && iter++ < 4000) {
@@ -186,7 +189,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		*lanes += RT_LANES;
 		for (int k = 0; k < RT_LANES; k++)
 			val[k] *= sgn[k];
-		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1,
+		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1, smin,
 		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f);
 		n = 0;
 		for (int k = 0; k < RT_LANES; k++)

@@ -134,6 +134,10 @@ int scene_lex_number(scene_lex_t *lx, double *v, const char *what)
 	double x = strtod(buf, &end);
 	if (*end || end == buf || !isfinite(x))
 		return scene_lex_expected(lx, &t, msg);
+	if (fabs(x) > 1e6) {
+		snprintf(msg, sizeof msg, "%s between -1e6 and 1e6 (the float kernels' range)", what);
+		return scene_lex_expected(lx, &t, msg);
+	}
 	*v = x;
 	return 0;
 }
