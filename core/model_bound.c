@@ -118,7 +118,7 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		s->radius = R * s->norm_m;
 	}
 	if (!s->bounded && !s->user_box) {
-		snprintf(err, errlen, "an unbounded shape (negative weights, only infinite elements or an unbounded parameter) needs a 'bound' box");
+		snprintf(err, errlen, "expected a 'bound' box: the shape is unbounded (negative weights, only infinite elements, or a parameter without a known maximum)");
 		return -1;
 	}
 	if (s->user_box) {

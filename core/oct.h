@@ -7,10 +7,15 @@
  *                   sphere; one evaluation per cell)
  *   cubical test    0 lies in an interval enclosure of f over the cell: for
  *                   point elements the exact range of |P - A| over the cube,
- *                   for the other elements and the parameter the Lipschitz
- *                   enclosure f(p) +- L_i * (sqrt(3)/2) * a per term, i.e.
- *                   tighter than the spherical test whenever points are
- *                   involved.
+ *                   for the other elements their Lipschitz enclosure
+ *                   d(p) +- (sqrt(3)/2) a ||M^-1||; the defining parameter's
+ *                   value over the cell is predicted (thesis section 6.4) by
+ *                   interval arithmetic for expressions (expr_bound), exactly
+ *                   for constants, and by c(p) +- G_c (sqrt(3)/2) a otherwise.
+ *                   Tighter than the spherical test whenever points are
+ *                   involved. Shapes of points with a constant c in a
+ *                   translated frame take a float fast path (8 children at
+ *                   once) with a small rounding margin.
  * Without a Lipschitz bound neither test is safe and oct_build refuses.
  * The root cell counts as visited; every cell tested counts as visited.
  */

@@ -91,7 +91,7 @@ int main(void)
 	CHECK(fails("object a\n  point 0 0 0\n  c 1 +\nend\n", "t.scene:3:8: expected a number"), "expression error column");
 	CHECK(fails("object a\n  point 0 nan 0\n  c 1\nend\n", "t.scene:2:11: expected a coordinate (a finite number), found 'nan'"), "NaN coordinate");
 	CHECK(fails("object a\n  point 0 0 0\n  distance-to b\nend\n", "t.scene:3:15: expected the name of a shape or object defined above, found 'b'"), "unknown name");
-	CHECK(fails("object a\n  plane 0 0 0 0 1 0\n  c 1\nend\n", "t.scene:1:1: an unbounded shape"), "unbounded shape needs a box");
+	CHECK(fails("object a\n  plane 0 0 0 0 1 0\n  c 1\nend\n", "t.scene:1:1: expected a 'bound' box: the shape is unbounded"), "unbounded shape needs a box");
 	CHECK(fails("object a\n  point 0 0 0\n  c 1\n", "t.scene:4:1: expected 'end' closing the shape"), "missing end");
 	CHECK(fails("view\n  eye 0 0 0\n  look-at 0 0 0\nend\n", "t.scene:1:1: expected an eye position different from the look-at point"), "degenerate view");
 	CHECK(fails("light point 0 1 0 shadow\n", "t.scene:1:19: expected 'colour', 'shadows' or the end of the line, found 'shadow'"), "misspelt option");
