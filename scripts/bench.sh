@@ -252,12 +252,11 @@ bench_check() {
 # pov SCENE OUT.png [options]: one POV-Ray render at 1024x768, no anti-aliasing, linear file gamma
 POVOPTS="-D -V +W1024 +H768 -A +WT2 File_Gamma=1.0"
 
-# scene_with SCENE OUT LINES [OCTREE]: copy SCENE with LINES (separated by \n, which awk -v
-# turns into newlines) added to its `render raytrace`
-# block, or (OCTREE) with that block turned into `render octree` plus LINES
+# scene_with SCENE OUT LINES: copy SCENE with LINES (separated by \n, which awk -v turns
+# into newlines) added to its `render raytrace` block
 scene_with() {
-	awk -v add="$3" -v oct="${4:-}" '
-		/^render raytrace *$/ { print (oct != "" ? "render octree" : $0); n = split(add, a, "\n")
+	awk -v add="$3" '
+		/^render raytrace *$/ { print; n = split(add, a, "\n")
 			for (i = 1; i <= n; i++) print "  " a[i]; next }
 		{ print }' "$1" > "$2"
 }
@@ -314,19 +313,20 @@ bench_pov() {
 	done
 }
 
-# octree of the trifocal at depth 10 (1024 cells a side), cubical vs spherical cell test:
-# figures from locus-render --stats (no anchor program: anchors.md has a prototype's)
+# octree of the trifocal at depth 10 (1024 cells a side in the root cube [-3, 3]^3, nothing
+# drawn), cubical vs spherical cell test: figures from locus-render --stats; there is no
+# anchor program (anchors.md gives a prototype's figures for the same octree)
 bench_octree() {
-	scene=fixtures/scenes/bench-trifocal.scene
+	scene=fixtures/scenes/bench-octree.scene
 	if ! have_bin locus-render || [ ! -f "$scene" ]; then skip octree "$BIN/locus-render or $scene not there yet"; return; fi
 	for t in cubical spherical; do
-		scene_with "$scene" "$W/oct-$t.scene" "depth 10\\ntest $t" octree
-		if ! measure 1 /dev/null "$BIN/locus-render" "$W/oct-$t.scene" -o - --stats --quiet; then
+		sed "s/^\( *test \).*/\1$t/" "$scene" > "$W/oct-$t.scene"
+		if ! measure "$SLOW_RUNS" /dev/null "$BIN/locus-render" "$W/oct-$t.scene" -o - --stats --quiet; then
 			fail "octree-$t" "$M_ERR"; continue
 		fi
-		emit "BENCH-INFO name=octree-d10-$t locus_s=$M_S locus_rss_mib=$M_MIB" \
+		emit "BENCH-INFO name=octree-d10-$t locus_s=$M_S locus_rss_mib=$M_MIB locus_cpu_s=$M_CPU" \
 			"cells_visited=$(stat oct_visited "$W/err") leaves=$(stat oct_leaves "$W/err")" \
-			"octree_ms=$(stat trace_ms "$W/err") total_ms=$(stat total_ms "$W/err")"
+			"octree_ms=$(stat trace_ms "$W/err")"
 	done
 }
 
