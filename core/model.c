@@ -128,7 +128,8 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
               const model_shape_t *shape, char *err, size_t errlen)
 {
 	if (!need_points(kind, np)) {
-		snprintf(err, errlen, "wrong number of points for this element");
+		snprintf(err, errlen, "%s", kind == MODEL_POLYLINE || kind == MODEL_VORONOI ? "at least 2 points"
+		         : kind == MODEL_POINTS ? "at least 1 point" : "the element's number of points");
 		return -1;
 	}
 	if (!isfinite(w) || !isfinite(r) || r < 0) {
