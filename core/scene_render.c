@@ -327,8 +327,10 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			oct_leaf_t *leaves = NULL;
 			size_t nl = 0;
 			oct_stats_t os = {0, 0, 0};
+			double tb = now();
 			rc = oct_build(objs[i].shape, r->depth, r->test == SCENE_CUBICAL ? OCT_CUBICAL : OCT_SPHERICAL,
 			               &leaves, &nl, &os, err, errlen);
+			st->seconds_trace += now() - tb;   /* the conversion only, not the faces */
 			st->oct_visited += os.visited;
 			st->oct_leaves += os.leaves;
 			st->oct_evals += os.evals;
@@ -336,7 +338,6 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 				rc = -1, snprintf(err, errlen, "out of memory for the octree faces");
 			free(leaves);
 		}
-		st->seconds_trace += now() - t0;
 		if (rc == 0 && r->draw && nf == 0 && nobj > 0)
 			add_warning(s, "the octree has no leaves: the picture shows only the background");
 		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
