@@ -1,7 +1,8 @@
 #!/bin/sh
 # t_raster_spec.sh: an independent, brute-force implementation of spec §5 (written from
 # docs/meta-language.md, per pixel, exact integers in Python) must draw the same pixels as
-# locus-raster on the stroke, fill, image and coverage fixtures (the text ones need the font).
+# locus-raster on the stroke, fill, image, coverage and text fixtures (the font is read from the
+# glyph listing in docs/stroke-font.md, not from drivers/font.c).
 . tests/lib.sh
 command -v python3 >/dev/null 2>&1 || { ok "python3 missing # SKIP"; done_tests; }
 cat > "$T/spec.py" <<'EOF'
@@ -129,7 +130,8 @@ class Stroker:
 
 def run(path, out):
     page = None; st = None; subs = []; cur = None; img = None
-    for line in open(path):
+    for raw in open(path, 'rb'):
+        line = raw.decode('latin-1')
         w = line.split()
         if not w or w[0].startswith('#') or w[0] == 'LOCUS-META': continue
         op, a = w[0], w[1:]
@@ -169,6 +171,7 @@ def run(path, out):
                     if len(sp['pts']) < 2 and not sp['closed']: continue
                     if st['dash']: sk.dashed(sp['pts'], sp['closed'], st['dash'])
                     else: sk.solid(sp['pts'], sp['closed'])
+        elif op == 'text': draw_text(page, st, a, raw)
         elif op == 'span':
             x, y, n = int(a[0]), int(a[1]), int(a[2])
             for i in range(x, min(x + n, page.w)):
@@ -187,14 +190,59 @@ def run(path, out):
                     f.write(bytes(v for px in page.pix[j] for v in px))
             return
 
+FONT = {}
+def load_font(doc):             # the glyph listing of docs/stroke-font.md
+    for line in open(doc, encoding='utf-8'):
+        cells = [c.strip() for c in line.split(' | ')]
+        if len(cells) == 4 and cells[0].startswith('| ') and len(cells[0]) == 4 and cells[3].endswith('` |'):
+            key = 'rep' if cells[1] == 'replacement' else int(cells[0][2:], 16)
+            src = cells[3][1:-3].strip()
+            FONT[key] = (float(cells[2]), [[tuple(float(v) for v in pt.split(',')) for pt in pl.split()] for pl in src.split(';') if pl.strip()])
+
+def text_chars(b):              # 5.5: bytes -> glyph keys
+    out, i = [], 0
+    while i < len(b):
+        c = b[i]
+        if 0x20 <= c <= 0x7e: out.append(c); i += 1; continue
+        n = 2 if 0xc2 <= c <= 0xdf else 3 if 0xe0 <= c <= 0xef else 4 if 0xf0 <= c <= 0xf4 else 1
+        if n > 1 and i + n <= len(b) and all(0x80 <= x <= 0xbf for x in b[i + 1:i + n]): i += n
+        else: i += 1
+        out.append('rep')
+    return out
+
+def meta_string(line):          # the quoted operand with its escapes, as bytes
+    i = line.index(b'"') + 1; out = bytearray()
+    while line[i:i + 1] != b'"':
+        if line[i:i + 1] == b'\\':
+            if line[i + 1:i + 2] == b'x': out.append(int(line[i + 2:i + 4], 16)); i += 4
+            else: out.append(line[i + 1]); i += 2
+        else: out.append(line[i]); i += 1
+    return bytes(out)
+
+def draw_text(page, st, a, raw):
+    X, Y, size, ang = [fix(x) for x in a[:4]]
+    u = size / 6.0; an = ang / 180000.0 * math.pi; pen = 0.0
+    sk = Stroker(page, dict(st, cap='round', join='round'), st['colour'])
+    for ch in text_chars(meta_string(raw)):
+        adv, pls = FONT[ch]
+        for pl in pls:
+            pts = []
+            for gx, gy in pl:
+                U = (pen + gx) * u; V = gy * u
+                pts.append((X + R(U * math.cos(an) - V * math.sin(an)), Y + R(U * math.sin(an) + V * math.cos(an))))
+            sk.solid(pts, False)
+        pen += adv
+
 def hexc(c): return (int(c[1:3], 16), int(c[3:5], 16), int(c[5:7], 16))
 
+load_font(sys.argv[3])
 run(sys.argv[1], sys.argv[2])
 EOF
-for f in fixtures/meta/f-test.meta fixtures/meta/strokes.meta fixtures/meta/fills.meta fixtures/meta/image.meta fixtures/raster/inputs/coverage.meta fixtures/raster/inputs/joins.meta; do
+for f in fixtures/meta/f-test.meta fixtures/meta/strokes.meta fixtures/meta/fills.meta fixtures/meta/image.meta fixtures/raster/inputs/coverage.meta fixtures/raster/inputs/joins.meta \
+		fixtures/meta/text.meta fixtures/raster/inputs/font.meta; do
 	[ -f "$f" ] || continue
 	c=$(basename "$f" .meta)
-	if ! python3 "$T/spec.py" "$f" "$T/$c.spec.ppm" 2> "$T/err"; then notok "$c: the Python implementation failed: $(tail -1 "$T/err")"; continue; fi
+	if ! python3 "$T/spec.py" "$f" "$T/$c.spec.ppm" docs/stroke-font.md 2> "$T/err"; then notok "$c: the Python implementation failed: $(tail -1 "$T/err")"; continue; fi
 	"$BIN/locus-raster" "$f" -o "$T/$c.ppm"
 	if "$BIN/locus-diff" "$T/$c.spec.ppm" "$T/$c.ppm" > "$T/d"; then ok "$c: the spec implemented independently draws the same pixels"
 	else notok "$c: independent implementation differs: $(cat "$T/d")"; fi
