@@ -87,7 +87,7 @@ struct model_shape {
 	int has_lip;               /* 1 when lip is a valid bound inside box */
 	int bounded;               /* 1 when the surface lies in the sphere below */
 	double centre[3], radius;  /* bounding sphere (actual frame) */
-	int fast_points;           /* points only, constant c, translated frame: model_eval8's fast path */
+	int fast_points;           /* points/segments only, constant c, translated frame: model_eval8's fast path */
 };
 
 /* A new empty shape (c = 0, identity transform), NULL when out of memory. */

@@ -116,7 +116,7 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	s->fast_points = s->c.kind == MODEL_C_CONST && mi[0] == 1 && mi[1] == 0 && mi[2] == 0 && mi[4] == 0
 	              && mi[5] == 1 && mi[6] == 0 && mi[8] == 0 && mi[9] == 0 && mi[10] == 1;
 	for (size_t i = 0; i < s->nel; i++)
-		if (s->el[i].kind != MODEL_POINT)
+		if (s->el[i].kind != MODEL_POINT && s->el[i].kind != MODEL_SEGMENT)
 			s->fast_points = 0;
 	s->bounded = setup_sphere(s, C, &R) == 0;
 	if (s->bounded) {

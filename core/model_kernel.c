@@ -119,8 +119,8 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 	}
 }
 
-/* Points only, constant c, translated frame: the benchmark's case, with the
- * same arithmetic as the general path below (so the same results). */
+/* Points and segments only, constant c, translated frame: the benchmarks'
+ * case, with the same arithmetic as the general path below (same results). */
 static void points8(const model_shape_t *s, const float *restrict x, const float *restrict y,
                     const float *restrict z, float *restrict out)
 {
@@ -135,9 +135,23 @@ static void points8(const model_shape_t *s, const float *restrict x, const float
 	for (size_t i = 0; i < s->nel; i++) {
 		const float *a = s->el[i].pf, w = (float)s->el[i].w;
 		const float ax = a[0], ay = a[1], az = a[2];
+		if (s->el[i].kind == MODEL_POINT) {
+			for (int k = 0; k < 8; k++) {
+				float dx = qx[k] - ax, dy = qy[k] - ay, dz = qz[k] - az;
+				sum[k] += w * sqrtf(dx * dx + dy * dy + dz * dz);
+			}
+			continue;
+		}
+		const float bx = a[3], by = a[4], bz = a[5], il = a[6];
 		for (int k = 0; k < 8; k++) {
-			float dx = qx[k] - ax, dy = qy[k] - ay, dz = qz[k] - az;
-			sum[k] += w * sqrtf(dx * dx + dy * dy + dz * dz);
+			float px = qx[k] - ax, py = qy[k] - ay, pz = qz[k] - az;
+			float h = (px * bx + py * by + pz * bz) * il;
+			h = h < 0.0f ? 0.0f : h;
+			h = h > 1.0f ? 1.0f : h;
+			px -= h * bx;
+			py -= h * by;
+			pz -= h * bz;
+			sum[k] += w * sqrtf(px * px + py * py + pz * pz);
 		}
 	}
 	for (int k = 0; k < 8; k++)
