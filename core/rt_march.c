@@ -183,10 +183,17 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			y[k] = pk->oy[k] + u[k] * pk->dy[k];
 			z[k] = pk->oz[k] + u[k] * pk->dz[k];
 		}
-		for (int g = 0; g < RT_LANES; g += 8)
-			model_eval8(s, x + g, y + g, z + g, val + g);
+		/* a group of 8 lanes whose rays are all done is not evaluated */
+		for (int g = 0; g < RT_LANES; g += 8) {
+			int busy = 0;
+			for (int k = g; k < g + 8; k++)
+				busy |= mode[k] != M_DONE;
+			if (busy) {
+				model_eval8(s, x + g, y + g, z + g, val + g);
+				*lanes += 8;
+			}
+		}
 		*evals += (uint64_t)n;
-		*lanes += RT_LANES;
 		for (int k = 0; k < RT_LANES; k++)
 			val[k] *= sgn[k];
 		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1, smin,
