@@ -11,7 +11,7 @@ static void usage(FILE *f)
 		"       locus-play -l\n"
 		"Replay a Locus meta file (IN, default stdin) through DEVICE into OUT (default stdout).\n"
 		"With more than one page and a file OUT, page k goes to OUT with -00k before its suffix.\n"
-		"  -l               list the devices with a one-line description\n"
+		"  -l               list the devices: name, output suffix (- for none), description\n"
 		"  -O OPTIONS       device options, key=value[,key=value...]\n"
 		"  --band-rows N    raster devices: render N rows at a time\n"
 		"  --help, --version\n");
@@ -31,8 +31,11 @@ int main(int argc, char **argv)
 			printf("locus-play %s\n", LOCUS_VERSION);
 			return 0;
 		} else if (!strcmp(a, "-l")) {
-			for (size_t i = 0; dev_registry[i]; i++)
-				printf("%-10s %s\n", dev_registry[i]->name, dev_registry[i]->description);
+			for (size_t i = 0; dev_registry[i]; i++) {
+				const char *ext = dev_registry[i]->extension;
+				printf("%-10s %-5s %s\n", dev_registry[i]->name, ext && ext[0] == '.' ? ext + 1 : "-",
+					dev_registry[i]->description);
+			}
 			return 0;
 		} else if (!strcmp(a, "-d") && k + 1 < argc) {
 			dev = argv[++k];

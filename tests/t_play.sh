@@ -5,8 +5,8 @@ P=$BIN/locus-play
 check "--help" "$P" --help
 "$P" --version | grep -q "^locus-play [0-9]" && ok "--version" || notok "--version"
 "$P" -l > "$T/list"
-for d in png ppm rle null; do
-	grep -q "^$d  *[A-Za-z0-9]" "$T/list" && ok "-l lists $d with a description" || notok "-l lacks $d"
+for d in png:png ppm:ppm rle:rle null:-; do
+	grep -q "^${d%:*}  *${d#*:}  *[A-Za-z0-9]" "$T/list" && ok "-l lists ${d%:*}, its suffix and a description" || notok "-l lacks $d"
 done
 "$P" -d png fixtures/meta/f-test.meta -o "$T/f.png"
 same_file "-d png = the locus-raster golden" fixtures/raster/f-test.raster.png "$T/f.png"
