@@ -69,7 +69,9 @@ int main(int argc, char **argv)
 		fprintf(stderr, "locus-play: unknown device '%s' (locus-play -l lists them)\n", dev);
 		return 64;
 	}
-	if (!out && strcmp(ops->name, "null") != 0)
+	if (!ops->extension || !ops->extension[0])
+		out = NULL;   /* the device writes nothing */
+	else if (!out)
 		out = "-";
 	dev_job_t job = { in, out, ops, (unsigned)band, 0, opts };
 	char err[600];
