@@ -22,6 +22,8 @@ static int r_begin(dev_device_t *d, const dev_page_t *pg)
 	r->w = dev_imgw_new(fmt_of(d), d->out, pg->width, pg->height, err, sizeof err);
 	if (!r->w)
 		return dev_fail(d, META_EIO, "%s", err);
+	if (pg->has_size)
+		dev_imgw_physical(r->w, pg->width_mm / 1000.0, pg->height_mm / 1000.0);
 	return 0;
 }
 

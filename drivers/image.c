@@ -12,7 +12,8 @@ struct dev_imgw {
 	unsigned width, height, rows;
 	png_structp png;
 	png_infop info;
-	int io_failed;
+	int io_failed, info_done;
+	double wmm, hmm;
 	unsigned char *rle;      /* one encoded row */
 	char err[256];
 };
@@ -84,8 +85,26 @@ static int png_start(dev_imgw_t *w)
 		PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
 	png_set_compression_level(w->png, 3);
 	png_set_filter(w->png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
-	png_write_info(w->png, w->info);
 	return 0;
+}
+
+/* The PNG header goes out with the first rows, so that the physical size can still be set. */
+static int png_header(dev_imgw_t *w)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	if (w->wmm > 0 && w->hmm > 0)
+		png_set_pHYs(w->png, w->info, (png_uint_32)(w->width / (w->wmm / 1000.0) + 0.5),
+			(png_uint_32)(w->height / (w->hmm / 1000.0) + 0.5), PNG_RESOLUTION_METER);
+	png_write_info(w->png, w->info);
+	w->info_done = 1;
+	return 0;
+}
+
+void dev_imgw_physical(dev_imgw_t *w, double width_mm, double height_mm)
+{
+	w->wmm = width_mm;
+	w->hmm = height_mm;
 }
 
 dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
@@ -157,7 +176,9 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 		return -1;
 	}
 	if (w->fmt == DEV_FMT_PNG) {
-		rc = png_rows(w, pix, stride, n);
+		rc = w->info_done ? 0 : png_header(w);
+		if (rc == 0)
+			rc = png_rows(w, pix, stride, n);
 	} else {
 		for (unsigned k = 0; k < n && rc == 0; k++)
 			rc = w->fmt == DEV_FMT_RLE ? rle_row(w, pix + k * stride)
