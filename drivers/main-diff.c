@@ -190,7 +190,10 @@ int main(int argc, char **argv)
 	for (int k = 0; k < 2; k++) {
 		int rc = load(file[k], (unsigned)page, &img[k], err, sizeof err);
 		if (rc) {
-			fprintf(stderr, "locus-diff: %s\n", err);
+			if (rc == -65)
+				fprintf(stderr, "%s\n", err);   /* names the file and the place */
+			else
+				fprintf(stderr, "locus-diff: %s\n", err);
 			dev_image_free(&img[0]);
 			return -rc;
 		}

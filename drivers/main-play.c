@@ -76,7 +76,9 @@ int main(int argc, char **argv)
 	dev_job_t job = { in, out, ops, (unsigned)band, 0, opts };
 	char err[600];
 	int st = dev_run(&job, err, sizeof err);
-	if (st)
+	if (st == 65)
+		fprintf(stderr, "%s\n", err);   /* already "FILE:LINE:COL: ..." or "FILE: byte N: ..." */
+	else if (st)
 		fprintf(stderr, "locus-play: %s\n", err);
 	return st;
 }

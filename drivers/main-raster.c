@@ -77,7 +77,9 @@ int main(int argc, char **argv)
 		(unsigned)band, (size_t)budget << 20, NULL };
 	char err[600];
 	int st = dev_run(&job, err, sizeof err);
-	if (st)
+	if (st == 65)
+		fprintf(stderr, "%s\n", err);   /* already "FILE:LINE:COL: ..." or "FILE: byte N: ..." */
+	else if (st)
 		fprintf(stderr, "locus-raster: %s\n", err);
 	return st;
 }
