@@ -185,12 +185,17 @@ int main(int argc, char **argv)
 		double px = st.pixels ? st.pixels : 1;
 		fprintf(stderr, "stats: pixels=%u evals=%llu evals_per_pixel=%.3f primary=%.3f shadow=%.3f normal=%.3f"
 		        " aa_pixels=%llu lane_evals=%llu oct_visited=%llu oct_leaves=%llu wire_segments=%llu"
-		        " trace_ms=%.3f total_ms=%.3f\n",
+		        " trace_ms=%.3f total_ms=%.3f",
 		        st.pixels, (unsigned long long)st.rt.evals, st.rt.evals / px, st.rt.primary_evals / px,
 		        st.rt.shadow_evals / px, st.rt.normal_evals / px, (unsigned long long)st.rt.aa_pixels,
 		        (unsigned long long)st.rt.lane_evals, (unsigned long long)st.oct_visited,
 		        (unsigned long long)st.oct_leaves, (unsigned long long)st.wire_segments,
 		        st.seconds_trace * 1e3, total * 1e3);
+		if (st.oct_cubical_visited)
+			fprintf(stderr, " oct_cubical_visited=%llu oct_cubical_leaves=%llu oct_cubical_ms=%.3f",
+			        (unsigned long long)st.oct_cubical_visited, (unsigned long long)st.oct_cubical_leaves,
+			        st.seconds_cubical * 1e3);
+		fputc('\n', stderr);
 	}
 	scene_free(sc);
 	return status;

@@ -18,7 +18,7 @@ enum { SCENE_RAYTRACE, SCENE_OCTREE, SCENE_CONTOUR, SCENE_VORONOI, SCENE_WIREFRA
 /* Stereo layouts. */
 enum { SCENE_MONO, SCENE_STEREO_PAGES, SCENE_STEREO_SIDE };
 /* Octree cell tests. */
-enum { SCENE_SPHERICAL, SCENE_CUBICAL };
+enum { SCENE_SPHERICAL, SCENE_CUBICAL, SCENE_BOTH_TESTS };
 
 /* A named shape; drawn when it came from an `object` block. */
 typedef struct {
@@ -90,6 +90,8 @@ void scene_free(scene_t *s);
 typedef struct {
 	rt_stats_t rt;
 	uint64_t oct_visited, oct_leaves, oct_evals;
+	uint64_t oct_cubical_visited, oct_cubical_leaves; /* `test both`: the cubical run */
+	double seconds_cubical;    /* `test both`: its conversion time */
 	uint64_t wire_segments, contour_segments;
 	double seconds_trace;      /* time in the visualisation kernels (not writing) */
 	unsigned pixels;

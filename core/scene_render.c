@@ -155,8 +155,10 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 				r->test = SCENE_SPHERICAL;
 			else if (scene_tok_is(&t, "cubical"))
 				r->test = SCENE_CUBICAL;
+			else if (scene_tok_is(&t, "both"))
+				r->test = SCENE_BOTH_TESTS;
 			else
-				rc = scene_lex_expected(lx, &t, "spherical or cubical");
+				rc = scene_lex_expected(lx, &t, "spherical, cubical or both");
 		} else if (scene_tok_is(&t, "shading")) {
 			scene_lex_tok(lx, &t);
 			if (scene_tok_is(&t, "constant"))
@@ -334,6 +336,18 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			st->oct_visited += os.visited;
 			st->oct_leaves += os.leaves;
 			st->oct_evals += os.evals;
+			if (rc == 0 && r->test == SCENE_BOTH_TESTS) {
+				/* the thesis' table 6.1: the same conversion with the cubical test */
+				oct_leaf_t *l2 = NULL;
+				size_t n2 = 0;
+				oct_stats_t o2 = {0, 0, 0};
+				double tc = now();
+				rc = oct_build(objs[i].shape, r->depth, OCT_CUBICAL, &l2, &n2, &o2, err, errlen);
+				st->seconds_cubical += now() - tc;
+				st->oct_cubical_visited += o2.visited;
+				st->oct_cubical_leaves += o2.leaves;
+				free(l2);
+			}
 			if (rc == 0 && r->draw && oct_faces(cam, &objs[i], s->lights, s->nlights, leaves, nl, r->shading, &faces, &nf, &cap) < 0)
 				rc = -1, snprintf(err, errlen, "out of memory for the octree faces");
 			free(leaves);

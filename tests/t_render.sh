@@ -36,6 +36,12 @@ same_file "scene from stdin, meta to stdout" "$T/stdin.meta" "$T/t1.meta"
 "$R" "$S" -o "$T/s.meta" --stats 2> "$T/stats.txt"
 grep -q "^stats: pixels=6912 evals=[0-9]* evals_per_pixel=[0-9.]* primary=" "$T/stats.txt" && ok "--stats line" || notok "--stats line: $(cat "$T/stats.txt")"
 
+# the thesis' table 6.1: both cell tests in one run, cubical visiting fewer cells
+printf 'object t\n  point 1 0 0\n  point -1 0 0\n  point 0 1.2 0.3\n  c 3.6\n  bound -3 -3 -3 3 3 3\nend\nrender octree\n  depth 6\n  test both\n  draw no\nend\n' > "$T/both.scene"
+"$R" "$T/both.scene" -o "$T/both.meta" --stats 2> "$T/both.txt"
+sv=$(grep -o ' oct_visited=[0-9]*' "$T/both.txt" | cut -d= -f2); cv=$(grep -o 'oct_cubical_visited=[0-9]*' "$T/both.txt" | cut -d= -f2)
+[ -n "$sv" ] && [ -n "$cv" ] && [ "$cv" -lt "$sv" ] && ok "test both: spherical $sv cells, cubical $cv" || notok "test both: $(cat "$T/both.txt")"
+
 # bad scenes: one clear line, status 65, no output file left behind
 printf 'view\n  eye 0 0\nend\n' > "$T/bad1.scene"
 "$R" "$T/bad1.scene" -o "$T/bad1.meta" 2> "$T/err1.txt"; rc=$?
