@@ -143,9 +143,12 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 		         s->name, r->line, r->col);
 		return -1;
 	}
-	for (size_t i = 0; i < r->nnuclei; i++)
+	for (size_t i = 0; i < r->nnuclei; i++) {
 		if (r->nuclei[i].colour == NO_COLOUR)
 			r->nuclei[i].colour = cell_colour(i);
+		if (isnan(r->nuclei[i].weight))
+			r->nuclei[i].weight = r->metric == VORONOI_MULTIPLICATIVE ? 1 : 0;
+	}
 	voronoi_t v;
 	memset(&v, 0, sizeof v);
 	v.nuclei = r->nuclei;

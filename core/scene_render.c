@@ -55,7 +55,7 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 	tok_t t;
 	memset(&n, 0, sizeof n);
 	n.colour = NO_COLOUR;
-	n.weight = r->metric == VORONOI_MULTIPLICATIVE ? 1 : 0;
+	n.weight = NAN;   /* not given: 0 (additive) or 1 (multiplicative), decided at rendering */
 	n.kind = kw->s[0] == 'p' ? VORONOI_POINT : VORONOI_SEGMENT;
 	if (scene_lex_numbers(lx, n.a, 2, "a nucleus coordinate (x y)") < 0)
 		return -1;
@@ -65,13 +65,18 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 		if (scene_tok_is(&t, "weight")) {
 			if (scene_lex_number(lx, &n.weight, "a weight") < 0)
 				return -1;
+		} else if (scene_tok_is(&t, "z")) {
+			/* a nucleus off the drawing plane z = 0 (a section of a 3D tessellation) */
+			if (scene_lex_number(lx, &n.a[2], "a height z") < 0)
+				return -1;
+			n.b[2] = n.a[2];
 		} else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
 			double c[3];
 			if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
 				return -1;
 			n.colour = rgb3(c);
 		} else
-			return scene_lex_expected(lx, &t, "'weight', 'colour' or the end of the line");
+			return scene_lex_expected(lx, &t, "'weight', 'z', 'colour' or the end of the line");
 	}
 	if (r->nnuclei == r->cap) {
 		size_t cap = r->cap ? 2 * r->cap : 16;

@@ -42,6 +42,10 @@ printf 'object t\n  point 1 0 0\n  point -1 0 0\n  point 0 1.2 0.3\n  c 3.6\n  b
 sv=$(grep -o ' oct_visited=[0-9]*' "$T/both.txt" | cut -d= -f2); cv=$(grep -o 'oct_cubical_visited=[0-9]*' "$T/both.txt" | cut -d= -f2)
 [ -n "$sv" ] && [ -n "$cv" ] && [ "$cv" -lt "$sv" ] && ok "test both: spherical $sv cells, cubical $cv" || notok "test both: $(cat "$T/both.txt")"
 
+# Voronoi: the metric may come after the nuclei (default weights follow it); z lifts a nucleus
+printf 'view\n  size 32 32\nend\nrender voronoi\n  point 0 0 z 1\n  point 1 1 weight 2\n  point -1 1\n  metric multiplicative\nend\n' > "$T/vor.scene"
+check "voronoi: metric after the nuclei, a lifted nucleus" "$R" "$T/vor.scene" -o "$T/vor.meta" --quiet
+
 # bad scenes: one clear line, status 65, no output file left behind
 printf 'view\n  eye 0 0\nend\n' > "$T/bad1.scene"
 "$R" "$T/bad1.scene" -o "$T/bad1.meta" 2> "$T/err1.txt"; rc=$?
