@@ -38,6 +38,32 @@ static meta_rgb_t to_rgb(const double *c)
 	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
 }
 
+/* Reference mode: polish a hit point P found in float with Newton steps on the
+ * double-precision f along the ray (direction -V), staying within two pixel
+ * footprints of the float answer. */
+static void refine_hit(const model_shape_t *s, double *P, const double *V, double fp, rt_stats_t *st)
+{
+	double Q[3] = {P[0], P[1], P[2]}, moved = 0;
+	for (int it = 0; it < 6; it++) {
+		double f = model_eval(s, Q), g[3];
+		st->primary_evals++;
+		if (fabs(f) < 1e-13)
+			break;
+		model_grad(s, Q, g);
+		st->primary_evals++;
+		double slope = -(g[0] * V[0] + g[1] * V[1] + g[2] * V[2]);
+		if (!(fabs(slope) > 1e-12))
+			return;
+		double dt = -f / slope;
+		moved += dt;
+		if (!(fabs(moved) <= 2 * fp))
+			return;   /* not converging near the float hit: keep it */
+		for (int i = 0; i < 3; i++)
+			Q[i] -= dt * V[i];
+	}
+	memcpy(P, Q, sizeof Q);
+}
+
 /* Trace up to RT_LANES rays (active[k]) and shade them into col. */
 static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3], rt_stats_t *st,
                    const float *tstart, size_t stride)
@@ -77,6 +103,8 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 			P[k][i] = pko[i][k] + best[k] * pkd[i][k];
 			V[k][i] = -pkd[i][k];
 		}
+		if (p->refine && ob->shape->has_lip)
+			refine_hit(ob->shape, P[k], V[k], (pk->fa[k] + pk->fb[k] * best[k]), st);
 		model_grad(ob->shape, P[k], N[k]);
 		st->normal_evals++;
 		double l = sqrt(dot(N[k], N[k]));

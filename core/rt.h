@@ -72,6 +72,7 @@ typedef struct {
 	double accuracy;           /* hit tolerance in pixels (default 1e-3) */
 	double step_pixels;        /* bracketing fallback step in pixels (default 0.5) */
 	int supersample;           /* 0: off; N >= 2: N x N samples where neighbours differ */
+	int refine;                /* reference mode: polish hits with double-precision Newton steps */
 	double aa_threshold;       /* colour difference (0..255) that triggers supersampling */
 	unsigned threads;          /* 0: number of online CPUs */
 	rt_progress_fn progress;

@@ -35,6 +35,7 @@ typedef struct {
 	/* raytrace */
 	double accuracy, step;
 	int supersample;
+	int refine;                /* raytrace: double-precision polish of hits (reference renders) */
 	double threshold;
 	/* octree */
 	int depth, test, shading;  /* shading: RT_CONSTANT or RT_GOURAUD */

@@ -216,6 +216,8 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 						rc = scene_lex_number(lx, &r->level_to, "the last level");
 				}
 			}
+		} else if (scene_tok_is(&t, "refine")) {
+			rc = yes_no(lx, &r->refine);
 		} else if (scene_tok_is(&t, "draw")) {
 			rc = yes_no(lx, &r->draw);
 		} else if (scene_tok_is(&t, "bands")) {
@@ -301,6 +303,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 		p.accuracy = r->accuracy;
 		p.step_pixels = r->step;
 		p.supersample = r->supersample;
+		p.refine = r->refine;
 		p.aa_threshold = r->threshold;
 		p.threads = o ? o->threads : 0;
 		p.progress = o ? o->progress : NULL;

@@ -32,6 +32,13 @@ same_file "binary output converts back to the text output" "$T/back.meta" "$T/t1
 same_file "scene from stdin, meta to stdout" "$T/stdin.meta" "$T/t1.meta"
 "$BIN/locus-meta" check "$T/t1.meta" >/dev/null 2>&1 && ok "output passes locus-meta check" || notok "locus-meta check"
 
+# accuracy: the float render against its double-precision polish differs by <= 1 level
+sed 's/^render raytrace$/render raytrace\n  refine yes/' fixtures/scenes/bench-trifocal.scene | sed 's/size 1024 768/size 256 192/' > "$T/ref.scene"
+sed 's/size 1024 768/size 256 192/' fixtures/scenes/bench-trifocal.scene > "$T/def.scene"
+"$R" "$T/ref.scene" -o "$T/ref.meta" --quiet && "$R" "$T/def.scene" -o "$T/def.meta" --quiet
+"$BIN/locus-diff" --max-diff 1 "$T/ref.meta" "$T/def.meta" > /dev/null 2>&1 && ok "float render within one level of the double-precision reference" \
+	|| notok "refine: $("$BIN/locus-diff" "$T/ref.meta" "$T/def.meta" 2>&1)"
+
 # --stats: one line with the evaluation counts
 "$R" "$S" -o "$T/s.meta" --stats 2> "$T/stats.txt"
 grep -q "^stats: pixels=6912 evals=[0-9]* evals_per_pixel=[0-9.]* primary=" "$T/stats.txt" && ok "--stats line" || notok "--stats line: $(cat "$T/stats.txt")"
