@@ -7,6 +7,9 @@
 #include "render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)
+/* Memory guard: a path's points after flattening (16 bytes each). The meta-language limits the
+ * points as written (1,000,000); one arc of the largest radius flattens to about 8,900. */
+#define DEV_MAX_FLAT_POINTS (1 << 25)
 
 dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out)
 {
@@ -174,7 +177,12 @@ static int path_elem(play_t *p, const meta_cmd_t *c)
 	case META_CLOSE: rc = scan_path_close(&p->path); break;
 	default: break;
 	}
-	return rc ? nomem(p) : 0;
+	if (rc)
+		return nomem(p);
+	if (p->path.npts > DEV_MAX_FLAT_POINTS)
+		return dev_fail(p->d, META_ELIMIT, "path flattens to more than %d points (arcs or circles of "
+			"huge radius); this driver refuses it", DEV_MAX_FLAT_POINTS);
+	return 0;
 }
 
 static int paint_path(play_t *p, int kind, int text)
@@ -340,19 +348,27 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	p.rd = r;
 	p.d = d;
 	d->err[0] = 0;
+	d->reader_error = 0;
 	int rc = d->ops->open ? d->ops->open(d) : 0;
 	meta_cmd_t c;
 	while (rc == 0) {
 		int k = meta_read(r, &c);
 		if (k < 0) {
 			rc = dev_fail(d, k, "%s", meta_reader_error(r));
+			d->reader_error = 1;
 			break;
 		}
 		if (k == 0)
 			break;
 		rc = statement(&p, &c);
-		if (rc && !d->err[0])
+		if (rc == META_ESYNTAX || rc == META_ELIMIT || rc == META_ESTATE || rc == META_EVERSION) {
+			char msg[sizeof d->err];
+			snprintf(msg, sizeof msg, "%s", d->err[0] ? d->err : "device error");
+			dev_fail(d, rc, "%s %llu: %s", meta_reader_is_binary(r) ? "byte" : "line",
+				(unsigned long long)meta_reader_position(r), msg);
+		} else if (rc && !d->err[0]) {
 			dev_fail(d, rc, "device error");
+		}
 	}
 	if (rc == 0 && p.in_page)
 		rc = dev_fail(d, META_ESTATE, "input ended inside a page");

@@ -126,6 +126,7 @@ struct dev {
 	/* filled by dev_play */
 	unsigned pages;             /* pages replayed so far */
 	unsigned bands;             /* bands of the last page */
+	int reader_error;           /* 1: err is the reader's message (it names the file) */
 	char err[512];
 };
 
@@ -144,7 +145,9 @@ int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
 const char *dev_error(const dev_device_t *d);
 
 /* Replay a whole meta stream onto the device: open, pages, close. Returns 0, or <0 with
- * dev_error() set (a reader error is copied verbatim, e.g. "f.meta:3:1: ..."). */
+ * dev_error() set: a reader error verbatim ("f.meta:3:1: ...", reader_error = 1), a failure of
+ * the device or the framework with the place of the statement ("line 12: ..." or
+ * "byte 1042: ..."). */
 int dev_play(meta_reader_t *r, dev_device_t *d);
 
 /* The device registry (registry.c): NULL-terminated list, and lookup by name. */

@@ -95,8 +95,11 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	if (status == 0) {
 		int rc = dev_play(r, d);
 		if (rc) {
-			snprintf(err, errlen, "%s", dev_error(d));
 			status = status_of(rc);
+			if (d->reader_error || status != 65)
+				snprintf(err, errlen, "%s", dev_error(d));
+			else
+				snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
 		}
 	}
 	if (d->out && d->out != js.std)
