@@ -63,6 +63,7 @@ void model_free(model_shape_t *s)
 	for (size_t i = 0; i < s->nel; i++) {
 		free(s->el[i].p);
 		free(s->el[i].pf);
+		free(s->el[i].nw);
 	}
 	free(s->el);
 	expr_free(s->c.expr);
@@ -118,15 +119,95 @@ static int need_points(int kind, size_t np)
 	case MODEL_POINT: return np == 1;
 	case MODEL_SEGMENT: case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: return np == 2;
 	case MODEL_POINTS: return np >= 1;
-	case MODEL_VORONOI: return np >= 2;
 	case MODEL_POLYLINE: return np >= 2;
 	default: return np == 0;
 	}
 }
 
+static int push(model_shape_t *s, model_elem_t *e, char *err, size_t errlen)
+{
+	if (s->nel == s->cap) {
+		size_t cap = s->cap ? 2 * s->cap : 4;
+		model_elem_t *n = realloc(s->el, cap * sizeof *n);
+		if (!n) {
+			free(e->p);
+			free(e->pf);
+			free(e->nw);
+			snprintf(err, errlen, "out of memory");
+			return -1;
+		}
+		s->el = n;
+		s->cap = cap;
+	}
+	s->el[s->nel++] = *e;
+	return 0;
+}
+
+int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
+                     char *err, size_t errlen)
+{
+	if (n < 2) {
+		snprintf(err, errlen, "at least 2 nuclei");
+		return -1;
+	}
+	if (!isfinite(w)) {
+		snprintf(err, errlen, "a finite weight");
+		return -1;
+	}
+	for (size_t i = 0; i < 6 * n; i++)
+		if (!isfinite(ab[i]) || (i < n && !isfinite(wt[i]))) {
+			snprintf(err, errlen, "finite coordinates and weights (found NaN or infinity)");
+			return -1;
+		}
+	model_elem_t e = {0};
+	e.kind = MODEL_VORONOI;
+	e.w = w;
+	e.np = n;
+	e.p = malloc(6 * n * sizeof *e.p);
+	e.nw = malloc(n * sizeof *e.nw);
+	e.pf = malloc(8 * n * sizeof *e.pf);
+	if (!e.p || !e.nw || !e.pf) {
+		free(e.p);
+		free(e.nw);
+		free(e.pf);
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	memcpy(e.p, ab, 6 * n * sizeof *ab);
+	memcpy(e.nw, wt, n * sizeof *wt);
+	for (size_t k = 0; k < n; k++) {
+		const double *a = ab + 6 * k, *b = a + 3;
+		double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, l2 = dot3(ba, ba);
+		float *f = e.pf + 8 * k;
+		for (int i = 0; i < 3; i++) {
+			f[i] = (float)a[i];
+			f[3 + i] = (float)ba[i];
+		}
+		f[6] = l2 > 0 ? (float)(1.0 / l2) : 0.0f;
+		f[7] = (float)wt[k];
+	}
+	return push(s, &e, err, errlen);
+}
+
 int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np, double r,
               const model_shape_t *shape, char *err, size_t errlen)
 {
+	if (kind == MODEL_VORONOI && np >= 2) {
+		double *ab = malloc(6 * np * sizeof *ab), *wt = calloc(np, sizeof *wt);
+		int rc = -1;
+		if (ab && wt) {
+			for (size_t k = 0; k < np; k++) {
+				memcpy(ab + 6 * k, pts + 3 * k, 3 * sizeof *ab);
+				memcpy(ab + 6 * k + 3, pts + 3 * k, 3 * sizeof *ab);
+			}
+			rc = model_add_nuclei(s, w, ab, wt, np, err, errlen);
+		} else {
+			snprintf(err, errlen, "out of memory");
+		}
+		free(ab);
+		free(wt);
+		return rc;
+	}
 	if (!need_points(kind, np)) {
 		snprintf(err, errlen, "%s", kind == MODEL_POLYLINE || kind == MODEL_VORONOI ? "at least 2 points"
 		         : kind == MODEL_POINTS ? "at least 1 point" : "the element's number of points");
@@ -195,20 +276,7 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 			e.pf[i] = (float)e.p[i];
 		e.pf[3 * np] = (float)r;
 	}
-	if (s->nel == s->cap) {
-		size_t cap = s->cap ? 2 * s->cap : 4;
-		model_elem_t *n = realloc(s->el, cap * sizeof *n);
-		if (!n) {
-			free(e.p);
-			free(e.pf);
-			snprintf(err, errlen, "out of memory");
-			return -1;
-		}
-		s->el = n;
-		s->cap = cap;
-	}
-	s->el[s->nel++] = e;
-	return 0;
+	return push(s, &e, err, errlen);
 }
 
 /* Nearest point q of the element to p (setup frame); returns the distance. */
@@ -217,33 +285,37 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 	double best = INFINITY;
 	switch (e->kind) {
 	case MODEL_VORONOI: {
-		/* nearest point of the estimate: halfway between the two nearest nuclei's
-		 * directions, so that the gradient is (grad d2 - grad d1) / 2 */
-		double d1 = INFINITY, d2 = INFINITY;
-		size_t i1 = 0, i2 = 0;
+		/* e_k = d(p, N_k) - w_k; the estimate (e2 - e1)/2 has gradient (u2 - u1)/2
+		 * with u the unit vectors from the nearest points of the two nuclei; q is
+		 * placed so that (p - q) / estimate is that gradient */
+		double e1 = INFINITY, e2 = INFINITY, n1[3] = {0, 0, 0}, n2[3] = {0, 0, 0}, d1 = 0, d2 = 0;
 		for (size_t k = 0; k < e->np; k++) {
-			const double *a = e->p + 3 * k;
-			double d[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-			double l = len3(d);
-			if (l < d1) {
+			const double *a = e->p + 6 * k, *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+			double l2 = dot3(ba, ba), h = l2 > 0 ? dot3(pa, ba) / l2 : 0;
+			h = h < 0 ? 0 : h > 1 ? 1 : h;
+			double c[3] = {a[0] + h * ba[0], a[1] + h * ba[1], a[2] + h * ba[2]};
+			double dv[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+			double d = len3(dv), ev = d - e->nw[k];
+			if (ev < e1) {
+				e2 = e1;
 				d2 = d1;
-				i2 = i1;
-				d1 = l;
-				i1 = k;
-			} else if (l < d2) {
-				d2 = l;
-				i2 = k;
+				memcpy(n2, n1, sizeof n1);
+				e1 = ev;
+				d1 = d;
+				memcpy(n1, c, sizeof c);
+			} else if (ev < e2) {
+				e2 = ev;
+				d2 = d;
+				memcpy(n2, c, sizeof c);
 			}
 		}
-		double est = (d2 - d1) / 2, g[3];
+		double est = (e2 - e1) / 2;
 		for (int j = 0; j < 3; j++) {
-			double u1 = d1 > 0 ? (p[j] - e->p[3 * i1 + j]) / d1 : 0;
-			double u2 = d2 > 0 ? (p[j] - e->p[3 * i2 + j]) / d2 : 0;
-			g[j] = (u2 - u1) / 2;
+			double u1 = d1 > 0 ? (p[j] - n1[j]) / d1 : 0, u2 = d2 > 0 ? (p[j] - n2[j]) / d2 : 0;
+			q[j] = p[j] - est * (u2 - u1) / 2;
 		}
-		/* q = p - est * g / |g|^2 * |g| ... expressed so that (p - q)/est = g */
-		for (int j = 0; j < 3; j++)
-			q[j] = p[j] - est * g[j];
 		return est;
 	}
 	case MODEL_POINT: case MODEL_POINTS:

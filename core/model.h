@@ -6,11 +6,12 @@
  *   its segments), infinite line, plane (unsigned distance), planar disk
  *   (sqrt(h^2 + max(rho - r, 0)^2)), and another shape S, for which the
  *   estimate |f_S(P)| / L_S is used (never above the true distance to the
- *   surface of S, and 1-Lipschitz), and the Voronoi boundaries of a point
- *   set, estimated as (d2 - d1) / 2 with d1 <= d2 the two smallest point
- *   distances (never more than the distance to the bisector of the two
- *   nearest points, 1-Lipschitz; the locus (d2 - d1)/2 = c is a wall of half
- *   thickness about c around every 3D Voronoi face).
+ *   surface of S, and 1-Lipschitz), and the faces of an extended, additively
+ *   weighted 3D Voronoi tessellation of point and segment nuclei: with
+ *   e_i = d(P, N_i) - w_i and e1 <= e2 the two smallest, the estimate
+ *   (e2 - e1) / 2 (never more than the distance to the face between the two
+ *   nearest nuclei, 1-Lipschitz; the locus (e2 - e1)/2 = c is a wall of half
+ *   thickness about c around every face).
  *
  * The defining parameter c(P) is one of
  *   constant              bound G_c = 0
@@ -56,6 +57,7 @@ typedef struct {
 	size_t np;
 	double r;
 	float *pf;                 /* float copy (directions normalised) for the 8-wide kernel */
+	double *nw;                /* MODEL_VORONOI: the nuclei's additive weights */
 	const model_shape_t *shape; /* MODEL_SHAPE */
 } model_elem_t;
 
@@ -100,6 +102,12 @@ void model_free(model_shape_t *s);
  * direction, polyline with < 2 points, negative radius...). */
 int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np, double r,
               const model_shape_t *shape, char *err, size_t errlen);
+
+/* Add a weighted Voronoi element of n >= 2 nuclei: ab holds 6 numbers per
+ * nucleus (both ends; equal for a point), wt the additive weights. Returns 0
+ * or -1 with a message. (model_add with MODEL_VORONOI takes plain points.) */
+int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
+                     char *err, size_t errlen);
 
 /* Transforms, applied after the ones already given (SETUP -> ACTUAL). Angles in degrees. */
 void model_translate(model_shape_t *s, double x, double y, double z);

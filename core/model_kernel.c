@@ -77,18 +77,17 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 		segment8(f, x, y, z, d);
 		break;
 	case MODEL_VORONOI: {
+		/* two smallest of d(P, N_k) - w_k over the nuclei (segments; points have b = a) */
 		v8 d2;
-		point8(f, x, y, z, d);
-		point8(f + 3, x, y, z, t);
 		for (int k = 0; k < 8; k++) {
-			float a = d[k], b = t[k];
-			d[k] = a < b ? a : b;
-			d2[k] = a < b ? b : a;
+			d[k] = INFINITY;
+			d2[k] = INFINITY;
 		}
-		for (size_t i = 2; i < e->np; i++) {
-			point8(f + 3 * i, x, y, z, t);
+		for (size_t i = 0; i < e->np; i++) {
+			const float *g = f + 8 * i, wk = g[7];
+			segment8(g, x, y, z, t);
 			for (int k = 0; k < 8; k++) {
-				float v = t[k], a = d[k], b = d2[k];
+				float v = t[k] - wk, a = d[k], b = d2[k];
 				d2[k] = v < a ? a : (v < b ? v : b);
 				d[k] = v < a ? v : a;
 			}

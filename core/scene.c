@@ -251,7 +251,74 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	return 0;
 }
 
+/* `nucleus` lines of an object, gathered into one Voronoi element at its end. */
+typedef struct {
+	double *ab, *wt;
+	size_t n, cap;
+	unsigned line, col;
+} nuclei_t;
+
+static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
+{
+	double v[6];
+	size_t save = lx->pos;
+	tok_t t;
+	int k = 0;
+	while (k < 6) {
+		save = lx->pos;
+		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight")) {
+			lx->pos = save;   /* leave 'weight' (or the end) for below */
+			break;
+		}
+		lx->pos = save;
+		if (scene_lex_number(lx, &v[k], "a nucleus coordinate") < 0)
+			return -1;
+		k++;
+	}
+	if (k != 3 && k != 6)
+		return scene_lex_error(lx, kw->line, kw->col, "expected nucleus X Y Z (a point) or X1 Y1 Z1 X2 Y2 Z2 (a segment), then optionally 'weight W'");
+	if (k == 3)
+		memcpy(v + 3, v, 3 * sizeof *v);
+	double w = 0;
+	if (scene_lex_tok(lx, &t)) {
+		if (!scene_tok_is(&t, "weight"))
+			return scene_lex_expected(lx, &t, "'weight' or the end of the line");
+		if (scene_lex_number(lx, &w, "a nucleus weight") < 0)
+			return -1;
+	}
+	if (nu->n == nu->cap) {
+		size_t cap = nu->cap ? 2 * nu->cap : 8;
+		double *ab = realloc(nu->ab, 6 * cap * sizeof *ab);
+		if (ab)
+			nu->ab = ab;
+		double *wt = realloc(nu->wt, cap * sizeof *wt);
+		if (wt)
+			nu->wt = wt;
+		if (!ab || !wt)
+			return scene_lex_error(lx, kw->line, kw->col, "out of memory");
+		nu->cap = cap;
+	}
+	if (nu->n == 0) {
+		nu->line = kw->line;
+		nu->col = kw->col;
+	}
+	memcpy(nu->ab + 6 * nu->n, v, sizeof v);
+	nu->wt[nu->n++] = w;
+	return scene_lex_eol(lx);
+}
+
+static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei_t *nu);
+
 static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
+{
+	nuclei_t nu = {NULL, NULL, 0, 0, 0, 0};
+	int rc = parse_body_inner(lx, sc, o, &nu);
+	free(nu.ab);
+	free(nu.wt);
+	return rc;
+}
+
+static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei_t *nu)
 {
 	model_shape_t *m = o->shape;
 	rt_object_t *mat = &o->mat;
@@ -263,6 +330,13 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 		if (scene_tok_is(&t, "end")) {
 			if (scene_lex_eol(lx) < 0)
 				return -1;
+			if (nu->n) {
+				char e2[200];
+				if (model_add_nuclei(m, 1, nu->ab, nu->wt, nu->n, e2, sizeof e2) < 0) {
+					snprintf(msg, sizeof msg, "expected %s", e2);
+					return scene_lex_error(lx, nu->line, nu->col, msg);
+				}
+			}
 			char e[300];
 			const char *w = NULL;
 			if (model_prepare(m, e, sizeof e, &w) < 0) {
@@ -294,6 +368,9 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 				return -1;
 		} else if (scene_tok_is(&t, "disk")) {
 			if (scene_lex_numbers(lx, v, 7, "disk CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_DISK, v, 2, v[6], NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "nucleus")) {
+			if (nucleus_line(lx, nu, &t) < 0)
 				return -1;
 		} else if (scene_tok_is(&t, "distance-to")) {
 			tok_t n;
@@ -362,7 +439,7 @@ static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 			if (*dst < 0)
 				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
 		} else {
-			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi nucleus distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
 		}
 		if (!lx->failed && scene_lex_eol(lx) < 0)
 			return -1;

@@ -93,6 +93,26 @@ int main(void)
 		model_free(s);
 	}
 
+	{
+		/* weighted nuclei: points (+-1,0,0) with weights 0 and 0.5, a segment far away:
+		 * the face is at x = 0.25 on the axis, so from (0.3,0,0) the estimate is 0.05 */
+		double ab[18] = {1, 0, 0, 1, 0, 0, -1, 0, 0, -1, 0, 0, 0, 5, 0, 3, 6, 1}, wt[3] = {0, 0.5, 0.2};
+		model_shape_t *s = model_new();
+		CHECK(model_add_nuclei(s, 1, ab, wt, 3, err, sizeof err) == 0, "weighted point and segment nuclei");
+		double q[3] = {0.3, 0, 0};
+		CHECK(fabs(model_eval(s, q) - 0.05) < 1e-12, "weighted Voronoi: distance to the shifted face (%g)", model_eval(s, q));
+		s->user_box = 1;
+		memcpy(s->box, (double[]){-2, -2, -2, 2, 6, 2}, sizeof s->box);
+		const char *w;
+		double kerr = 0, r = model_prepare(s, err, sizeof err, &w) == 0 ? lip_ratio(s, &kerr) : 9;
+		CHECK(s->lip == 1 && r <= 1 + 1e-9 && kerr < 1e-4, "weighted segment/point nuclei: L = 1 holds (worst %.4f), float agrees (%.2g)", r, kerr);
+		double g[3], h = 1e-6, pa[3] = {0.3 + h, 0.1, 0.2}, pb[3] = {0.3 - h, 0.1, 0.2}, pc[3] = {0.3, 0.1, 0.2};
+		model_grad(s, pc, g);
+		CHECK(fabs(g[0] - (model_eval(s, pa) - model_eval(s, pb)) / (2 * h)) < 1e-5, "weighted Voronoi gradient matches differences");
+		CHECK(model_add_nuclei(s, 1, ab, wt, 1, err, sizeof err) < 0, "one nucleus is refused");
+		model_free(s);
+	}
+
 	/* another shape as a distance: |f| / L */
 	{
 		model_shape_t *ball = shape1(MODEL_POINT, (double[]){0, 0, 0}, 1, 0);
