@@ -251,6 +251,30 @@ static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, met
 	}
 }
 
+/* Convex polygons: every row crosses exactly two edges (or none), the span lies between. */
+static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, meta_rgb_t rgb)
+{
+	int j0 = e[0].jf, j1 = e[0].jl;
+	for (size_t k = 1; k < n; k++) {
+		if (e[k].jf < j0) j0 = e[k].jf;
+		if (e[k].jl > j1) j1 = e[k].jl;
+	}
+	for (int j = j0; j <= j1; j++) {
+		int64_t lo = INT64_MAX, hi = INT64_MIN;
+		for (size_t k = 0; k < n; k++) {
+			edge_t *a = &e[k];
+			if (j < a->jf || j > a->jl)
+				continue;
+			if (a->i < lo) lo = a->i;
+			if (a->i > hi) hi = a->i;
+			if (j < a->jl)
+				edge_step(a);
+		}
+		if (hi > lo)
+			paint(b, j, lo, hi, rgb);
+	}
+}
+
 /* The general scanline loop over n prepared edges. */
 static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_rgb_t rgb)
 {
@@ -342,6 +366,12 @@ int scan_fill(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, int rul
 int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
 		meta_rgb_t rgb)
 {
+	return scan_fill_piece(c, b, pts, m, rule, rgb, 0);
+}
+
+int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
+		meta_rgb_t rgb, int convex)
+{
 	int lo, hi;
 	band_rows(b, &lo, &hi);
 	if (lo >= hi || m < 3)
@@ -364,6 +394,10 @@ int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, si
 	for (size_t k = 0; k < m; k++) {
 		const scan_pt_t *a = &pts[k], *z = &pts[k + 1 == m ? 0 : k + 1];
 		n += (size_t)edge_init(&c->edges[n], a->x, a->y, z->x, z->y, lo, hi);
+	}
+	if (convex && n > 0) {
+		sweep_convex(b, c->edges, n, rgb);
+		return 0;
 	}
 	return sweep(c, b, n, rule, rgb);
 }

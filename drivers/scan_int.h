@@ -8,6 +8,11 @@
 scan_path_t *scan_ctx_piece(scan_ctx_t *c);
 scan_path_t *scan_ctx_dashed(scan_ctx_t *c);
 
+/* scan_fill_poly for a polygon known to be convex (parallelograms, rectangles, triangles,
+ * discs): the same pixels, found without sorting crossings. */
+int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t n, int rule,
+		meta_rgb_t rgb, int convex);
+
 /* Round a double to the nearest integer (thousandths), ties away from zero. */
 static inline int64_t scan_round(double v)
 {

@@ -21,7 +21,15 @@ typedef struct {
 static void piece(stroker_t *s, const scan_pt_t *q, size_t n)
 {
 	if (s->rc == 0)
-		s->rc = scan_fill_poly(s->c, s->b, q, n, META_RULE_NON_ZERO, s->rgb);
+		s->rc = scan_fill_piece(s->c, s->b, q, n, META_RULE_NON_ZERO, s->rgb, 0);
+}
+
+/* A piece that is convex by construction, whatever the rounding: parallelograms of segments,
+ * rectangles of caps, triangles, discs (their chords' sagitta far exceeds the rounding). */
+static void convex_piece(stroker_t *s, const scan_pt_t *q, size_t n)
+{
+	if (s->rc == 0)
+		s->rc = scan_fill_piece(s->c, s->b, q, n, META_RULE_NON_ZERO, s->rgb, 1);
 }
 
 /* Disc offsets: the §5.4 full circle of radius h, points (round(h cos t), round(h sin t)). */
@@ -63,7 +71,7 @@ static void disc(stroker_t *s, scan_pt_t v)
 			return;
 		}
 	}
-	piece(s, pc->pts, pc->npts);
+	convex_piece(s, pc->pts, pc->npts);
 }
 
 /* The rounded offset o = round(h * n) of segment direction (dx, dy), n = (-dy, dx)/len. */
@@ -81,7 +89,7 @@ static void segment(stroker_t *s, scan_pt_t p, scan_pt_t q, scan_pt_t o)
 	scan_pt_t v[4] = {
 		{ p.x - o.x, p.y - o.y }, { q.x - o.x, q.y - o.y },
 		{ q.x + o.x, q.y + o.y }, { p.x + o.x, p.y + o.y } };
-	piece(s, v, 4);
+	convex_piece(s, v, 4);
 }
 
 /* Join at v from segment (d1, o1, n1) into segment (d2, o2, n2). */
@@ -114,7 +122,7 @@ static void join(stroker_t *s, scan_pt_t v, scan_pt_t d1, scan_pt_t o1, double n
 		}
 	}
 	scan_pt_t q[3] = { v, a, b };
-	piece(s, q, 3);
+	convex_piece(s, q, 3);
 }
 
 static void cap(stroker_t *s, scan_pt_t p, scan_pt_t o, int at_start)
@@ -129,7 +137,7 @@ static void cap(stroker_t *s, scan_pt_t p, scan_pt_t o, int at_start)
 		}
 		scan_pt_t q[4] = { { p.x + o.x, p.y + o.y }, { p.x - o.x, p.y - o.y },
 			{ p.x - o.x + e.x, p.y - o.y + e.y }, { p.x + o.x + e.x, p.y + o.y + e.y } };
-		piece(s, q, 4);
+		convex_piece(s, q, 4);
 	}
 }
 
@@ -140,7 +148,7 @@ static void dot(stroker_t *s, scan_pt_t v)
 	} else if (s->cap == META_CAP_SQUARE) {
 		scan_pt_t q[4] = { { v.x - s->hr, v.y - s->hr }, { v.x + s->hr, v.y - s->hr },
 			{ v.x + s->hr, v.y + s->hr }, { v.x - s->hr, v.y + s->hr } };
-		piece(s, q, 4);
+		convex_piece(s, q, 4);
 	}
 }
 
