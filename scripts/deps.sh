@@ -6,8 +6,8 @@ set -u
 purpose=${1:-build}
 case $purpose in
 build) pkgs="gcc make pkg-config libpng-dev zlib1g-dev" ;;
-check) pkgs="libpng-dev zlib1g-dev python3 imagemagick ghostscript" ;;
-bench) pkgs="plotutils povray python3-contourpy python3-numpy time imagemagick" ;;
+check) pkgs="libpng-dev zlib1g-dev python3 time plotutils" ;;
+bench) pkgs="plotutils povray python3-contourpy python3-numpy time imagemagick qhull-bin" ;;
 *) echo "deps.sh: unknown purpose '$purpose'" >&2; exit 64 ;;
 esac
 missing=""
