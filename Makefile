@@ -29,8 +29,9 @@ BINDIR     := bin
 SANFLAGS   :=
 endif
 
-PKG_CFLAGS := $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
-PKG_LIBS   := $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+# Asked of pkg-config on first use (after deps-ok may have installed them), then kept.
+PKG_CFLAGS = $(eval PKG_CFLAGS := $$(shell pkg-config --cflags $(PKGS) 2>/dev/null))$(PKG_CFLAGS)
+PKG_LIBS   = $(eval PKG_LIBS := $$(shell pkg-config --libs $(PKGS) 2>/dev/null))$(PKG_LIBS)
 ALL_CFLAGS  = $(STDFLAGS) $(WARNFLAGS) $(OPT) $(MATHFLAGS) $(CFLAGS) $(SANFLAGS) -Imeta -Idrivers -Icore $(PKG_CFLAGS) -MMD -MP
 LDLIBS_ALL  = $(PKG_LIBS) -lpthread -lm
 ALL_LDFLAGS = $(SANFLAGS) $(LDFLAGS)
@@ -39,7 +40,9 @@ PROGRAMS :=
 TESTPROGS :=
 LIBS :=
 
-.PHONY: all demo check bench install deps clean fixtures
+.PHONY: all demo check bench install deps-ok clean programs
+# keep intermediate objects: rebuilds stay incremental
+.SECONDARY:
 all: deps-ok programs
 
 include meta/module.mk
@@ -54,7 +57,7 @@ programs: $(PROGRAMS)
 deps-ok:
 	@scripts/deps.sh build
 
-$(B)/%.o: %.c
+$(B)/%.o: %.c | deps-ok
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 

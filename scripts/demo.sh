@@ -14,8 +14,21 @@ fi
 "$BIN/locus-meta" info out/default.meta > out/default.info
 "$BIN/locus-play" -l | while read -r dev ext rest; do
 	[ -n "$dev" ] || continue
-	echo "demo: $dev -> out/default.$dev.$ext"
+	if [ "$ext" = - ]; then
+		"$BIN/locus-play" -d "$dev" out/default.meta
+		echo "demo: $dev: replayed, writes nothing ($rest)"
+		continue
+	fi
 	"$BIN/locus-play" -d "$dev" out/default.meta -o "out/default.$dev.$ext"
+	# every raster output must hold the same pixels as the reference PNG
+	if [ "$dev" != png ] && "$BIN/locus-diff" out/default.png.png "out/default.$dev.$ext" > /dev/null 2>&1; then
+		same="same pixels as the PNG"
+	elif [ "$dev" = png ]; then
+		same="the reference"
+	else
+		same="differs from the PNG (see locus-diff)"
+	fi
+	echo "demo: $dev -> out/default.$dev.$ext ($same)"
 done
 echo "demo: done; pictures are in out/"
 ls -l out
