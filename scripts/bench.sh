@@ -37,7 +37,8 @@ skip() { s_n=$1; shift; emit "BENCH-SKIP name=$s_n reason=$(words "$*" | cut -c1
 fail() { f_n=$1; shift; emit "BENCH-FAIL name=$f_n reason=$(words "$*" | cut -c1-200)"; FAILED=1; }
 want() { case " $BENCH_ONLY " in *" $1 "*) return 0 ;; esac; return 1; }
 
-# measure N OUT CMD...: run CMD N times with stdout to OUT (stderr of the last run in $W/err).
+# measure N OUT CMD...: run CMD N times with stdout to OUT (stderr of the last run in $W/err,
+# of all N runs one after the other in $W/errs, for medians of figures the programs print).
 # Sets M_S (median wall seconds, from the clock around /usr/bin/time), M_CPU (median user +
 # system CPU seconds: less disturbed by other load on a shared machine) and M_MIB (median
 # peak RSS in MiB, from /usr/bin/time %M). Returns 1 (M_ERR set) if any run fails.
@@ -45,6 +46,7 @@ measure() {
 	m_n=$1 m_out=$2
 	shift 2
 	: > "$W/times"
+	: > "$W/errs"
 	m_i=0
 	while [ "$m_i" -lt "$m_n" ]; do
 		t0=$(date +%s%N)
@@ -53,6 +55,7 @@ measure() {
 			return 1
 		fi
 		t1=$(date +%s%N)
+		cat "$W/err" >> "$W/errs"
 		echo "$(( (t1 - t0) / 1000 )) $(tail -1 "$W/time1" | awk '{print $2, $3 + $4}')" >> "$W/times"
 		m_i=$((m_i + 1))
 	done
@@ -264,6 +267,16 @@ scene_with() {
 # stat KEY FILE: value of KEY=VALUE in a locus-render --stats line
 stat() { grep -o -m1 -E "(^| )$1=[^ ]+" "$2" | head -1 | sed 's/.*=//'; }
 
+# median FILE: median of the numbers in FILE, one a line (empty when there are none)
+median() { sort -n "$1" | awk '{a[NR] = $1} END {if (NR) print a[int((NR + 1) / 2)]}'; }
+
+# stat_med KEY FILE: median of KEY=VALUE over all the --stats lines in FILE (one per run:
+# the trace time of one run moves by 2x on a shared machine, the median much less)
+stat_med() {
+	grep -o -E "(^| )$1=[^ ]+" "$2" | sed 's/.*=//' > "$W/vals"
+	median "$W/vals"
+}
+
 bench_pov() {
 	for s in trifocal segpoint; do
 		pov=fixtures/bench/$s.pov
@@ -273,7 +286,9 @@ bench_pov() {
 			fail "$s" "$M_ERR"; continue
 		fi
 		pv_s=$M_S pv_mib=$M_MIB pv_cpu=$M_CPU
-		pv_trace=$(sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$W/err" | tail -1)
+		# the trace time: median over the runs, like the wall time
+		sed -n 's/.*Trace Time:.*(\([0-9.]*\) seconds).*/\1/p' "$W/errs" > "$W/vals"
+		pv_trace=$(median "$W/vals")
 		pv_calls=$(awk '/Function VM calls/ {print $NF}' "$W/err" | tail -1)
 		pv_epp=$(awk -v c="${pv_calls:-0}" 'BEGIN {printf "%.1f", c / (1024 * 768)}')
 		# POV-Ray's own accuracy: against its render at accuracy 1e-5
@@ -291,9 +306,10 @@ bench_pov() {
 			fail "$s" "$M_ERR"; continue
 		fi
 		lr_s=$M_S lr_mib=$M_MIB lr_cpu=$M_CPU
-		grep '^stats:' "$W/err" > "$W/$s.stats"
+		grep '^stats:' "$W/errs" > "$W/$s.stats"
 		l_epp=$(stat evals_per_pixel "$W/$s.stats")
-		l_ms=$(stat trace_ms "$W/$s.stats")
+		# median of the runs' trace_ms, as locus_s is the median of their wall times
+		l_ms=$(stat_med trace_ms "$W/$s.stats")
 		"$BIN/locus-raster" "$W/$s.meta" -o "$W/$s.locus.png" 2> "$W/raster.err" ||
 			{ fail "$s" "locus-raster: $(tail -1 "$W/raster.err")"; continue; }
 		# accuracy: Locus against Locus at accuracy 1e-4 pixel (the scene's `accuracy`,
@@ -326,7 +342,7 @@ bench_octree() {
 		fi
 		emit "BENCH-INFO name=octree-d10-$t locus_s=$M_S locus_rss_mib=$M_MIB locus_cpu_s=$M_CPU" \
 			"cells_visited=$(stat oct_visited "$W/err") leaves=$(stat oct_leaves "$W/err")" \
-			"octree_ms=$(stat trace_ms "$W/err")"
+			"octree_ms=$(stat_med trace_ms "$W/errs")"
 	done
 }
 
