@@ -12,29 +12,16 @@
  * With -o, also writes the map (colour bands + iso-lines) as a meta file on
  * a 1024 x 1024 page so it can be looked at.
  */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
-#include <time.h>
 
+#include "bench_util.h"
 #include "contour.h"
 #include "locus_meta.h"
 
-#ifndef LOCUS_VERSION
-#define LOCUS_VERSION "unknown"
-#endif
-
 #define N 1024
 #define NLEVELS 19
-
-static double now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 static int count_cb(void *user, unsigned level, const contour_point_t *p, size_t n, int closed)
 {
@@ -45,28 +32,12 @@ static int count_cb(void *user, unsigned level, const contour_point_t *p, size_t
 	return 0;
 }
 
-static int cmp(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
-
-static int fwrite_cb(void *user, const void *buf, size_t n)
-{
-	return fwrite(buf, 1, n, user) == n ? 0 : -1;
-}
-
 static int write_meta(const char *path, const contour_grid_t *g, const double *levels)
 {
-	char tmp[4096];
-	snprintf(tmp, sizeof tmp, "%s.tmp", path);
-	FILE *f = fopen(tmp, "wb");
-	if (!f) {
-		fprintf(stderr, "bench_contour: %s: %s\n", tmp, strerror(errno));
+	bench_meta_out_t o;
+	if (bench_meta_open(&o, "bench_contour", path) != 0)
 		return 74;
-	}
-	meta_writer_t *w = meta_writer_new(fwrite_cb, f, META_ENC_TEXT);
+	meta_writer_t *w = o.w;
 	meta_rgb_t bands[NLEVELS + 1], lines[NLEVELS];
 	contour_palette(bands, NLEVELS + 1);
 	for (int k = 0; k < NLEVELS + 1; k++) /* pale bands: mix with white */
@@ -84,49 +55,23 @@ static int write_meta(const char *path, const contour_grid_t *g, const double *l
 		rc = contour_write_meta(w, g, levels, NLEVELS, &st, NULL);
 	if (rc == 0)
 		rc = meta_end_page(w);
-	if (rc < 0)
-		fprintf(stderr, "bench_contour: %s: %s\n", path,
-		        *contour_error() ? contour_error() : w ? meta_writer_error(w) : "out of memory");
-	int rc2 = w ? meta_writer_close(w) : 0;
-	if (fclose(f) != 0 || rc2 < 0 || rc < 0) {
-		if (rc >= 0)
-			fprintf(stderr, "bench_contour: %s: write failed\n", path);
-		remove(tmp);
-		return 74;
-	}
-	if (rename(tmp, path) != 0) {
-		fprintf(stderr, "bench_contour: %s: %s\n", path, strerror(errno));
-		remove(tmp);
-		return 74;
-	}
-	return 0;
+	return bench_meta_close(&o, rc, contour_error());
 }
 
 int main(int argc, char **argv)
 {
-	int runs = 7;
-	const char *out = NULL;
+	bench_opts_t opt = { "bench_contour",
+		             "usage: bench_contour [-n RUNS] [-o FILE.meta]\n"
+		             "Times contour extraction of a 1024x1024 3-point distance sum, 19 levels.\n",
+		             7, NULL, 0 };
 	for (int a = 1; a < argc; a++) {
-		if (!strcmp(argv[a], "--help")) {
-			printf("usage: bench_contour [-n RUNS] [-o FILE.meta]\n"
-			       "Times contour extraction of a 1024x1024 3-point distance sum, 19 levels.\n");
-			return 0;
-		} else if (!strcmp(argv[a], "--version")) {
-			printf("bench_contour %s\n", LOCUS_VERSION);
-			return 0;
-		} else if (!strcmp(argv[a], "-n") && a + 1 < argc) {
-			runs = atoi(argv[++a]);
-			if (runs < 1 || runs > 1000) {
-				fprintf(stderr, "bench_contour: -n wants 1..1000\n");
-				return 64;
-			}
-		} else if (!strcmp(argv[a], "-o") && a + 1 < argc) {
-			out = argv[++a];
-		} else {
-			fprintf(stderr, "bench_contour: unknown argument '%s' (try --help)\n", argv[a]);
-			return 64;
-		}
+		int k = bench_option(&opt, argc, argv, &a);
+		if (k == BENCH_OPT_EXIT)
+			return opt.exit_code;
+		if (k == BENCH_OPT_OTHER)
+			return bench_unknown(&opt, argv[a]);
 	}
+	int runs = opt.runs;
 	float *z = malloc((size_t)N * N * sizeof *z);
 	double levels[NLEVELS], *t = malloc(runs * sizeof *t);
 	if (!z || !t) {
@@ -149,16 +94,15 @@ int main(int argc, char **argv)
 	size_t sum[2] = { 0, 0 };
 	for (int r = 0; r < runs; r++) {
 		sum[0] = sum[1] = 0;
-		double t0 = now();
+		double t0 = bench_now();
 		int rc = contour_extract(&g, levels, NLEVELS, count_cb, sum, &st);
-		t[r] = now() - t0;
+		t[r] = bench_now() - t0;
 		if (rc < 0) {
 			fprintf(stderr, "bench_contour: %s\n", contour_error());
 			return 70;
 		}
 	}
-	qsort(t, runs, sizeof *t, cmp);
-	double med = t[runs / 2];
+	double med = bench_median(t, runs);
 	printf("contour 1024x1024, 19 levels: %.4f s (median of %d, best %.4f), %zu segments, "
 	       "%zu polylines (%zu closed), %zu points\n",
 	       med, runs, t[0], st.segments, st.polylines, st.closed, st.points);
@@ -167,7 +111,7 @@ int main(int argc, char **argv)
 	 * level, and the polylines drop those repeated points */
 	printf("BENCH contour-locus %.6f s segments=%zu polylines=%zu points=%zu\n", med, st.segments, st.polylines,
 	       st.points);
-	int rc = out ? write_meta(out, &g, levels) : 0;
+	int rc = opt.out ? write_meta(opt.out, &g, levels) : 0;
 	free(z);
 	free(t);
 	return rc;

@@ -14,29 +14,17 @@
  * There is no exact anchor: qhull (rbox 100000 D2 t1 | qvoronoi o) computes
  * unweighted point diagrams only; it is context, not the same task.
  */
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "bench_util.h"
 #include "locus_meta.h"
 #include "voronoi.h"
 
-#ifndef LOCUS_VERSION
-#define LOCUS_VERSION "unknown"
-#endif
-
 #define N 1024
 #define NUCLEI 100
-
-static double now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 static unsigned long long rng = 0x2545f4914f6cdd1dULL;
 static double uniform(void)
@@ -57,71 +45,35 @@ static int count_cb(void *user, int32_t l, int32_t r, const voronoi_point_t *p, 
 	return 0;
 }
 
-static int cmp(const void *a, const void *b)
-{
-	double x = *(const double *)a, y = *(const double *)b;
-	return x < y ? -1 : x > y;
-}
-
-static int fwrite_cb(void *user, const void *buf, size_t n)
-{
-	return fwrite(buf, 1, n, user) == n ? 0 : -1;
-}
-
 static int write_meta(const char *path, const voronoi_t *v, const voronoi_rect_t *r, unsigned threads)
 {
-	char tmp[4096];
-	snprintf(tmp, sizeof tmp, "%s.tmp", path);
-	FILE *f = fopen(tmp, "wb");
-	if (!f) {
-		fprintf(stderr, "bench_voronoi: %s: %s\n", tmp, strerror(errno));
+	bench_meta_out_t o;
+	if (bench_meta_open(&o, "bench_voronoi", path) != 0)
 		return 74;
-	}
-	meta_writer_t *w = meta_writer_new(fwrite_cb, f, META_ENC_TEXT);
 	voronoi_style_t st = { 1, 1, 0x000000, 1.5, threads, 1, 0x000000, 3 };
-	int rc = w ? meta_page(w, N, N) : -1;
+	int rc = o.w ? meta_page(o.w, N, N) : -1;
 	if (rc == 0)
-		rc = voronoi_write_meta(w, v, r, &st, NULL);
+		rc = voronoi_write_meta(o.w, v, r, &st, NULL);
 	if (rc == 0)
-		rc = meta_end_page(w);
-	if (rc < 0)
-		fprintf(stderr, "bench_voronoi: %s: %s\n", path,
-		        *voronoi_error() ? voronoi_error() : w ? meta_writer_error(w) : "out of memory");
-	int rc2 = w ? meta_writer_close(w) : 0;
-	if (fclose(f) != 0 || rc2 < 0 || rc < 0) {
-		if (rc >= 0)
-			fprintf(stderr, "bench_voronoi: %s: write failed\n", path);
-		remove(tmp);
-		return 74;
-	}
-	if (rename(tmp, path) != 0) {
-		fprintf(stderr, "bench_voronoi: %s: %s\n", path, strerror(errno));
-		remove(tmp);
-		return 74;
-	}
-	return 0;
+		rc = meta_end_page(o.w);
+	return bench_meta_close(&o, rc, voronoi_error());
 }
 
 int main(int argc, char **argv)
 {
-	int runs = 5, metric = VORONOI_ADDITIVE;
+	bench_opts_t opt = { "bench_voronoi",
+		             "usage: bench_voronoi [-n RUNS] [-t THREADS] [-m add|mul] [-o FILE.meta]\n"
+		             "Times a weighted Voronoi tessellation of 100 point/segment nuclei at 1024x1024.\n",
+		             5, NULL, 0 };
+	int metric = VORONOI_ADDITIVE;
 	unsigned threads = 0;
-	const char *out = NULL;
 	for (int a = 1; a < argc; a++) {
-		if (!strcmp(argv[a], "--help")) {
-			printf("usage: bench_voronoi [-n RUNS] [-t THREADS] [-m add|mul] [-o FILE.meta]\n"
-			       "Times a weighted Voronoi tessellation of 100 point/segment nuclei at 1024x1024.\n");
-			return 0;
-		} else if (!strcmp(argv[a], "--version")) {
-			printf("bench_voronoi %s\n", LOCUS_VERSION);
-			return 0;
-		} else if (!strcmp(argv[a], "-n") && a + 1 < argc) {
-			runs = atoi(argv[++a]);
-			if (runs < 1 || runs > 1000) {
-				fprintf(stderr, "bench_voronoi: -n wants 1..1000\n");
-				return 64;
-			}
-		} else if (!strcmp(argv[a], "-t") && a + 1 < argc) {
+		int k = bench_option(&opt, argc, argv, &a);
+		if (k == BENCH_OPT_EXIT)
+			return opt.exit_code;
+		if (k == BENCH_OPT_DONE)
+			continue;
+		if (!strcmp(argv[a], "-t") && a + 1 < argc) {
 			threads = (unsigned)atoi(argv[++a]);
 		} else if (!strcmp(argv[a], "-m") && a + 1 < argc) {
 			a++;
@@ -133,13 +85,11 @@ int main(int argc, char **argv)
 				fprintf(stderr, "bench_voronoi: -m wants add or mul\n");
 				return 64;
 			}
-		} else if (!strcmp(argv[a], "-o") && a + 1 < argc) {
-			out = argv[++a];
 		} else {
-			fprintf(stderr, "bench_voronoi: unknown argument '%s' (try --help)\n", argv[a]);
-			return 64;
+			return bench_unknown(&opt, argv[a]);
 		}
 	}
+	int runs = opt.runs;
 	voronoi_nucleus_t nuc[NUCLEI];
 	for (int k = 0; k < NUCLEI; k++) {
 		double x = uniform(), y = uniform(), ang = uniform() * 6.283185307179586, len = 0.03 + 0.12 * uniform();
@@ -169,28 +119,27 @@ int main(int argc, char **argv)
 	voronoi_stats_t st = { 0 };
 	size_t points = 0;
 	for (int i = 0; i < runs; i++) {
-		double t0 = now();
+		double t0 = bench_now();
 		int rc = voronoi_label(&v, &r, threads, lab);
-		double t1 = now();
+		double t1 = bench_now();
 		points = 0;
 		if (rc == 0)
 			rc = voronoi_boundaries(&v, &r, lab, count_cb, &points, &st);
-		t[i] = now() - t0;
+		t[i] = bench_now() - t0;
 		tl[i] = t1 - t0;
 		if (rc < 0) {
 			fprintf(stderr, "bench_voronoi: %s\n", voronoi_error());
 			return 70;
 		}
 	}
-	qsort(t, runs, sizeof *t, cmp);
-	qsort(tl, runs, sizeof *tl, cmp);
+	double med = bench_median(t, runs), med_label = bench_median(tl, runs);
 	printf("voronoi 1024x1024, %d nuclei (60 points, 40 segments, %s weights): %.4f s (median of %d; "
 	       "labelling %.4f s), %zu crossings, %zu junction cells, %zu polylines (%zu closed), %zu points\n",
-	       NUCLEI, metric ? "multiplicative" : "additive", t[runs / 2], runs, tl[runs / 2], st.crossings,
+	       NUCLEI, metric ? "multiplicative" : "additive", med, runs, med_label, st.crossings,
 	       st.junctions, st.polylines, st.closed, points);
-	printf("BENCH voronoi-locus %.6f s label_s=%.6f polylines=%zu points=%zu\n", t[runs / 2], tl[runs / 2],
+	printf("BENCH voronoi-locus %.6f s label_s=%.6f polylines=%zu points=%zu\n", med, med_label,
 	       st.polylines, points);
-	int rc = out ? write_meta(out, &v, &r, threads) : 0;
+	int rc = opt.out ? write_meta(opt.out, &v, &r, threads) : 0;
 	free(lab);
 	free(t);
 	free(tl);
