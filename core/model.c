@@ -369,17 +369,28 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 
 static double mandel(const model_param_t *c, const double *q)
 {
-	double cr = c->u[0] * q[0] + c->u[1] * q[1] + c->u[2] * q[2] + c->u[3];
-	double ci = c->v[0] * q[0] + c->v[1] * q[1] + c->v[2] * q[2] + c->v[3];
-	double zr = 0, zi = 0;
+	double r[3] = {q[0], q[1], q[2]};
+	if (c->revolve) {
+		r[1] = sqrt(q[1] * q[1] + q[2] * q[2]);
+		r[2] = 0;
+	}
+	double cr = c->u[0] * r[0] + c->u[1] * r[1] + c->u[2] * r[2] + c->u[3];
+	double ci = c->v[0] * r[0] + c->v[1] * r[1] + c->v[2] * r[2] + c->v[3];
+	double zr = 0, zi = 0, bail = c->smooth ? 1e6 : 4;
 	int n = 0;
-	while (n < c->maxit && zr * zr + zi * zi <= 4) {
+	while (n < c->maxit && zr * zr + zi * zi <= bail) {
 		double t = zr * zr - zi * zi + cr;
 		zi = 2 * zr * zi + ci;
 		zr = t;
 		n++;
 	}
-	return c->c0 + c->amp * n / c->maxit;
+	double m = n;
+	if (c->smooth && n < c->maxit) {
+		/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
+		m = n + 1 - log2(0.5 * log(zr * zr + zi * zi));
+		m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
+	}
+	return c->c0 + c->amp * m / c->maxit;
 }
 
 static unsigned hash3(unsigned seed, int x, int y, int z)

@@ -22,7 +22,14 @@
  *                         G_c = 3*sqrt(3)*|amp|*freq
  *   mandelbrot            c0 + amp * n(P)/maxit, n = escape count of
  *                         z <- z^2 + (u(P) + i v(P)) with u, v affine in P:
- *                         piecewise constant, no bound (bracketing fallback)
+ *                         piecewise constant, no bound (bracketing fallback);
+ *                         `smooth`: n is the continuous escape count
+ *                         n + 1 - log2(ln|z_n|) (bail-out |z| > 1000, in
+ *                         [0, maxit]), whose level sets are the set's
+ *                         equipotentials; `revolve`: u, v read the point
+ *                         (x, sqrt(y^2+z^2), 0), so the picture in the
+ *                         (u, v) plane is turned about the x axis into a
+ *                         solid of revolution (the thesis' figure 5.10)
  *   another shape         c0 + amp * f_S(P): G_c = |amp| * L_S
  *
  * Coordinates: elements and the parameter live in the object's SETUP frame;
@@ -30,6 +37,9 @@
  * in call order). f_actual(P) = f_setup(M^-1 P), so
  *   L = ||M^-1|| * (sum |w_i| over setup elements + G_c) + sum |w_j| (shape elements)
  * where ||M^-1|| <= product of 1/min|scale| over the scale steps.
+ *
+ * A shape without elements is f = -c(P) (only for a parameter that is not a
+ * constant): the solid is where the defining parameter is positive.
  *
  * The shape is f < 0 inside (for positive weights) and f = 0 on its surface.
  */
@@ -70,6 +80,8 @@ typedef struct {
 	unsigned seed;             /* noise */
 	double u[4], v[4];         /* mandelbrot: u = u0 x + u1 y + u2 z + u3, v likewise */
 	int maxit;                 /* mandelbrot iterations */
+	int smooth;                /* mandelbrot: continuous escape count instead of n */
+	int revolve;               /* mandelbrot: the maps read (x, sqrt(y^2+z^2), 0): the set turned about x */
 	const model_shape_t *shape; /* MODEL_C_SHAPE */
 } model_param_t;
 
@@ -115,7 +127,7 @@ void model_rotate(model_shape_t *s, int axis, double degrees);   /* axis 0 = x, 
 int model_scale(model_shape_t *s, double sx, double sy, double sz); /* -1 if a factor is 0 or not finite */
 
 /* Derive the Lipschitz bound and the bounding region. Returns 0, or -1 with
- * a message when the shape cannot be drawn (no elements, no region: an
+ * a message when the shape cannot be drawn (no elements and a constant c, no region: an
  * unbounded shape needs a user box). Sets *warn (if non-NULL) to a warning
  * text or NULL. */
 int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn);

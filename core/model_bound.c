@@ -107,8 +107,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 {
 	if (warn)
 		*warn = NULL;
-	if (s->nel == 0) {
-		snprintf(err, errlen, "a shape needs at least one distance element");
+	if (s->nel == 0 && s->c.kind == MODEL_C_CONST) {
+		snprintf(err, errlen, "a shape needs at least one distance element (or a defining parameter that is not a constant)");
 		return -1;
 	}
 	double C[3], R, lo[3], hi[3];

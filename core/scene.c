@@ -206,7 +206,14 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 		c->c0 = v[0];
 		c->amp = v[1];
 		c->maxit = (int)v[2];
-		return scene_lex_eol(lx);
+		tok_t f;
+		while (scene_lex_tok(lx, &f)) {
+			int *flag = scene_tok_is(&f, "smooth") ? &c->smooth : scene_tok_is(&f, "revolve") ? &c->revolve : NULL;
+			if (!flag || *flag)
+				return scene_lex_expected(lx, &f, "'smooth', 'revolve' or the end of the line");
+			*flag = 1;
+		}
+		return 0;
 	}
 	if (scene_tok_is(&t, "shape")) {
 		tok_t n;

@@ -55,6 +55,10 @@ typedef struct {
 	voronoi_nucleus_t *nuclei;
 	size_t nnuclei, cap;
 	int metric, cells, boundaries;
+	int nuclei_marks;          /* voronoi: draw the nuclei (discs, strokes) */
+	/* contour, voronoi: drawn into the rectangle x y w h of the previous page */
+	int has_inset;
+	unsigned inset[4];
 	unsigned line, col;
 } scene_render_t;
 

@@ -11,7 +11,7 @@
 #define NO_COLOUR 0xff000000u
 
 int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                    scene_stats_t *st, char *err, size_t errlen);
+                    const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen);
 
 static double now(void)
 {
@@ -45,8 +45,8 @@ static meta_rgb_t rgb3(const double *c)
 	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
 }
 
-static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, scene_stats_t *st,
-                       char *err, size_t errlen)
+static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, const unsigned rect[4],
+                       scene_stats_t *st, char *err, size_t errlen)
 {
 	const model_shape_t *shape = NULL;
 	for (size_t i = 0; i < s->nobjs && !shape; i++)
@@ -57,7 +57,7 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, sc
 		         r->field[0] ? "a shape named '" : "an object", r->field, r->field[0] ? "'" : "");
 		return -1;
 	}
-	unsigned nx = s->cam.nxpix, ny = s->cam.nypix;
+	unsigned x0 = rect[0], y0 = rect[1], nx = rect[2], ny = rect[3];
 	size_t n = (size_t)nx * ny;
 	float *z = malloc((n + 8) * sizeof *z);
 	double *levels = malloc((r->nlevels + 1) * sizeof *levels);
@@ -90,7 +90,7 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, sc
 	g.z = z;
 	g.nx = nx;
 	g.ny = ny;
-	contour_map_rect(g.m, nx, ny, 0.5, 0.5, nx - 0.5, ny - 0.5);
+	contour_map_rect(g.m, nx, ny, x0 + 0.5, y0 + 0.5, x0 + nx - 0.5, y0 + ny - 0.5);
 	contour_stats_t cs;
 	contour_style_t style = {NULL, r->line_width};
 	if (nx < 2 || ny < 2) {
@@ -100,7 +100,7 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, sc
 	}
 	if (r->bands) {
 		contour_palette(cols, r->nlevels + 1);
-		if (contour_write_bands(w, &g, levels, r->nlevels, cols, rgb3(s->background), 0, 0, nx, ny) < 0) {
+		if (contour_write_bands(w, &g, levels, r->nlevels, cols, rgb3(s->background), x0, y0, nx, ny) < 0) {
 			snprintf(err, errlen, "%s", contour_error());
 			rc = -1;
 			goto done;
@@ -136,7 +136,7 @@ done:
 }
 
 static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                       scene_stats_t *st, char *err, size_t errlen)
+                       const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen)
 {
 	if (r->nnuclei == 0) {
 		snprintf(err, errlen, "%s:%u:%u: expected at least one nucleus (point or segment) in the voronoi block",
@@ -154,23 +154,26 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 	v.nuclei = r->nuclei;
 	v.count = r->nnuclei;
 	v.metric = r->metric;
-	unsigned nx = s->cam.nxpix, ny = s->cam.nypix;
-	voronoi_map_window(v.m, r->window[0], r->window[1], r->window[2], r->window[3], 0, 0, nx, ny);
+	unsigned x0 = rect[0], y0 = rect[1], nx = rect[2], ny = rect[3];
+	voronoi_map_window(v.m, r->window[0], r->window[1], r->window[2], r->window[3], x0, y0, x0 + nx, y0 + ny);
 	if (voronoi_check(&v) < 0) {
 		snprintf(err, errlen, "%s:%u:%u: %s", s->name, r->line, r->col, voronoi_error());
 		return -1;
 	}
-	voronoi_rect_t rect = {0, 0, nx, ny};
+	voronoi_rect_t area = {x0, y0, nx, ny};
 	voronoi_style_t style;
 	memset(&style, 0, sizeof style);
 	style.cells = r->cells;
 	style.boundaries = r->boundaries;
 	style.line_colour = rgb3(r->line_colour);
 	style.line_width = r->line_width;
+	style.nuclei = r->nuclei_marks;
+	style.nucleus_colour = style.line_colour;
+	style.nucleus_radius = fmax(1.5, fmin(nx, ny) / 130.0);
 	style.threads = o ? o->threads : 0;
 	voronoi_stats_t vs;
 	double t0 = now();
-	if (voronoi_write_meta(w, &v, &rect, &style, &vs) < 0) {
+	if (voronoi_write_meta(w, &v, &area, &style, &vs) < 0) {
 		snprintf(err, errlen, "%s", voronoi_error());
 		return -1;
 	}
@@ -179,10 +182,23 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 	return 0;
 }
 
-int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                    scene_stats_t *st, char *err, size_t errlen)
+/* A one-pixel frame just inside an inset's rectangle, in the line colour. */
+static int inset_frame(const scene_render_t *r, meta_writer_t *w, const unsigned rect[4])
 {
-	if (r->kind == SCENE_CONTOUR)
-		return contour_map(s, r, w, st, err, errlen);
-	return voronoi_map(s, r, w, o, st, err, errlen);
+	double x0 = rect[0] + 0.5, y0 = rect[1] + 0.5, x1 = rect[0] + rect[2] - 0.5, y1 = rect[1] + rect[3] - 0.5;
+	return meta_colour(w, rgb3(r->line_colour)) < 0 || meta_width(w, 1) < 0 || meta_stroke(w) < 0
+	    || meta_move(w, x0, y0) < 0 || meta_draw(w, x1, y0) < 0 || meta_draw(w, x1, y1) < 0
+	    || meta_draw(w, x0, y1) < 0 || meta_close(w) < 0 || meta_end(w) < 0 ? -1 : 0;
+}
+
+int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
+                    const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen)
+{
+	int rc = r->kind == SCENE_CONTOUR ? contour_map(s, r, w, rect, st, err, errlen)
+	                                  : voronoi_map(s, r, w, o, rect, st, err, errlen);
+	if (rc == 0 && r->has_inset && inset_frame(r, w, rect) < 0) {
+		snprintf(err, errlen, "%s", meta_writer_error(w));
+		return -1;
+	}
+	return rc;
 }

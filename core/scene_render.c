@@ -216,6 +216,24 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 						rc = scene_lex_number(lx, &r->level_to, "the last level");
 				}
 			}
+		} else if (scene_tok_is(&t, "inset")) {
+			int v[4];
+			rc = whole(lx, &v[0], 0, 32767, "the inset's left pixel X");
+			if (!rc)
+				rc = whole(lx, &v[1], 0, 32767, "the inset's bottom pixel Y");
+			if (!rc)
+				rc = whole(lx, &v[2], 2, 32768, "the inset's width W (at least 2)");
+			if (!rc)
+				rc = whole(lx, &v[3], 2, 32768, "the inset's height H (at least 2)");
+			if (!rc && kind != SCENE_CONTOUR && kind != SCENE_VORONOI)
+				rc = scene_lex_error(lx, t.line, t.col, "expected 'inset' only in a contour or voronoi block");
+			if (!rc && sc->nrenders < 2)
+				rc = scene_lex_error(lx, t.line, t.col, "expected a render block before the one with an 'inset' (it draws on that page)");
+			if (!rc) {
+				r->has_inset = 1;
+				for (int i = 0; i < 4; i++)
+					r->inset[i] = (unsigned)v[i];
+			}
 		} else if (scene_tok_is(&t, "refine")) {
 			rc = yes_no(lx, &r->refine);
 		} else if (scene_tok_is(&t, "draw")) {
@@ -234,6 +252,8 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = yes_no(lx, &r->cells);
 		} else if (scene_tok_is(&t, "boundaries")) {
 			rc = yes_no(lx, &r->boundaries);
+		} else if (scene_tok_is(&t, "nuclei")) {
+			rc = yes_no(lx, &r->nuclei_marks);
 		} else if (scene_tok_is(&t, "point") || scene_tok_is(&t, "segment")) {
 			rc = nucleus(lx, r, &t);
 		} else {
@@ -274,7 +294,7 @@ static int drawn_objects(const scene_t *s, rt_object_t *out)
 	return n;
 }
 
-static int meta_fail(meta_writer_t *w, char *err, size_t errlen)
+static int write_failed(meta_writer_t *w, char *err, size_t errlen)
 {
 	snprintf(err, errlen, "%s", meta_writer_error(w));
 	return -1;
@@ -327,7 +347,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			if (rs.hits == 0 && nobj > 0)
 				add_warning(s, "no object is visible: the picture shows only the background");
 			if (rt_write_image(w, img, cam->nxpix, cam->nypix, xoff, 0) < 0)
-				rc = meta_fail(w, err, errlen);
+				rc = write_failed(w, err, errlen);
 		}
 		free(img);
 	} else if (r->kind == SCENE_OCTREE) {
@@ -363,7 +383,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 		if (rc == 0 && r->draw && nf == 0 && nobj > 0)
 			add_warning(s, "the octree has no leaves: the picture shows only the background");
 		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
-			rc = meta_fail(w, err, errlen);
+			rc = write_failed(w, err, errlen);
 		free(faces);
 	} else {
 		meta_rgb_t c = rgb3(r->line_colour);
@@ -377,19 +397,35 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 }
 
 int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                    scene_stats_t *st, char *err, size_t errlen);
+                    const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen);
 
-static int render_block(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                        scene_stats_t *st, char *err, size_t errlen)
+/* Width of the pages of the 3D blocks (side-by-side stereo: both eyes). */
+static unsigned page_width(const scene_t *s)
+{
+	return s->stereo == SCENE_STEREO_SIDE ? 2 * s->cam.nxpix : s->cam.nxpix;
+}
+
+/* One render block; its last page is left open when keep_open (an inset follows). */
+static int render_block(scene_t *s, const scene_render_t *r, unsigned pw, unsigned ph, int keep_open,
+                        meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st, char *err, size_t errlen)
 {
 	const cam_t *cam = &s->cam;
 	meta_rgb_t bg = rgb3(s->background);
 	if (r->kind == SCENE_CONTOUR || r->kind == SCENE_VORONOI) {
-		if (meta_page(w, cam->nxpix, cam->nypix) < 0 || meta_clear(w, bg) < 0)
-			return meta_fail(w, err, errlen);
-		if (scene_render_2d(s, r, w, o, st, err, errlen) < 0)
+		unsigned rect[4] = {0, 0, cam->nxpix, cam->nypix};
+		if (r->has_inset) {
+			memcpy(rect, r->inset, sizeof rect);
+			if ((uint64_t)rect[0] + rect[2] > pw || (uint64_t)rect[1] + rect[3] > ph) {
+				snprintf(err, errlen, "%s:%u:%u: expected an inset inside the %ux%u page, not %u %u %u %u",
+				         s->name, r->line, r->col, pw, ph, rect[0], rect[1], rect[2], rect[3]);
+				return -1;
+			}
+		} else if (meta_page(w, cam->nxpix, cam->nypix) < 0 || meta_clear(w, bg) < 0) {
+			return write_failed(w, err, errlen);
+		}
+		if (scene_render_2d(s, r, w, o, rect, st, err, errlen) < 0)
 			return -1;
-		return meta_end_page(w) < 0 ? meta_fail(w, err, errlen) : 0;
+		return keep_open || meta_end_page(w) >= 0 ? 0 : write_failed(w, err, errlen);
 	}
 	int views = s->stereo == SCENE_MONO ? 1 : 2;
 	for (int v = 0; v < views; v++) {
@@ -405,14 +441,14 @@ static int render_block(scene_t *s, const scene_render_t *r, meta_writer_t *w, c
 		int side = s->stereo == SCENE_STEREO_SIDE;
 		if (v == 0 || !side) {
 			if (meta_page(w, side ? 2 * cam->nxpix : cam->nxpix, cam->nypix) < 0)
-				return meta_fail(w, err, errlen);
+				return write_failed(w, err, errlen);
 			if (r->kind != SCENE_RAYTRACE && meta_clear(w, bg) < 0)
-				return meta_fail(w, err, errlen);
+				return write_failed(w, err, errlen);
 		}
 		if (render_view(s, r, &c, side ? v * cam->nxpix : 0, w, o, st, err, errlen) < 0)
 			return -1;
-		if ((v == views - 1 || !side) && meta_end_page(w) < 0)
-			return meta_fail(w, err, errlen);
+		if ((v == views - 1 || !side) && !(keep_open && v == views - 1) && meta_end_page(w) < 0)
+			return write_failed(w, err, errlen);
 	}
 	return 0;
 }
@@ -431,10 +467,19 @@ int scene_render(scene_t *s, meta_writer_t *w, const scene_opts_t *o, scene_stat
 		r.accuracy = 1e-3;
 		r.step = 0.5;
 		r.threshold = 8;
-		return render_block(s, &r, w, o, st, err, errlen);
+		return render_block(s, &r, 0, 0, 0, w, o, st, err, errlen);
 	}
-	for (size_t i = 0; i < s->nrenders; i++)
-		if (render_block(s, &s->renders[i], w, o, st, err, errlen) < 0)
+	unsigned pw = 0, ph = 0;     /* size of the page drawn last */
+	for (size_t i = 0; i < s->nrenders; i++) {
+		const scene_render_t *r = &s->renders[i];
+		int keep_open = i + 1 < s->nrenders && s->renders[i + 1].has_inset;
+		if (render_block(s, r, pw, ph, keep_open, w, o, st, err, errlen) < 0)
 			return -1;
+		if (!r->has_inset) {
+			int flat = r->kind == SCENE_CONTOUR || r->kind == SCENE_VORONOI;
+			pw = flat ? s->cam.nxpix : page_width(s);
+			ph = s->cam.nypix;
+		}
+	}
 	return 0;
 }

@@ -235,6 +235,48 @@ int main(void)
 		CHECK(model_prepare(s, err, sizeof err, &warn) == 0 && !s->has_lip && warn, "mandelbrot: no Lipschitz bound, a warning");
 		model_free(s);
 	}
+	/* mandelbrot 'revolve': the value depends on x and sqrt(y^2+z^2) only, and on the plane z = 0
+	 * it is the flat set; 'smooth': continuous (no jump of a whole count between close points),
+	 * maxit inside the set; a shape without elements is f = -c */
+	{
+		model_shape_t *s = model_new();
+		s->c.kind = MODEL_C_MANDEL;
+		s->c.c0 = -0.2;
+		s->c.amp = 1;
+		s->c.maxit = 40;
+		s->c.u[0] = 1;
+		s->c.v[1] = 1;
+		s->c.smooth = s->c.revolve = 1;
+		s->user_box = 1;
+		memcpy(s->box, (double[]){-2.1, -1.3, -1.3, 0.6, 1.3, 1.3}, sizeof s->box);
+		CHECK(model_prepare(s, err, sizeof err, &warn) == 0 && !s->has_lip, "no elements, mandelbrot parameter: accepted, no bound");
+		int sym = 1, cont = 1;
+		for (int i = 0; i < 200; i++) {
+			double x = -2.1 + 2.7 * urand(), r = 1.2 * urand(), a = 6.283185307179586 * urand();
+			double p1[3] = {x, r, 0}, p2[3] = {x, r * cos(a), r * sin(a)};
+			if (fabs(model_eval(s, p1) - model_eval(s, p2)) > 1e-9)
+				sym = 0;
+			double p3[3] = {x + 1e-7, r, 0};
+			double f1 = model_eval(s, p1), f3 = model_eval(s, p3);
+			if (f1 > -0.79 && fabs(f1 - f3) > 0.5 / 40)
+				cont = 0;
+		}
+		CHECK(sym, "revolve: f(x, r cos a, r sin a) = f(x, r, 0)");
+		CHECK(cont, "smooth: points 1e-7 apart differ by less than half a count");
+		CHECK(fabs(model_eval(s, (double[]){-0.1, 0, 0}) - (0.2 - 1)) < 1e-12, "inside the set (c = -0.1): f = -(c0 + amp)");
+		double far = model_eval(s, (double[]){0.5, 1.2, 0.3});
+		CHECK(far > 0 && far < 0.2, "outside: 0 < f = 0.2 - mu/40 < 0.2 (got %g)", far);
+		double on = model_eval(s, (double[]){0.5, 0.5, 0}), flat;
+		s->c.revolve = 0;
+		flat = model_eval(s, (double[]){0.5, 0.5, 0});
+		CHECK(on == flat, "on the plane z = 0 (y >= 0) revolve is the flat set");
+		s->c.smooth = 0;
+		double n = model_eval(s, (double[]){0.5, 0.5, 0}) - 0.2;
+		CHECK(fabs(n * 40 - floor(n * 40 + 0.5)) < 1e-9, "without smooth the count is whole");
+		s->c.kind = MODEL_C_CONST;
+		CHECK(model_prepare(s, err, sizeof err, &warn) < 0 && strstr(err, "element"), "no elements and a constant c: error");
+		model_free(s);
+	}
 	/* degenerate input */
 	{
 		model_shape_t *s = model_new();
