@@ -3,74 +3,19 @@
 #include "contour_int.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-static _Thread_local char errbuf[256];
-
-int contour_fail(int code, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(errbuf, sizeof errbuf, fmt, ap);
-	va_end(ap);
-	return code;
-}
-
 const char *contour_error(void)
 {
-	return errbuf;
+	return msq_error();
 }
 
 #define KNAN 0xffffu      /* level count of a non-finite sample */
 #define CELL_BAD 0x80u    /* cell flag: a corner is not finite */
 #define MAX_LEVELS 65534u
-
-/* exit_of[s][case][entry]: the exit edge of the segment entering a cell by
- * edge `entry`, or -1. case bit k = corner k is above (corners 0 (i,j),
- * 1 (i+1,j), 2 (i+1,j+1), 3 (i,j+1)); edge k joins corner k to corner k+1;
- * s = 1 when the cell-centre average is above (saddles only). */
-static _Thread_local signed char exit_of[2][16][4];
-static _Thread_local int table_ready;
-
-static void build_table(void)
-{
-	for (int s = 0; s < 2; s++)
-		for (int c = 0; c < 16; c++) {
-			int bit[4], entries[4], exits[4], ne = 0, nx = 0;
-			for (int k = 0; k < 4; k++)
-				bit[k] = (c >> k) & 1;
-			for (int e = 0; e < 4; e++) {
-				exit_of[s][c][e] = -1;
-				/* walking the cell border counter-clockwise, a segment
-				 * enters where we pass from above to below */
-				if (bit[e] && !bit[(e + 1) & 3])
-					entries[ne++] = e;
-				else if (!bit[e] && bit[(e + 1) & 3])
-					exits[nx++] = e;
-			}
-			if (ne == 1) {
-				exit_of[s][c][entries[0]] = (signed char)exits[0];
-			} else if (ne == 2) {
-				/* saddle: cut off the two corners NOT joined through the
-				 * centre; corner k lies between edges k-1 and k */
-				int iso = s ? 0 : 1;
-				for (int k = 0; k < 4; k++) {
-					if (bit[k] != iso)
-						continue;
-					int ea = (k + 3) & 3, eb = k;
-					if (bit[ea] && !bit[(ea + 1) & 3])
-						exit_of[s][c][ea] = (signed char)eb;
-					else
-						exit_of[s][c][eb] = (signed char)ea;
-				}
-			}
-		}
-	table_ready = 1;
-}
 
 /* Per-call state of one extraction. */
 typedef struct {
@@ -169,7 +114,7 @@ static int trace(ctx_t *x, size_t c, int e, double L, unsigned level, contour_fn
 	for (;;) {
 		if (x->flags[c] & (1u << e))
 			break; /* cannot happen on consistent data; never loop */
-		int cs = cell_case(x, c, L), out = exit_of[cs >> 4][cs & 15][e];
+		int cs = cell_case(x, c, L), out = msq_exit[cs >> 4][cs & 15][e];
 		if (out < 0)
 			break;
 		x->flags[c] |= (uint8_t)(1u << e);
@@ -282,7 +227,7 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 	unsigned *order = NULL, *pos = NULL;
 	double *sl = NULL;
 	int rc;
-	errbuf[0] = 0;
+	msq_clear();
 	if (stats)
 		memset(stats, 0, sizeof *stats);
 	if ((rc = check_grid(g)) < 0)
@@ -296,8 +241,6 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 			return contour_fail(CONTOUR_EARG, "contour: level %u is not finite", l);
 	if (nlevels == 0)
 		return 0;
-	if (!table_ready)
-		build_table();
 	x.g = g;
 	x.z = g->z;
 	x.nx = g->nx;
@@ -391,7 +334,7 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 			size_t c = cells[q];
 			int cs = cell_case(&x, c, L);
 			for (int e = 0; e < 4 && rc == 0; e++)
-				if (exit_of[cs >> 4][cs & 15][e] >= 0 && !(x.flags[c] & (1u << e)) &&
+				if (msq_exit[cs >> 4][cs & 15][e] >= 0 && !(x.flags[c] & (1u << e)) &&
 				    across(&x, c, e) == SIZE_MAX)
 					rc = trace(&x, c, e, L, o, fn, user);
 		}
@@ -400,7 +343,7 @@ int contour_extract(const contour_grid_t *g, const double *levels, unsigned nlev
 			size_t c = cells[q];
 			int cs = cell_case(&x, c, L);
 			for (int e = 0; e < 4 && rc == 0; e++)
-				if (exit_of[cs >> 4][cs & 15][e] >= 0 && !(x.flags[c] & (1u << e)))
+				if (msq_exit[cs >> 4][cs & 15][e] >= 0 && !(x.flags[c] & (1u << e)))
 					rc = trace(&x, c, e, L, o, fn, user);
 		}
 		for (size_t q = 0; q < n; q++)

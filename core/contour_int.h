@@ -2,11 +2,9 @@
 #ifndef LOCUS_CONTOUR_INT_H
 #define LOCUS_CONTOUR_INT_H
 
+#include "msq.h"
+
 /* Record a printf-style error message for contour_error() and return code. */
-int contour_fail(int code, const char *fmt, ...)
-#ifdef __GNUC__
-	__attribute__((format(printf, 2, 3)))
-#endif
-	;
+#define contour_fail msq_fail
 
 #endif

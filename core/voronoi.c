@@ -3,26 +3,14 @@
 
 #include <math.h>
 #include <pthread.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
-static _Thread_local char errbuf[256];
-
-int voronoi_fail(int code, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(errbuf, sizeof errbuf, fmt, ap);
-	va_end(ap);
-	return code;
-}
-
 const char *voronoi_error(void)
 {
-	return errbuf;
+	return msq_error();
 }
 
 double voronoi_distance(const voronoi_nucleus_t *n, const double p[3])
@@ -115,7 +103,7 @@ int voronoi_invert(const voronoi_t *v, voronoi_inv_t *inv)
 int voronoi_check(const voronoi_t *v)
 {
 	voronoi_inv_t inv;
-	errbuf[0] = 0;
+	msq_clear();
 	if (!v || !v->nuclei || v->count == 0)
 		return voronoi_fail(VORONOI_EARG, "voronoi: no nuclei");
 	if (v->count > VORONOI_MAX_NUCLEI)

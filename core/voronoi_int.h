@@ -4,6 +4,7 @@
 
 #include <math.h>
 
+#include "msq.h"
 #include "voronoi.h"
 
 /* d(P, N), inlined where it is hot; voronoi_distance() is this function, so
@@ -26,11 +27,7 @@ static inline double voronoi_dist(const voronoi_nucleus_t *n, const double p[3])
 }
 
 /* Record a printf-style error message for voronoi_error() and return code. */
-int voronoi_fail(int code, const char *fmt, ...)
-#ifdef __GNUC__
-	__attribute__((format(printf, 2, 3)))
-#endif
-	;
+#define voronoi_fail msq_fail
 
 /* The inverse of v->m: page point (px, py) to plane point (*X, *Y). */
 typedef struct {

@@ -31,43 +31,6 @@ typedef struct {
 	voronoi_stats_t st;
 } tctx_t;
 
-/* exit_of[s][case][entry], as in contour.c: case bit k = corner k has the
- * smaller label; s = 1 when the smaller label owns the cell centre. */
-static _Thread_local signed char exit_of[2][16][4];
-static _Thread_local int table_ready;
-
-static void build_table(void)
-{
-	for (int s = 0; s < 2; s++)
-		for (int c = 0; c < 16; c++) {
-			int bit[4], ent[4], ext[4], ne = 0, nx = 0;
-			for (int k = 0; k < 4; k++)
-				bit[k] = (c >> k) & 1;
-			for (int e = 0; e < 4; e++) {
-				exit_of[s][c][e] = -1;
-				if (bit[e] && !bit[(e + 1) & 3])
-					ent[ne++] = e;
-				else if (!bit[e] && bit[(e + 1) & 3])
-					ext[nx++] = e;
-			}
-			if (ne == 1) {
-				exit_of[s][c][ent[0]] = (signed char)ext[0];
-			} else if (ne == 2) {
-				int iso = s ? 0 : 1;
-				for (int k = 0; k < 4; k++) {
-					if (bit[k] != iso)
-						continue;
-					int ea = (k + 3) & 3, eb = k;
-					if (bit[ea] && !bit[(ea + 1) & 3])
-						exit_of[s][c][ea] = (signed char)eb;
-					else
-						exit_of[s][c][eb] = (signed char)ea;
-				}
-			}
-		}
-	table_ready = 1;
-}
-
 /* Corner labels of cell c. */
 static inline void corners(const tctx_t *x, size_t c, int32_t L[4])
 {
@@ -327,7 +290,7 @@ static int trace(tctx_t *x, size_t c, int e)
 	for (;;) {
 		if (x->flags[c] & (1u << e))
 			break;
-		int cs = cell_case(x, c, &a, &b), out = exit_of[cs >> 4][cs & 15][e];
+		int cs = cell_case(x, c, &a, &b), out = msq_exit[cs >> 4][cs & 15][e];
 		if (out < 0)
 			break;
 		x->flags[c] |= (uint8_t)(1u << e);
@@ -370,8 +333,6 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 		return 0;
 	if ((uint64_t)r->width * r->height >= UINT32_MAX)
 		return voronoi_fail(VORONOI_EARG, "voronoi: rectangle of %ux%u pixels is too large", r->width, r->height);
-	if (!table_ready)
-		build_table();
 	x.v = v;
 	x.r = r;
 	x.lab = labels;
@@ -442,7 +403,7 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 		int32_t a, b;
 		int cs = cell_case(&x, c, &a, &b);
 		for (int e = 0; e < 4 && rc == 0; e++) {
-			if (exit_of[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+			if (msq_exit[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
 				continue;
 			size_t n = across(&x, c, e);
 			if (n != SIZE_MAX && !(x.flags[n] & JUNCTION))
@@ -465,7 +426,7 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 		int32_t a, b;
 		int cs = cell_case(&x, c, &a, &b);
 		for (int e = 0; e < 4 && rc == 0; e++) {
-			if (exit_of[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+			if (msq_exit[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
 				continue;
 			x.npts = 0;
 			x.start_border = 0;

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include "contour.h"
+#include "msq.h"
 #include "unit.h"
 
 #define MAXP 100000
@@ -400,8 +401,44 @@ static void test_meta(void)
 	meta_writer_close(w);
 }
 
+/* The shared marching-squares table (core/msq.c, used by contours and Voronoi boundaries)
+ * derived again from the rule stated in msq.h: the above side on the left, saddles by s. */
+static void test_msq_table(void)
+{
+	int bad = 0, entries = 0;
+	for (int s = 0; s < 2; s++)
+		for (int c = 0; c < 16; c++) {
+			int up[4];
+			for (int k = 0; k < 4; k++)
+				up[k] = (c >> k) & 1;
+			for (int e = 0; e < 4; e++) {
+				int enters = up[e] && !up[(e + 1) & 3], want = -1;
+				if (enters) {
+					int leaves[4], n = 0;
+					for (int x = 0; x < 4; x++)
+						if (!up[x] && up[(x + 1) & 3])
+							leaves[n++] = x;
+					if (n == 1) {
+						want = leaves[0];
+					} else {
+						/* saddle: the segment cuts off the corner shared by edge e and its
+						 * neighbour; with s = 1 the cut corners are the below ones */
+						int cut_next = up[(e + 1) & 3] == (s ? 0 : 1);  /* corner e+1 is cut */
+						want = cut_next ? (e + 1) & 3 : (e + 3) & 3;
+					}
+					entries++;
+				}
+				if (msq_exit[s][c][e] != want)
+					bad++;
+			}
+		}
+	CHECK(bad == 0 && entries == 2 * (12 + 4), "msq_exit follows its rule (%d wrong, %d entries)", bad, entries);
+	CHECK(msq_exit[1][5][0] == 1 && msq_exit[0][5][0] == 3, "saddle 5 entering by edge 0: s = 1 turns to edge 1, s = 0 to edge 3");
+}
+
 int main(void)
 {
+	test_msq_table();
 	test_circle();
 	test_joining();
 	test_random_consistency();
