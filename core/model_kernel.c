@@ -141,17 +141,10 @@ static void points8(const model_shape_t *s, const float *restrict x, const float
 			}
 			continue;
 		}
-		const float bx = a[3], by = a[4], bz = a[5], il = a[6];
-		for (int k = 0; k < 8; k++) {
-			float px = qx[k] - ax, py = qy[k] - ay, pz = qz[k] - az;
-			float h = (px * bx + py * by + pz * bz) * il;
-			h = h < 0.0f ? 0.0f : h;
-			h = h > 1.0f ? 1.0f : h;
-			px -= h * bx;
-			py -= h * by;
-			pz -= h * bz;
-			sum[k] += w * sqrtf(px * px + py * py + pz * pz);
-		}
+		float d[8];
+		segment8(a, qx, qy, qz, d);
+		for (int k = 0; k < 8; k++)
+			sum[k] += w * d[k];
 	}
 	for (int k = 0; k < 8; k++)
 		out[k] = sum[k] - c;

@@ -1,6 +1,5 @@
 /* scene.c: parser of the scene language: view, lights, background, shapes and objects, render blocks. */
-#include "scene.h"
-#include "scene_lex.h"
+#include "scene_int.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -496,7 +495,6 @@ static int parse_shape(scene_lex_t *lx, scene_t *sc, int drawn, const tok_t *kw)
 	return parse_body(lx, sc, o);
 }
 
-int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw);
 
 static int parse_light(scene_lex_t *lx, scene_t *sc)
 {

@@ -1,24 +1,11 @@
 /* scene_2d.c: the plane visualisations of a scene: contour maps of a shape's field and Voronoi tessellations. */
-#include "scene.h"
+#include "scene_int.h"
 #include "contour.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-
-#define NO_COLOUR 0xff000000u
-
-int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                    const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen);
-
-static double now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
 
 /* A distinct light colour per index: hues spread by the golden ratio. */
 static meta_rgb_t cell_colour(size_t k)
@@ -37,15 +24,7 @@ static meta_rgb_t cell_colour(size_t k)
 	return (meta_rgb_t)((unsigned)(c[0] * 255 + 0.5) << 16 | (unsigned)(c[1] * 255 + 0.5) << 8 | (unsigned)(c[2] * 255 + 0.5));
 }
 
-static meta_rgb_t rgb3(const double *c)
-{
-	unsigned v[3];
-	for (int i = 0; i < 3; i++)
-		v[i] = (unsigned)(fmin(fmax(c[i], 0), 1) * 255 + 0.5);
-	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
-}
-
-static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, const unsigned rect[4],
+static int map_contours(scene_t *s, const scene_render_t *r, meta_writer_t *w, const unsigned rect[4],
                        scene_stats_t *st, char *err, size_t errlen)
 {
 	const model_shape_t *shape = NULL;
@@ -68,7 +47,7 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 		rc = -1;
 		goto done;
 	}
-	double t0 = now();
+	double t0 = scene_now();
 	float x[8], y[8], zz[8], out[8];
 	double sx = (r->window[2] - r->window[0]) / nx, sy = (r->window[3] - r->window[1]) / ny;
 	for (size_t i0 = 0; i0 < n; i0 += 8) {
@@ -100,13 +79,13 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 	}
 	if (r->bands) {
 		contour_palette(cols, r->nlevels + 1);
-		if (contour_write_bands(w, &g, levels, r->nlevels, cols, rgb3(s->background), x0, y0, nx, ny) < 0) {
+		if (contour_write_bands(w, &g, levels, r->nlevels, cols, scene_rgb(s->background), x0, y0, nx, ny) < 0) {
 			snprintf(err, errlen, "%s", contour_error());
 			rc = -1;
 			goto done;
 		}
 		for (unsigned k = 0; k < r->nlevels; k++)
-			cols[k] = rgb3(r->line_colour);
+			cols[k] = scene_rgb(r->line_colour);
 	} else {
 		contour_palette(cols, r->nlevels);
 	}
@@ -117,16 +96,11 @@ static int contour_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 		goto done;
 	}
 	st->contour_segments += cs.segments;
-	st->seconds_trace += now() - t0;
+	st->seconds_trace += scene_now() - t0;
 	if (cs.segments == 0) {
-		char msg[400];
-		snprintf(msg, sizeof msg, "%.200s: warning: the contour map has no lines at levels %g..%g", s->name,
-		         r->level_from, r->level_to);
-		if (s->nwarnings < SCENE_MAX_WARNINGS) {
-			memcpy(s->warnbuf[s->nwarnings], msg, sizeof msg);
-			s->warnings[s->nwarnings] = s->warnbuf[s->nwarnings];
-			s->nwarnings++;
-		}
+		char msg[200];
+		snprintf(msg, sizeof msg, "the contour map has no lines at levels %g..%g", r->level_from, r->level_to);
+		scene_add_warning(s, msg);
 	}
 done:
 	free(z);
@@ -135,7 +109,7 @@ done:
 	return rc;
 }
 
-static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
+static int map_voronoi(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
                        const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen)
 {
 	if (r->nnuclei == 0) {
@@ -144,7 +118,7 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 		return -1;
 	}
 	for (size_t i = 0; i < r->nnuclei; i++) {
-		if (r->nuclei[i].colour == NO_COLOUR)
+		if (r->nuclei[i].colour == SCENE_NO_COLOUR)
 			r->nuclei[i].colour = cell_colour(i);
 		if (isnan(r->nuclei[i].weight))
 			r->nuclei[i].weight = r->metric == VORONOI_MULTIPLICATIVE ? 1 : 0;
@@ -165,19 +139,19 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 	memset(&style, 0, sizeof style);
 	style.cells = r->cells;
 	style.boundaries = r->boundaries;
-	style.line_colour = rgb3(r->line_colour);
+	style.line_colour = scene_rgb(r->line_colour);
 	style.line_width = r->line_width;
 	style.nuclei = r->nuclei_marks;
 	style.nucleus_colour = style.line_colour;
 	style.nucleus_radius = fmax(1.5, fmin(nx, ny) / 130.0);
 	style.threads = o ? o->threads : 0;
 	voronoi_stats_t vs;
-	double t0 = now();
+	double t0 = scene_now();
 	if (voronoi_write_meta(w, &v, &area, &style, &vs) < 0) {
 		snprintf(err, errlen, "%s", voronoi_error());
 		return -1;
 	}
-	st->seconds_trace += now() - t0;
+	st->seconds_trace += scene_now() - t0;
 	st->pixels += nx * ny;
 	return 0;
 }
@@ -186,7 +160,7 @@ static int voronoi_map(scene_t *s, const scene_render_t *r, meta_writer_t *w, co
 static int inset_frame(const scene_render_t *r, meta_writer_t *w, const unsigned rect[4])
 {
 	double x0 = rect[0] + 0.5, y0 = rect[1] + 0.5, x1 = rect[0] + rect[2] - 0.5, y1 = rect[1] + rect[3] - 0.5;
-	return meta_colour(w, rgb3(r->line_colour)) < 0 || meta_width(w, 1) < 0 || meta_stroke(w) < 0
+	return meta_colour(w, scene_rgb(r->line_colour)) < 0 || meta_width(w, 1) < 0 || meta_stroke(w) < 0
 	    || meta_move(w, x0, y0) < 0 || meta_draw(w, x1, y0) < 0 || meta_draw(w, x1, y1) < 0
 	    || meta_draw(w, x0, y1) < 0 || meta_close(w) < 0 || meta_end(w) < 0 ? -1 : 0;
 }
@@ -194,8 +168,8 @@ static int inset_frame(const scene_render_t *r, meta_writer_t *w, const unsigned
 int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
                     const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen)
 {
-	int rc = r->kind == SCENE_CONTOUR ? contour_map(s, r, w, rect, st, err, errlen)
-	                                  : voronoi_map(s, r, w, o, rect, st, err, errlen);
+	int rc = r->kind == SCENE_CONTOUR ? map_contours(s, r, w, rect, st, err, errlen)
+	                                  : map_voronoi(s, r, w, o, rect, st, err, errlen);
 	if (rc == 0 && r->has_inset && inset_frame(r, w, rect) < 0) {
 		snprintf(err, errlen, "%s", meta_writer_error(w));
 		return -1;

@@ -1,6 +1,5 @@
 /* scene_render.c: render blocks of the scene language, and rendering a scene's pages to a meta writer. */
-#include "scene.h"
-#include "scene_lex.h"
+#include "scene_int.h"
 #include "contour.h"
 #include "oct.h"
 #include "wire.h"
@@ -9,18 +8,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 typedef scene_tok_t tok_t;
-#define NO_COLOUR 0xff000000u
-
-static meta_rgb_t rgb3(const double *c)
-{
-	unsigned v[3];
-	for (int i = 0; i < 3; i++)
-		v[i] = (unsigned)(fmin(fmax(c[i], 0), 1) * 255 + 0.5);
-	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
-}
 
 static int yes_no(scene_lex_t *lx, int *v)
 {
@@ -54,7 +43,7 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 	voronoi_nucleus_t n;
 	tok_t t;
 	memset(&n, 0, sizeof n);
-	n.colour = NO_COLOUR;
+	n.colour = SCENE_NO_COLOUR;
 	n.weight = NAN;   /* not given: 0 (additive) or 1 (multiplicative), decided at rendering */
 	n.kind = kw->s[0] == 'p' ? VORONOI_POINT : VORONOI_SEGMENT;
 	if (scene_lex_numbers(lx, n.a, 2, "a nucleus coordinate (x y)") < 0)
@@ -74,7 +63,7 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 			double c[3];
 			if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
 				return -1;
-			n.colour = rgb3(c);
+			n.colour = scene_rgb(c);
 		} else
 			return scene_lex_expected(lx, &t, "'weight', 'z', 'colour' or the end of the line");
 	}
@@ -89,8 +78,6 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 	r->nuclei[r->nnuclei++] = n;
 	return 0;
 }
-
-int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw);
 
 int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 {
@@ -267,14 +254,7 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 
 /* ---- rendering ---- */
 
-static double now(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static void add_warning(scene_t *s, const char *msg)
+void scene_add_warning(scene_t *s, const char *msg)
 {
 	if (s->nwarnings >= SCENE_MAX_WARNINGS)
 		return;
@@ -310,7 +290,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 		return -1;
 	}
 	int nobj = drawn_objects(s, objs), rc = 0;
-	double t0 = now();
+	double t0 = scene_now();
 	if (r->kind == SCENE_RAYTRACE) {
 		rt_params_t p;
 		memset(&p, 0, sizeof p);
@@ -334,7 +314,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 		if (!img)
 			rc = -1, snprintf(err, errlen, "out of memory for a %ux%u picture", cam->nxpix, cam->nypix);
 		else if ((rc = rt_render(&p, img, &rs, err, errlen)) == 0) {
-			st->seconds_trace += now() - t0;
+			st->seconds_trace += scene_now() - t0;
 			st->pixels += (unsigned)n;
 			st->rt.evals += rs.evals;
 			st->rt.lane_evals += rs.lane_evals;
@@ -345,7 +325,7 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			st->rt.hits += rs.hits;
 			st->rt.aa_pixels += rs.aa_pixels;
 			if (rs.hits == 0 && nobj > 0)
-				add_warning(s, "no object is visible: the picture shows only the background");
+				scene_add_warning(s, "no object is visible: the picture shows only the background");
 			if (rt_write_image(w, img, cam->nxpix, cam->nypix, xoff, 0) < 0)
 				rc = write_failed(w, err, errlen);
 		}
@@ -357,10 +337,10 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			oct_leaf_t *leaves = NULL;
 			size_t nl = 0;
 			oct_stats_t os = {0, 0, 0};
-			double tb = now();
+			double tb = scene_now();
 			rc = oct_build(objs[i].shape, r->depth, r->test == SCENE_CUBICAL ? OCT_CUBICAL : OCT_SPHERICAL,
 			               &leaves, &nl, &os, err, errlen);
-			st->seconds_trace += now() - tb;   /* the conversion only, not the faces */
+			st->seconds_trace += scene_now() - tb;   /* the conversion only, not the faces */
 			st->oct_visited += os.visited;
 			st->oct_leaves += os.leaves;
 			st->oct_evals += os.evals;
@@ -369,9 +349,9 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 				oct_leaf_t *l2 = NULL;
 				size_t n2 = 0;
 				oct_stats_t o2 = {0, 0, 0};
-				double tc = now();
+				double tc = scene_now();
 				rc = oct_build(objs[i].shape, r->depth, OCT_CUBICAL, &l2, &n2, &o2, err, errlen);
-				st->seconds_cubical += now() - tc;
+				st->seconds_cubical += scene_now() - tc;
 				st->oct_cubical_visited += o2.visited;
 				st->oct_cubical_leaves += o2.leaves;
 				free(l2);
@@ -381,23 +361,20 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			free(leaves);
 		}
 		if (rc == 0 && r->draw && nf == 0 && nobj > 0)
-			add_warning(s, "the octree has no leaves: the picture shows only the background");
+			scene_add_warning(s, "the octree has no leaves: the picture shows only the background");
 		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
 			rc = write_failed(w, err, errlen);
 		free(faces);
 	} else {
-		meta_rgb_t c = rgb3(r->line_colour);
+		meta_rgb_t c = scene_rgb(r->line_colour);
 		for (int i = 0; i < nobj && rc == 0; i++)
 			rc = wire_draw(w, cam, objs[i].shape, r->axis, r->slices, r->resolution, r->line_width,
 			               c, xoff, &st->wire_segments, err, errlen);
-		st->seconds_trace += now() - t0;
+		st->seconds_trace += scene_now() - t0;
 	}
 	free(objs);
 	return rc;
 }
-
-int scene_render_2d(scene_t *s, const scene_render_t *r, meta_writer_t *w, const scene_opts_t *o,
-                    const unsigned rect[4], scene_stats_t *st, char *err, size_t errlen);
 
 /* Width of the pages of the 3D blocks (side-by-side stereo: both eyes). */
 static unsigned page_width(const scene_t *s)
@@ -410,7 +387,7 @@ static int render_block(scene_t *s, const scene_render_t *r, unsigned pw, unsign
                         meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st, char *err, size_t errlen)
 {
 	const cam_t *cam = &s->cam;
-	meta_rgb_t bg = rgb3(s->background);
+	meta_rgb_t bg = scene_rgb(s->background);
 	if (r->kind == SCENE_CONTOUR || r->kind == SCENE_VORONOI) {
 		unsigned rect[4] = {0, 0, cam->nxpix, cam->nypix};
 		if (r->has_inset) {

@@ -395,47 +395,32 @@ int voronoi_boundaries(const voronoi_t *v, const voronoi_rect_t *r, const int32_
 		}
 	}
 	x.st.crossings = ncross;
-	/* 1: chains of two-label cells that start at the border or at a junction */
-	for (size_t q = 0; q < nmixed && rc == 0; q++) {
-		size_t c = mixed[q];
-		if (x.flags[c] & JUNCTION)
-			continue;
-		int32_t a, b;
-		int cs = cell_case(&x, c, &a, &b);
-		for (int e = 0; e < 4 && rc == 0; e++) {
-			if (msq_exit[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+	/* pass 0: chains of two-label cells that start at the border or at a
+	 * junction; pass 1: what is left of them, closed loops */
+	for (int pass = 0; pass < 2; pass++)
+		for (size_t q = 0; q < nmixed && rc == 0; q++) {
+			size_t c = mixed[q];
+			if (x.flags[c] & JUNCTION)
 				continue;
-			size_t n = across(&x, c, e);
-			if (n != SIZE_MAX && !(x.flags[n] & JUNCTION))
-				continue;
-			x.npts = 0;
-			x.start_border = n == SIZE_MAX;
-			if (n != SIZE_MAX)
-				rc = push(&x, junction(&x, n));
-			if (rc == 0)
-				rc = push(&x, crossing(&x, c, e));
-			if (rc == 0)
-				rc = trace(&x, c, e);
+			int32_t a, b;
+			int cs = cell_case(&x, c, &a, &b);
+			for (int e = 0; e < 4 && rc == 0; e++) {
+				if (msq_exit[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
+					continue;
+				size_t n = pass == 0 ? across(&x, c, e) : 0;
+				if (pass == 0 && n != SIZE_MAX && !(x.flags[n] & JUNCTION))
+					continue;
+				x.npts = 0;
+				x.start_border = pass == 0 && n == SIZE_MAX;
+				if (pass == 0 && n != SIZE_MAX)
+					rc = push(&x, junction(&x, n));
+				if (rc == 0)
+					rc = push(&x, crossing(&x, c, e));
+				if (rc == 0)
+					rc = trace(&x, c, e);
+			}
 		}
-	}
-	/* 2: closed loops of two-label cells */
-	for (size_t q = 0; q < nmixed && rc == 0; q++) {
-		size_t c = mixed[q];
-		if (x.flags[c] & JUNCTION)
-			continue;
-		int32_t a, b;
-		int cs = cell_case(&x, c, &a, &b);
-		for (int e = 0; e < 4 && rc == 0; e++) {
-			if (msq_exit[cs >> 4][cs & 15][e] < 0 || (x.flags[c] & (1u << e)))
-				continue;
-			x.npts = 0;
-			x.start_border = 0;
-			rc = push(&x, crossing(&x, c, e));
-			if (rc == 0)
-				rc = trace(&x, c, e);
-		}
-	}
-	/* 3: short pieces from a junction to the border or to a neighbouring
+	/* then: short pieces from a junction to the border or to a neighbouring
 	 * junction (each junction pair once, from the lower cell index) */
 	for (size_t q = 0; q < nmixed && rc == 0; q++) {
 		size_t c = mixed[q];

@@ -81,6 +81,12 @@ printf 'view\n  size 16 12\nend\nobject a\n  point 1 0 0\n  point -1 0 0\n  c 1.
 "$R" "$T/empty.scene" -o "$T/empty2.meta" --quiet 2> "$T/quiet.txt"
 [ ! -s "$T/quiet.txt" ] && ok "--quiet silences warnings" || notok "--quiet printed: $(cat "$T/quiet.txt")"
 
+# a contour map whose levels miss the field: a warning naming the scene, the page still written
+printf 'view\n  size 16 16\nend\nshape s\n  point 0 0 0\nend\nrender contour\n  field s\n  levels 3 from 50 to 60\nend\n' > "$T/nolines.scene"
+"$R" "$T/nolines.scene" -o "$T/nolines.meta" 2> "$T/nolines.txt"; rc=$?
+[ "$rc" = 0 ] && grep -qx "$T/nolines.scene: warning: the contour map has no lines at levels 50..60" "$T/nolines.txt" \
+	&& grep -q '^end-page' "$T/nolines.meta" && ok "contour levels outside the field: one warning line, a page" || notok "no-lines warning: exit $rc $(cat "$T/nolines.txt")"
+
 # writing to a device never replaces it
 "$R" "$S" -o /dev/null --quiet && [ -c /dev/null ] && ok "-o /dev/null writes through the device" || notok "/dev/null"
 done_tests
