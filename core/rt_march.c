@@ -156,10 +156,13 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			continue;
 		float fp = pk->fa[k] + pk->fb[k] * u[k], emin = 0.05f * fp, v = val[k];
 		/* a ray that enters the region inside the solid looks for the surface as the
-		 * sign change from negative to positive: march on -f */
+		 * sign change from negative to positive: march on -f; one that enters it on
+		 * the surface (within the hit tolerance, as when the region is the shape's
+		 * own bounding sphere) hits there */
+		float eps = maxf(pk->acc * fp, 2e-6f * (fabsf(u[k]) + 1.0f));
 		sgn[k] = v < 0 ? -1.0f : 1.0f;
 		v *= sgn[k];
-		if (v == v && v <= 0) {
+		if (v == v && v <= eps * (L > 0 ? L : 1.0f)) {
 			pk->thit[k] = u[k];
 			mode[k] = M_DONE;
 			n--;
