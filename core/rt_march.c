@@ -10,8 +10,10 @@ static float minf(float a, float b) { return a < b ? a : b; }
 static float maxf(float a, float b) { return a > b ? a : b; }
 
 /* Clip the 8 rays to the object's region (box and, if bounded, sphere):
- * [a, b] per lane, empty when a > b. Branch-free so that it vectorises. */
-static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict a, float *restrict b)
+ * [a, b] per lane, empty when a > b; on[k] = 1 when the entry a lies on the
+ * bounding sphere. Branch-free so that it vectorises. */
+static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict a, float *restrict b,
+                  float *restrict on)
 {
 	const float bx0 = (float)s->box[0], by0 = (float)s->box[1], bz0 = (float)s->box[2];
 	const float bx1 = (float)s->box[3], by1 = (float)s->box[4], bz1 = (float)s->box[5];
@@ -34,6 +36,7 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 		float disc = bb * bb - (ox * ox + oy * oy + oz * oz - r2);
 		float q = sqrtf(maxf(disc, 0.0f));
 		float slo = disc >= 0.0f ? -bb - q : INFINITY, shi = disc >= 0.0f ? -bb + q : -INFINITY;
+		on[k] = sph > 0 && slo >= lo ? 1.0f : 0.0f;
 		lo = sph > 0 ? maxf(lo, slo) : lo;
 		hi = sph > 0 ? minf(hi, shi) : hi;
 		/* NaN (a zero direction component with the origin on a slab face) counts as empty */
@@ -119,10 +122,10 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		return;
 	}
 	n = 0;
-	float ca[RT_LANES], cb[RT_LANES], sgn[RT_LANES], smin[RT_LANES];
+	float ca[RT_LANES], cb[RT_LANES], con[RT_LANES], sgn[RT_LANES], smin[RT_LANES];
 	for (int k = 0; k < RT_LANES; k++)
 		sgn[k] = 1;
-	clip8(s, pk, ca, cb);
+	clip8(s, pk, ca, cb, con);
 	for (int k = 0; k < RT_LANES; k++) {
 		pk->thit[k] = INFINITY;
 		mode[k] = M_DONE;
@@ -156,13 +159,16 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			continue;
 		float fp = pk->fa[k] + pk->fb[k] * u[k], emin = 0.05f * fp, v = val[k];
 		/* a ray that enters the region inside the solid looks for the surface as the
-		 * sign change from negative to positive: march on -f; one that enters it on
-		 * the surface (within the hit tolerance, as when the region is the shape's
-		 * own bounding sphere) hits there */
+		 * sign change from negative to positive: march on -f. One that enters it on
+		 * the surface (within the hit tolerance), or inside the solid through the
+		 * bounding sphere (which holds the whole solid, so the two touch there: when
+		 * the sphere is tight, as for a sphere, float rounding of the entry near the
+		 * rim lands inside), hits there. */
 		float eps = maxf(pk->acc * fp, 2e-6f * (fabsf(u[k]) + 1.0f));
+		int touch = v < 0 && con[k] > 0;
 		sgn[k] = v < 0 ? -1.0f : 1.0f;
 		v *= sgn[k];
-		if (v == v && v <= eps * (L > 0 ? L : 1.0f)) {
+		if (v == v && (touch || v <= eps * (L > 0 ? L : 1.0f))) {
 			pk->thit[k] = u[k];
 			mode[k] = M_DONE;
 			n--;

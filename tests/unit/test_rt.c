@@ -77,6 +77,7 @@ int main(void)
 	 * (narrow view): the region is its own bounding sphere, so rays enter it on the surface */
 	sphere_silhouette(0.1, 0.05, 1, (double[]){0.3, 0.2, -4}, 40, 1000);
 	sphere_silhouette(0, 0, 0.09, (double[]){0, 0, -3}, 10, 2000);
+	sphere_silhouette(0.3, 0.2, 0.09, (double[]){4, 5, -7.8}, 12, 100);
 	/* 2. ellipsoid of revolution from two foci, orthographic along z: the silhouette is
 	 * x^2/A^2 + y^2/B^2 = 1 with A = sum/2, B = sqrt(A^2 - a^2) */
 	{
