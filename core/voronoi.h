@@ -173,7 +173,9 @@ typedef struct {
 	double line_width;  /* pixels (<= 0 means 1) */
 	unsigned threads;   /* as for voronoi_label */
 	int nuclei;         /* non-zero: mark the nuclei on top (points as discs,
-	                     * segments as round-capped strokes; z ignored) */
+	                     * segments as round-capped strokes; z ignored), those
+	                     * inside the rectangle: a point by its centre, a
+	                     * segment clipped to it */
 	meta_rgb_t nucleus_colour;
 	double nucleus_radius; /* pixels (<= 0 means 2) */
 } voronoi_style_t;

@@ -117,10 +117,41 @@ static int stroke_cb(void *user, int32_t left, int32_t right, const voronoi_poin
 	return 0;
 }
 
-/* Mark every nucleus: a disc for a point, a round-capped stroke for a segment. */
-static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_style_t *style)
+/* Clip the page segment a-b to the rectangle r (Liang-Barsky): 0 when nothing is left. */
+static int clip_segment(const voronoi_rect_t *r, double *ax, double *ay, double *bx, double *by)
+{
+	double x0 = r->x, y0 = r->y, x1 = (double)r->x + r->width, y1 = (double)r->y + r->height;
+	double dx = *bx - *ax, dy = *by - *ay, t0 = 0, t1 = 1;
+	double p[4] = {-dx, dx, -dy, dy}, q[4] = {*ax - x0, x1 - *ax, *ay - y0, y1 - *ay};
+	for (int i = 0; i < 4; i++) {
+		if (p[i] == 0) {
+			if (q[i] < 0)
+				return 0;
+			continue;
+		}
+		double t = q[i] / p[i];
+		if (p[i] < 0)
+			t0 = t > t0 ? t : t0;
+		else
+			t1 = t < t1 ? t : t1;
+	}
+	if (t0 > t1)
+		return 0;
+	double sx = *ax, sy = *ay;
+	*ax = sx + t0 * dx;
+	*ay = sy + t0 * dy;
+	*bx = sx + t1 * dx;
+	*by = sy + t1 * dy;
+	return 1;
+}
+
+/* Mark every nucleus inside the rectangle: a disc for a point (its centre
+ * inside), a round-capped stroke for a segment (the part inside), so that the
+ * marks stay within the picture when it is an inset of a larger page. */
+static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r, const voronoi_style_t *style)
 {
 	double rad = style->nucleus_radius > 0 ? style->nucleus_radius : 2;
+	double x0 = r->x, y0 = r->y, x1 = (double)r->x + r->width, y1 = (double)r->y + r->height;
 	const double *m = v->m;
 	if (meta_colour(w, style->nucleus_colour) < 0)
 		return fail_meta(w, "setting the nucleus colour");
@@ -130,9 +161,13 @@ static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_styl
 		int rc;
 		if (n->kind == VORONOI_SEGMENT) {
 			double bx = m[0] + m[1] * n->b[0] + m[2] * n->b[1], by = m[3] + m[4] * n->b[0] + m[5] * n->b[1];
+			if (!clip_segment(r, &ax, &ay, &bx, &by))
+				continue;
 			rc = meta_width(w, 2 * rad) < 0 || meta_cap(w, META_CAP_ROUND) < 0 || meta_stroke(w) < 0 ||
 			     meta_move(w, ax, ay) < 0 || meta_draw(w, bx, by) < 0 || meta_end(w) < 0;
 		} else {
+			if (!(ax >= x0 && ax <= x1 && ay >= y0 && ay <= y1))
+				continue;
 			rc = meta_fill(w) < 0 || meta_circle(w, ax, ay, rad) < 0 || meta_end(w) < 0;
 		}
 		if (rc)
@@ -155,7 +190,7 @@ int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_
 		/* cells only: label and write in bands, memory O(width) */
 		if (style->cells && (rc = write_banded(w, v, r, style->threads)) < 0)
 			return rc;
-		return style->nuclei ? write_nuclei(w, v, style) : 0;
+		return style->nuclei ? write_nuclei(w, v, r, style) : 0;
 	}
 	int32_t *labels = malloc((size_t)r->width * r->height * sizeof *labels);
 	if (!labels)
@@ -175,7 +210,7 @@ int voronoi_write_meta(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_
 			rc = fail_meta(w, "writing a boundary");
 	}
 	if (rc == 0 && style->nuclei)
-		rc = write_nuclei(w, v, style);
+		rc = write_nuclei(w, v, r, style);
 done:
 	free(labels);
 	return rc;

@@ -26,6 +26,14 @@ printf "${base}render contour\n  inset 2 3 12 10\n  field s\nend\nrender voronoi
 [ "$(grep -c '^page' "$T/two.meta")" = 1 ] && [ "$(grep -c '^circle' "$T/two.meta")" = 2 ] \
 	&& ok "two insets on one page, the voronoi one with its 2 nuclei as discs" || notok "two insets: $(grep -c '^page' "$T/two.meta") pages, $(grep -c '^circle' "$T/two.meta") discs"
 
+# nuclei outside an inset's window are not marked: a point off the window draws no disc, a
+# segment crossing the window's edge is cut there (its stroke ends at the inset's frame)
+printf "${base}render voronoi\n  inset 2 2 20 20\n  window -1 -1 1 1\n  point 0 0\n  point 5 5\n  segment -0.5 0.5 3 0.5\n  nuclei yes\nend\n" > "$T/clip.scene"
+"$R" "$T/clip.scene" -o "$T/clip.meta" --quiet
+[ "$(grep -c '^circle' "$T/clip.meta")" = 1 ] && grep -q '^draw 22 17$' "$T/clip.meta" \
+	&& ok "inset nuclei: only the point inside gets a disc, the segment is cut at the window's edge" \
+	|| notok "inset nuclei: $(grep -c '^circle' "$T/clip.meta") discs, $(grep '^draw' "$T/clip.meta" | tail -2 | tr '\n' ' ')"
+
 # errors: an inset outside the page, an inset in the first block, an inset on a raytrace block
 printf "${base}render contour\n  inset 30 3 12 10\n  field s\nend\n" > "$T/out.scene"
 "$R" "$T/out.scene" -o "$T/out.meta" 2> "$T/out.txt"; rc=$?
