@@ -20,22 +20,6 @@ static void usage(FILE *f)
 		"  --help, --version\n");
 }
 
-/* A memory stream for the meta reader. */
-typedef struct {
-	const unsigned char *b;
-	size_t n, off;
-} mem_t;
-
-static long mem_read(void *user, void *buf, size_t n)
-{
-	mem_t *m = user;
-	if (n > m->n - m->off)
-		n = m->n - m->off;
-	memcpy(buf, m->b + m->off, n);
-	m->off += n;
-	return (long)n;
-}
-
 /* Capture device: keeps the wanted page as an image. */
 typedef struct {
 	unsigned want, page;
@@ -74,8 +58,7 @@ static const dev_ops_t capture_ops = {
 static int render_meta(const unsigned char *b, size_t n, const char *name, unsigned page,
 		dev_image_t *img, char *err, size_t errlen)
 {
-	mem_t m = { b, n, 0 };
-	meta_reader_t *r = meta_reader_new(mem_read, &m, name);
+	meta_reader_t *r = meta_reader_mem(b, n, name);
 	dev_device_t *d = r ? dev_new(&capture_ops, NULL) : NULL;
 	if (!d) {
 		meta_reader_free(r);

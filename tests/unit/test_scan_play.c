@@ -3,21 +3,6 @@
 #include "device.h"
 #include "unit.h"
 
-typedef struct {
-	const char *s;
-	size_t n, off;
-} mem_t;
-
-static long mem_read(void *user, void *buf, size_t n)
-{
-	mem_t *m = user;
-	if (n > m->n - m->off)
-		n = m->n - m->off;
-	memcpy(buf, m->s + m->off, n);
-	m->off += n;
-	return (long)n;
-}
-
 /* A recording vector device. */
 typedef struct {
 	char log[4096];
@@ -102,8 +87,7 @@ static const dev_ops_t vec_ops = {
 
 static int play(const char *text, dev_device_t **out)
 {
-	mem_t m = { text, strlen(text), 0 };
-	meta_reader_t *r = meta_reader_new(mem_read, &m, "mem.meta");
+	meta_reader_t *r = meta_reader_mem(text, strlen(text), "mem.meta");
 	dev_device_t *d = dev_new(&vec_ops, NULL);
 	int rc = dev_play(r, d);
 	meta_reader_free(r);
