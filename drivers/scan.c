@@ -335,6 +335,105 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 	return 0;
 }
 
+/* Pieces with every coordinate within +-TINY (most stroke pieces): each crossing is computed
+ * directly per row from the exact numerator (x0*dy + (Yc - y0)*dx - 500*dy, below 2^51, so
+ * exact in a double) with a per-edge reciprocal estimate corrected exactly: the same pixel
+ * indices as the DDA of edge_init, without its integer divisions or the edge table. */
+#define TINY ((int64_t)1 << 24)
+
+typedef struct {
+	int64_t n, s, d;    /* numerator at row j0, its step per row (1000*dx), 1000*dy */
+	double inv;         /* 1 / d */
+	int j0, j1, dir;
+} tedge_t;
+
+/* ceil(n / d) for d > 0, |n| < 2^52: the estimate n * inv is within one of it. */
+static inline int64_t tiny_ceil(int64_t n, int64_t d, double inv)
+{
+	int64_t q = (int64_t)ceil((double)n * inv);
+	while (q * d < n)
+		q++;
+	while ((q - 1) * d >= n)
+		q--;
+	return q;
+}
+
+/* Fill a piece of m <= SMALL_EDGES points within +-TINY, rows clipped to [lo, hi). */
+static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
+		meta_rgb_t rgb, int convex, int lo, int hi)
+{
+	tedge_t e[SMALL_EDGES];
+	size_t ne = 0;
+	int jmin = INT32_MAX, jmax = INT32_MIN;
+	for (size_t k = 0; k < m; k++) {
+		const scan_pt_t *a = &pts[k], *z = &pts[k + 1 == m ? 0 : k + 1];
+		if (a->y == z->y)
+			continue;
+		int up = a->y < z->y, dir = up ? 1 : -1;
+		int64_t x0 = up ? a->x : z->x, y0 = up ? a->y : z->y;
+		int64_t x1 = up ? z->x : a->x, y1 = up ? z->y : a->y;
+		int64_t j0 = ceil_div(y0 - 500, 1000), j1 = ceil_div(y1 - 500, 1000) - 1;
+		if (j0 < lo)
+			j0 = lo;
+		if (j1 > hi - 1)
+			j1 = hi - 1;
+		if (j0 > j1)
+			continue;
+		int64_t dx = x1 - x0, dy = y1 - y0;
+		tedge_t *t = &e[ne++];
+		t->d = 1000 * dy;
+		t->n = x0 * dy + (1000 * j0 + 500 - y0) * dx - 500 * dy;
+		t->s = 1000 * dx;
+		t->inv = 1.0 / (double)t->d;
+		t->j0 = (int)j0;
+		t->j1 = (int)j1;
+		t->dir = dir;
+		if (t->j0 < jmin)
+			jmin = t->j0;
+		if (t->j1 > jmax)
+			jmax = t->j1;
+	}
+	for (int j = jmin; j <= jmax; j++) {
+		if (convex) {
+			int64_t l = INT64_MAX, r = INT64_MIN;
+			for (size_t k = 0; k < ne; k++) {
+				tedge_t *t = &e[k];
+				if (j < t->j0 || j > t->j1)
+					continue;
+				int64_t i = tiny_ceil(t->n, t->d, t->inv);
+				t->n += t->s;
+				if (i < l) l = i;
+				if (i > r) r = i;
+			}
+			if (r > l)
+				paint(b, j, l, r, rgb);
+			continue;
+		}
+		cross_t cr[SMALL_EDGES];
+		size_t na = 0;
+		for (size_t k = 0; k < ne; k++) {
+			tedge_t *t = &e[k];
+			if (j < t->j0 || j > t->j1)
+				continue;
+			cross_t x = { tiny_ceil(t->n, t->d, t->inv), t->dir };
+			t->n += t->s;
+			size_t q = na++;
+			while (q > 0 && cr[q - 1].i > x.i) {
+				cr[q] = cr[q - 1];
+				q--;
+			}
+			cr[q] = x;
+		}
+		int w = 0;
+		for (size_t k = 0; k + 1 < na; k++) {
+			w += cr[k].dir;
+			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
+			if (in && cr[k + 1].i > cr[k].i)
+				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
+		}
+	}
+}
+
 static void band_rows(const scan_band_t *b, int *lo, int *hi)
 {
 	*lo = b->jlo < 0 ? 0 : b->jlo;
@@ -388,6 +487,10 @@ int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, s
 	if (ceil_div(y0 - 500, 1000) > ceil_div(y1 - 500, 1000) - 1 ||
 			ceil_div(x0 - 500, 1000) > ceil_div(x1 - 500, 1000) - 1)
 		return 0;
+	if (m <= SMALL_EDGES && x0 > -TINY && x1 < TINY && y0 > -TINY && y1 < TINY) {
+		fill_tiny(b, pts, m, rule, rgb, convex, lo, hi);
+		return 0;
+	}
 	if (grow((void **)&c->edges, &c->cap_edges, m, sizeof(edge_t)))
 		return META_ENOMEM;
 	size_t n = 0;
