@@ -152,6 +152,15 @@ static void dot(stroker_t *s, scan_pt_t v)
 	}
 }
 
+/* 1 if the segment cannot reach the band's pixels (farther than the stroke's reach). */
+static int far_segment(const stroker_t *s, scan_pt_t p, scan_pt_t q)
+{
+	double lo = s->b->jlo * 1000.0 - s->ext, hi = s->b->jhi * 1000.0 + s->ext;
+	double right = s->b->width * 1000.0 + s->ext;
+	return ((double)p.y < lo && (double)q.y < lo) || ((double)p.y > hi && (double)q.y > hi) ||
+		((double)p.x < -s->ext && (double)q.x < -s->ext) || ((double)p.x > right && (double)q.x > right);
+}
+
 /* Stroke n points (consecutive duplicates allowed) as one subpath, solid. */
 static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 {
@@ -167,10 +176,11 @@ static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 		dot(s, pts[0]);
 		return;
 	}
-	/* walk segments p -> q over distinct points */
+	/* walk segments p -> q over distinct points; a segment out of reach of the band (far)
+	 * makes no piece, nor do the joins and caps at its ends: they lie within s->ext of them */
 	scan_pt_t prev_d = { 0, 0 }, prev_o = { 0, 0 }, first_d = { 0, 0 }, first_o = { 0, 0 };
 	double pnx = 0, pny = 0, fnx = 0, fny = 0;
-	int have_prev = 0;
+	int have_prev = 0, prev_far = 0, first_far = 0;
 	scan_pt_t p = pts[first];
 	size_t end = closed ? last + 1 : n;
 	for (size_t i = 1; i <= end && s->rc == 0; i++) {
@@ -179,36 +189,33 @@ static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 			break;
 		if (q.x == p.x && q.y == p.y)
 			continue;
-		scan_pt_t d = { q.x - p.x, q.y - p.y }, o;
-		double nx, ny;
-		offset(s, d.x, d.y, &o, &nx, &ny);
-		segment(s, p, q, o);
-		if (have_prev)
-			join(s, p, prev_d, prev_o, pnx, pny, d, o, nx, ny);
-		else {
-			first_d = d; first_o = o; fnx = nx; fny = ny;
-			if (!closed)
+		scan_pt_t d = { q.x - p.x, q.y - p.y }, o = { 0, 0 };
+		double nx = 0, ny = 0;
+		int far = far_segment(s, p, q);
+		if (!far) {
+			offset(s, d.x, d.y, &o, &nx, &ny);
+			segment(s, p, q, o);
+		}
+		if (have_prev) {
+			if (!far && !prev_far)
+				join(s, p, prev_d, prev_o, pnx, pny, d, o, nx, ny);
+		} else {
+			first_d = d; first_o = o; fnx = nx; fny = ny; first_far = far;
+			if (!closed && !far)
 				cap(s, p, o, 1);
 		}
 		have_prev = 1;
-		prev_d = d; prev_o = o; pnx = nx; pny = ny;
+		prev_d = d; prev_o = o; pnx = nx; pny = ny; prev_far = far;
 		p = q;
 	}
 	if (!have_prev)
 		return;
-	if (closed)
-		join(s, pts[first], prev_d, prev_o, pnx, pny, first_d, first_o, fnx, fny);
-	else
+	if (closed) {
+		if (!prev_far && !first_far)
+			join(s, pts[first], prev_d, prev_o, pnx, pny, first_d, first_o, fnx, fny);
+	} else if (!prev_far) {
 		cap(s, p, prev_o, 0);
-}
-
-/* 1 if the segment cannot reach the band's pixels (farther than the stroke's reach). */
-static int far_segment(const stroker_t *s, scan_pt_t p, scan_pt_t q)
-{
-	double lo = s->b->jlo * 1000.0 - s->ext, hi = s->b->jhi * 1000.0 + s->ext;
-	double right = s->b->width * 1000.0 + s->ext;
-	return ((double)p.y < lo && (double)q.y < lo) || ((double)p.y > hi && (double)q.y > hi) ||
-		((double)p.x < -s->ext && (double)q.x < -s->ext) || ((double)p.x > right && (double)q.x > right);
+	}
 }
 
 /* Stroke the finished dash piece and start afresh. */
