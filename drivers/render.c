@@ -1,4 +1,5 @@
 /* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -12,18 +13,164 @@ typedef struct {
 	uint32_t len;
 } rec_t;
 
-struct dev_render {
-	unsigned width, height, band_rows, bands;
-	uint8_t *pix;
+/* What replaying records onto one band needs (one per painting thread). */
+typedef struct {
 	scan_band_t band;
 	scan_ctx_t *ctx;
-	FILE *spool;            /* NULL: single band, painted directly */
-	unsigned char *rbuf;    /* record payload while replaying */
-	size_t rcap;
 	scan_path_t path;       /* deserialised path */
 	meta_run_t *runs;
 	size_t cap_runs;
+} painter_t;
+
+/* A block of spool records in memory, handed from the reading thread to the helper. */
+typedef struct {
+	unsigned char *buf;
+	size_t len, cap;
+} chunk_t;
+
+/* Records are handed to the helper in blocks of about this many bytes. */
+#define CHUNK_BYTES ((size_t)1 << 20)
+/* Pages with fewer rows are painted by one thread. */
+#define SPLIT_MIN_ROWS 128
+
+struct dev_render {
+	unsigned width, height, band_rows, bands;
+	uint8_t *pix;
+	painter_t main;         /* its band: the whole page, a spooled band, or the split's top */
+	FILE *spool;            /* NULL: single band, painted directly */
+	unsigned char *rbuf;    /* record payload while replaying */
+	size_t rcap;
+	/* split single-band page: a helper thread paints rows [0, mid) from records that the
+	 * caller's thread queues while it paints rows [mid, height) itself; the two bands are
+	 * disjoint rows painted in statement order each, so the pixels are those of one thread */
+	int split, started;
+	unsigned mid;
+	painter_t help;
+	chunk_t fill, work;     /* being filled by the caller; being replayed by the helper */
+	int pending, quit, hrc;
+	pthread_t thr;
+	pthread_mutex_t mu;
+	pthread_cond_t cv;
 };
+
+static int replay_rec(painter_t *pt, const rec_t *h, const unsigned char *q);
+
+/* The helper: replay each block handed over onto its band until told to quit. */
+static void *helper(void *arg)
+{
+	dev_render_t *r = arg;
+	pthread_mutex_lock(&r->mu);
+	for (;;) {
+		while (!r->pending && !r->quit)
+			pthread_cond_wait(&r->cv, &r->mu);
+		if (!r->pending)
+			break;
+		pthread_mutex_unlock(&r->mu);
+		int rc = 0;
+		for (size_t at = 0; at < r->work.len && rc == 0;) {
+			rec_t h;
+			memcpy(&h, r->work.buf + at, sizeof h);
+			rc = replay_rec(&r->help, &h, r->work.buf + at + sizeof h);
+			at += sizeof h + h.len;
+		}
+		pthread_mutex_lock(&r->mu);
+		if (rc && !r->hrc)
+			r->hrc = rc;
+		r->pending = 0;
+		pthread_cond_broadcast(&r->cv);
+	}
+	pthread_mutex_unlock(&r->mu);
+	return NULL;
+}
+
+/* Set up the split (helper thread and its buffers); nonzero leaves the page to one thread. */
+static int split_start(dev_render_t *r)
+{
+	r->help.ctx = scan_ctx_new();
+	r->fill.buf = malloc(CHUNK_BYTES);
+	r->work.buf = malloc(CHUNK_BYTES);
+	if (!r->help.ctx || !r->fill.buf || !r->work.buf)
+		return -1;
+	r->fill.cap = r->work.cap = CHUNK_BYTES;
+	if (pthread_mutex_init(&r->mu, NULL))
+		return -1;
+	if (pthread_cond_init(&r->cv, NULL)) {
+		pthread_mutex_destroy(&r->mu);
+		return -1;
+	}
+	r->mid = r->height / 2;
+	if (pthread_create(&r->thr, NULL, helper, r)) {
+		pthread_cond_destroy(&r->cv);
+		pthread_mutex_destroy(&r->mu);
+		return -1;
+	}
+	r->split = r->started = 1;
+	return 0;
+}
+
+/* Hand the filled block to the helper (waiting until it has finished the previous one). */
+static int split_hand(dev_render_t *r)
+{
+	pthread_mutex_lock(&r->mu);
+	while (r->pending)
+		pthread_cond_wait(&r->cv, &r->mu);
+	chunk_t t = r->work;
+	r->work = r->fill;
+	r->fill = t;
+	r->fill.len = 0;
+	r->pending = r->work.len > 0;
+	int rc = r->hrc;
+	pthread_cond_broadcast(&r->cv);
+	pthread_mutex_unlock(&r->mu);
+	return rc;
+}
+
+/* Hand over what is left, let the helper finish and end it; returns its first error or 0. */
+static int split_stop(dev_render_t *r)
+{
+	if (!r->started)
+		return r->hrc;
+	split_hand(r);
+	pthread_mutex_lock(&r->mu);
+	r->quit = 1;
+	pthread_cond_broadcast(&r->cv);
+	pthread_mutex_unlock(&r->mu);
+	pthread_join(r->thr, NULL);
+	pthread_cond_destroy(&r->cv);
+	pthread_mutex_destroy(&r->mu);
+	r->started = 0;
+	return r->hrc;
+}
+
+/* Append a record for the helper to the block being filled. */
+static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
+		size_t nb, const void *c, size_t nc)
+{
+	size_t need = sizeof *h + na + nb + nc;
+	if (r->fill.len && r->fill.len + need > r->fill.cap) {
+		int rc = split_hand(r);
+		if (rc)
+			return rc;
+	}
+	if (need > r->fill.cap) {
+		unsigned char *n = realloc(r->fill.buf, need);
+		if (!n)
+			return META_ENOMEM;
+		r->fill.buf = n;
+		r->fill.cap = need;
+	}
+	unsigned char *w = r->fill.buf + r->fill.len;
+	memcpy(w, h, sizeof *h);
+	w += sizeof *h;
+	if (na)
+		memcpy(w, a, na);
+	if (nb)
+		memcpy(w + na, b, nb);
+	if (nc)
+		memcpy(w + na + nb, c, nc);
+	r->fill.len += need;
+	return 0;
+}
 
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen)
@@ -43,17 +190,25 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 	r->band_rows = band_rows;
 	r->bands = (height + band_rows - 1) / band_rows;
 	r->pix = malloc(row * band_rows);
-	r->ctx = scan_ctx_new();
-	if (!r->pix || !r->ctx)
+	r->main.ctx = scan_ctx_new();
+	if (!r->pix || !r->main.ctx)
 		goto nomem;
-	r->band.pix = r->pix;
-	r->band.stride = row;
-	r->band.width = (int)width;
-	r->band.height = (int)height;
+	scan_band_t *b = &r->main.band;
+	b->pix = r->pix;
+	b->stride = row;
+	b->width = (int)width;
+	b->height = (int)height;
 	if (r->bands == 1) {
-		r->band.jlo = 0;
-		r->band.jhi = (int)height;
+		b->jlo = 0;
+		b->jhi = (int)height;
 		memset(r->pix, 0xff, row * height);
+		if (height >= SPLIT_MIN_ROWS && split_start(r) == 0) {
+			b->jlo = (int)r->mid;
+			r->help.band = *b;
+			r->help.band.pix = r->pix + (size_t)(height - r->mid) * row;
+			r->help.band.jlo = 0;
+			r->help.band.jhi = (int)r->mid;
+		}
 	} else {
 		r->spool = tmpfile();
 		if (!r->spool) {
@@ -73,13 +228,19 @@ void dev_render_free(dev_render_t *r)
 {
 	if (!r)
 		return;
+	split_stop(r);
 	if (r->spool)
 		fclose(r->spool);
 	free(r->pix);
-	scan_ctx_free(r->ctx);
 	free(r->rbuf);
-	scan_path_free(&r->path);
-	free(r->runs);
+	painter_t *pt[2] = { &r->main, &r->help };
+	for (int k = 0; k < 2; k++) {
+		scan_ctx_free(pt[k]->ctx);
+		scan_path_free(&pt[k]->path);
+		free(pt[k]->runs);
+	}
+	free(r->fill.buf);
+	free(r->work.buf);
 	free(r);
 }
 
@@ -95,11 +256,13 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 {
 	if (jlo < 0)
 		jlo = 0;
-	if (jhi > r->height)
-		jhi = r->height;
+	if (jhi > (r->split ? r->mid : r->height))
+		jhi = r->split ? r->mid : r->height;
 	if (jlo >= jhi)
-		return 0;   /* entirely off the page */
+		return 0;   /* entirely off the page (or the helper's rows) */
 	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
+	if (r->split)
+		return split_put(r, &h, a, na, b, nb, c, nc);
 	if (fwrite(&h, sizeof h, 1, r->spool) != 1 || (na && fwrite(a, 1, na, r->spool) != na) ||
 			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
 		return META_EIO;
@@ -144,16 +307,20 @@ typedef struct {
 int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 {
 	if (!r->spool) {
-		scan_clear(&r->band, rgb);
-		return 0;
+		scan_clear(&r->main.band, rgb);
+		if (!r->split)
+			return 0;
 	}
 	return spool(r, REC_CLEAR, 0, r->height, &rgb, sizeof rgb, NULL, 0, NULL, 0);
 }
 
 int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
 {
-	if (!r->spool)
-		return scan_fill(r->ctx, &r->band, p, rule, rgb);
+	if (!r->spool) {
+		int rc = scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
+		if (rc || !r->split)
+			return rc;
+	}
 	fill_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -163,8 +330,11 @@ int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t 
 
 int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
 {
-	if (!r->spool)
-		return scan_stroke(r->ctx, &r->band, p, st, rgb);
+	if (!r->spool) {
+		int rc = scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
+		if (rc || !r->split)
+			return rc;
+	}
 	stroke_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -184,8 +354,9 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	if (!r->spool) {
-		scan_span(&r->band, x, y, n, rgb);
-		return 0;
+		scan_span(&r->main.band, x, y, n, rgb);
+		if (!r->split)
+			return 0;
 	}
 	int64_t v[3] = { x, y, n };
 	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
@@ -202,8 +373,9 @@ static void paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run
 int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	if (!r->spool) {
-		paint_row(&r->band, x, y, runs, nruns);
-		return 0;
+		paint_row(&r->main.band, x, y, runs, nruns);
+		if (!r->split)
+			return 0;
 	}
 	int64_t v[2] = { x, y };
 	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
@@ -211,12 +383,12 @@ int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs
 
 /* ---- replay ---- */
 
-static int load_path(dev_render_t *r, const unsigned char *q)
+static int load_path(painter_t *pt, const unsigned char *q)
 {
 	uint64_t cnt[2];
 	memcpy(cnt, q, sizeof cnt);
 	q += sizeof cnt;
-	scan_path_t *p = &r->path;
+	scan_path_t *p = &pt->path;
 	if (cnt[0] > p->cappts) {
 		scan_pt_t *n = realloc(p->pts, cnt[0] * sizeof(scan_pt_t));
 		if (!n)
@@ -239,12 +411,57 @@ static int load_path(dev_render_t *r, const unsigned char *q)
 	return 0;
 }
 
+/* Paint one record (header h, payload q) onto the painter's band. */
+static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
+{
+	rec_t h = *hp;
+	int rc = 0;
+	if (h.jhi <= pt->band.jlo || h.jlo >= pt->band.jhi)
+		return 0;
+	if (h.kind == REC_CLEAR) {
+		meta_rgb_t c;
+		memcpy(&c, q, sizeof c);
+		scan_clear(&pt->band, c);
+	} else if (h.kind == REC_FILL) {
+		fill_head_t f;
+		memcpy(&f, q, sizeof f);
+		if (!(rc = load_path(pt, q + sizeof f)))
+			rc = scan_fill(pt->ctx, &pt->band, &pt->path, f.rule, f.rgb);
+	} else if (h.kind == REC_STROKE) {
+		stroke_head_t s;
+		memcpy(&s, q, sizeof s);
+		scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
+		if (!(rc = load_path(pt, q + sizeof s)))
+			rc = scan_stroke(pt->ctx, &pt->band, &pt->path, &st, s.rgb);
+	} else if (h.kind == REC_SPAN) {
+		int64_t v[3];
+		meta_rgb_t c;
+		memcpy(v, q, sizeof v);
+		memcpy(&c, q + sizeof v, sizeof c);
+		scan_span(&pt->band, v[0], v[1], v[2], c);
+	} else if (h.kind == REC_ROW) {
+		int64_t v[2];
+		memcpy(v, q, sizeof v);
+		size_t n = (h.len - sizeof v) / sizeof(meta_run_t);
+		if (n > pt->cap_runs) {
+			meta_run_t *m = realloc(pt->runs, n * sizeof *m);
+			if (!m)
+				return META_ENOMEM;
+			pt->runs = m;
+			pt->cap_runs = n;
+		}
+		memcpy(pt->runs, q + sizeof v, n * sizeof(meta_run_t));
+		paint_row(&pt->band, v[0], v[1], pt->runs, n);
+	}
+	return rc;
+}
+
 static int replay(dev_render_t *r)
 {
 	rec_t h;
 	rewind(r->spool);
 	while (fread(&h, sizeof h, 1, r->spool) == 1) {
-		if (h.jhi <= r->band.jlo || h.jlo >= r->band.jhi) {
+		if (h.jhi <= r->main.band.jlo || h.jlo >= r->main.band.jhi) {
 			if (fseek(r->spool, h.len, SEEK_CUR))
 				return META_EIO;
 			continue;
@@ -258,43 +475,7 @@ static int replay(dev_render_t *r)
 		}
 		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
 			return META_EIO;
-		const unsigned char *q = r->rbuf;
-		int rc = 0;
-		if (h.kind == REC_CLEAR) {
-			meta_rgb_t c;
-			memcpy(&c, q, sizeof c);
-			scan_clear(&r->band, c);
-		} else if (h.kind == REC_FILL) {
-			fill_head_t f;
-			memcpy(&f, q, sizeof f);
-			if (!(rc = load_path(r, q + sizeof f)))
-				rc = scan_fill(r->ctx, &r->band, &r->path, f.rule, f.rgb);
-		} else if (h.kind == REC_STROKE) {
-			stroke_head_t s;
-			memcpy(&s, q, sizeof s);
-			scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
-			if (!(rc = load_path(r, q + sizeof s)))
-				rc = scan_stroke(r->ctx, &r->band, &r->path, &st, s.rgb);
-		} else if (h.kind == REC_SPAN) {
-			int64_t v[3];
-			meta_rgb_t c;
-			memcpy(v, q, sizeof v);
-			memcpy(&c, q + sizeof v, sizeof c);
-			scan_span(&r->band, v[0], v[1], v[2], c);
-		} else if (h.kind == REC_ROW) {
-			int64_t v[2];
-			memcpy(v, q, sizeof v);
-			size_t n = (h.len - sizeof v) / sizeof(meta_run_t);
-			if (n > r->cap_runs) {
-				meta_run_t *m = realloc(r->runs, n * sizeof *m);
-				if (!m)
-					return META_ENOMEM;
-				r->runs = m;
-				r->cap_runs = n;
-			}
-			memcpy(r->runs, q + sizeof v, n * sizeof(meta_run_t));
-			paint_row(&r->band, v[0], v[1], r->runs, n);
-		}
+		int rc = replay_rec(&r->main, &h, r->rbuf);
 		if (rc)
 			return rc;
 	}
@@ -306,6 +487,9 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	size_t row = (size_t)r->width * 3;
 	dev_band_t out = { r->pix, row, r->width, 0, 0, r->height };
 	if (!r->spool) {
+		int rc = split_stop(r);
+		if (rc)
+			return rc;
 		out.nrows = r->height;
 		return fn(user, &out);
 	}
@@ -313,8 +497,8 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 		return META_EIO;
 	for (unsigned top = 0; top < r->height; top += r->band_rows) {
 		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
-		r->band.jhi = (int)(r->height - top);
-		r->band.jlo = r->band.jhi - (int)n;
+		r->main.band.jhi = (int)(r->height - top);
+		r->main.band.jlo = r->main.band.jhi - (int)n;
 		memset(r->pix, 0xff, row * n);
 		int rc = replay(r);
 		if (rc)
