@@ -17,10 +17,7 @@ int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, s
 static inline int64_t scan_round(double v)
 {
 	double t = trunc(v), f = v - t;
-	if (f >= 0.5)
-		t += 1.0;
-	else if (f <= -0.5)
-		t -= 1.0;
-	return (int64_t)t;
+	/* without branches (the fraction's side is unpredictable); |t| >= 2^53 has f = 0 */
+	return (int64_t)t + (f >= 0.5) - (f <= -0.5);
 }
 #endif
