@@ -9,34 +9,13 @@
 #include <stdlib.h>
 
 #include "contour.h"
-#include "unit.h"
+#include "golden.h"
 
 #define GOLDEN "fixtures/contour/trifocal.meta"
 
-typedef struct {
-	char *buf;
-	size_t n, cap;
-} mem_t;
-
-static int mem_write(void *user, const void *p, size_t n)
-{
-	mem_t *m = user;
-	if (m->n + n > m->cap) {
-		size_t cap = (m->n + n) * 2;
-		char *b = realloc(m->buf, cap);
-		if (!b)
-			return -1;
-		m->buf = b;
-		m->cap = cap;
-	}
-	memcpy(m->buf + m->n, p, n);
-	m->n += n;
-	return 0;
-}
-
 /* 3-point distance sum on a 65 x 49 grid over [-3, 3] x [-2.25, 2.25], drawn
  * on a 260 x 196 page, 4 pixels per cell; a NaN hole at the lower right. */
-static int render(mem_t *m)
+static int render(golden_buf_t *m)
 {
 	enum { NX = 65, NY = 49, NL = 9 };
 	static float z[NX * NY];
@@ -63,7 +42,7 @@ static int render(mem_t *m)
 	contour_grid_t g = { z, NX, NY, { 0 } };
 	contour_map_rect(g.m, NX, NY, 2, 2, 258, 194);
 	contour_style_t st = { lines, 1.5 };
-	meta_writer_t *w = meta_writer_new(mem_write, m, META_ENC_TEXT);
+	meta_writer_t *w = meta_writer_new(golden_write, m, META_ENC_TEXT);
 	int rc = w ? 0 : -1;
 	if (rc == 0)
 		rc = meta_page(w, 260, 196);
@@ -82,22 +61,9 @@ static int render(mem_t *m)
 
 int main(void)
 {
-	mem_t m = { 0 };
+	golden_buf_t m = { 0 };
 	int rc = render(&m);
 	CHECK(rc == 0, "the contour map renders (%s)", contour_error());
-	if (getenv("LOCUS_RECORD")) {
-		FILE *f = fopen(GOLDEN, "wb");
-		CHECK(f && fwrite(m.buf, 1, m.n, f) == m.n && fclose(f) == 0, "recorded %s (%zu bytes)", GOLDEN, m.n);
-	} else {
-		FILE *f = fopen(GOLDEN, "rb");
-		char *want = malloc(m.n + 2);
-		size_t n = f && want ? fread(want, 1, m.n + 1, f) : 0;
-		if (f)
-			fclose(f);
-		CHECK(f != NULL, "golden %s is there", GOLDEN);
-		CHECK(n == m.n && memcmp(want, m.buf, n) == 0, "output equals %s (%zu bytes, golden %zu)", GOLDEN, m.n, n);
-		free(want);
-	}
-	free(m.buf);
+	golden_check(GOLDEN, &m);
 	return UNIT_DONE();
 }

@@ -8,31 +8,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "unit.h"
+#include "golden.h"
 #include "voronoi.h"
 
 #define GOLDEN "fixtures/voronoi/weighted.meta"
-
-typedef struct {
-	char *buf;
-	size_t n, cap;
-} mem_t;
-
-static int mem_write(void *user, const void *p, size_t n)
-{
-	mem_t *m = user;
-	if (m->n + n > m->cap) {
-		size_t cap = (m->n + n) * 2;
-		char *b = realloc(m->buf, cap);
-		if (!b)
-			return -1;
-		m->buf = b;
-		m->cap = cap;
-	}
-	memcpy(m->buf + m->n, p, n);
-	m->n += n;
-	return 0;
-}
 
 /* Plane window [0, 8] x [0, 6] on a 256 x 192 page. Nucleus 0 is the heavy
  * one (the thesis' "varying the weight of a nucleus"): on page 1 its additive
@@ -83,27 +62,14 @@ static int page(meta_writer_t *w, int metric)
 
 int main(void)
 {
-	mem_t m = { 0 };
-	meta_writer_t *w = meta_writer_new(mem_write, &m, META_ENC_TEXT);
+	golden_buf_t m = { 0 };
+	meta_writer_t *w = meta_writer_new(golden_write, &m, META_ENC_TEXT);
 	int rc = w ? page(w, VORONOI_ADDITIVE) : -1;
 	if (rc == 0)
 		rc = page(w, VORONOI_MULTIPLICATIVE);
 	if (w && meta_writer_close(w) < 0)
 		rc = -1;
 	CHECK(rc == 0, "the tessellations render (%s)", voronoi_error());
-	if (getenv("LOCUS_RECORD")) {
-		FILE *f = fopen(GOLDEN, "wb");
-		CHECK(f && fwrite(m.buf, 1, m.n, f) == m.n && fclose(f) == 0, "recorded %s (%zu bytes)", GOLDEN, m.n);
-	} else {
-		FILE *f = fopen(GOLDEN, "rb");
-		char *want = malloc(m.n + 2);
-		size_t n = f && want ? fread(want, 1, m.n + 1, f) : 0;
-		if (f)
-			fclose(f);
-		CHECK(f != NULL, "golden %s is there", GOLDEN);
-		CHECK(n == m.n && memcmp(want, m.buf, n) == 0, "output equals %s (%zu bytes, golden %zu)", GOLDEN, m.n, n);
-		free(want);
-	}
-	free(m.buf);
+	golden_check(GOLDEN, &m);
 	return UNIT_DONE();
 }
