@@ -195,6 +195,29 @@ static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, meta
 	}
 }
 
+/* Insert crossing x into cr[0..n) kept sorted by pixel index (n is the count before). */
+static inline void insert_crossing(cross_t *cr, size_t n, cross_t x)
+{
+	while (n > 0 && cr[n - 1].i > x.i) {
+		cr[n] = cr[n - 1];
+		n--;
+	}
+	cr[n] = x;
+}
+
+/* Paint row j between sorted crossings where the winding number is inside by the rule (§5.1). */
+static inline void paint_crossings(const scan_band_t *b, int j, const cross_t *cr, size_t na, int rule,
+		meta_rgb_t rgb)
+{
+	int w = 0;
+	for (size_t k = 0; k + 1 < na; k++) {
+		w += cr[k].dir;
+		int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
+		if (in && cr[k + 1].i > cr[k].i)
+			paint(b, j, cr[k].i, cr[k + 1].i, rgb);
+	}
+}
+
 void scan_span(const scan_band_t *b, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	int lo = b->jlo < 0 ? 0 : b->jlo, hi = b->jhi > b->height ? b->height : b->jhi;
@@ -231,23 +254,11 @@ static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, met
 			edge_t *a = &e[k];
 			if (j < a->jf || j > a->jl)
 				continue;
-			cross_t x = { a->i, a->dir };
-			size_t m = na++;
-			while (m > 0 && cr[m - 1].i > x.i) {
-				cr[m] = cr[m - 1];
-				m--;
-			}
-			cr[m] = x;
+			insert_crossing(cr, na++, (cross_t){ a->i, a->dir });
 			if (j < a->jl)
 				edge_step(a);
 		}
-		int w = 0;
-		for (size_t k = 0; k + 1 < na; k++) {
-			w += cr[k].dir;
-			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
-			if (in && cr[k + 1].i > cr[k].i)
-				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
-		}
+		paint_crossings(b, j, cr, na, rule, rgb);
 	}
 }
 
@@ -307,21 +318,9 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 		}
 		/* collect crossings, insertion-sorted by pixel index */
 		for (size_t k = 0; k < na; k++) {
-			cross_t x = { act[k]->i, act[k]->dir };
-			size_t m = k;
-			while (m > 0 && cr[m - 1].i > x.i) {
-				cr[m] = cr[m - 1];
-				m--;
-			}
-			cr[m] = x;
+			insert_crossing(cr, k, (cross_t){ act[k]->i, act[k]->dir });
 		}
-		int w = 0;
-		for (size_t k = 0; k + 1 < na; k++) {
-			w += cr[k].dir;
-			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
-			if (in && cr[k + 1].i > cr[k].i)
-				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
-		}
+		paint_crossings(b, j, cr, na, rule, rgb);
 		/* step and retire */
 		size_t keep = 0;
 		for (size_t k = 0; k < na; k++) {
@@ -415,22 +414,10 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 			tedge_t *t = &e[k];
 			if (j < t->j0 || j > t->j1)
 				continue;
-			cross_t x = { tiny_ceil(t->n, t->d, t->inv), t->dir };
+			insert_crossing(cr, na++, (cross_t){ tiny_ceil(t->n, t->d, t->inv), t->dir });
 			t->n += t->s;
-			size_t q = na++;
-			while (q > 0 && cr[q - 1].i > x.i) {
-				cr[q] = cr[q - 1];
-				q--;
-			}
-			cr[q] = x;
 		}
-		int w = 0;
-		for (size_t k = 0; k + 1 < na; k++) {
-			w += cr[k].dir;
-			int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
-			if (in && cr[k + 1].i > cr[k].i)
-				paint(b, j, cr[k].i, cr[k + 1].i, rgb);
-		}
+		paint_crossings(b, j, cr, na, rule, rgb);
 	}
 }
 

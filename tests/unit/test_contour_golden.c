@@ -15,7 +15,7 @@
 
 /* 3-point distance sum on a 65 x 49 grid over [-3, 3] x [-2.25, 2.25], drawn
  * on a 260 x 196 page, 4 pixels per cell; a NaN hole at the lower right. */
-static int render(golden_buf_t *m)
+static int render(membuf_t *m)
 {
 	enum { NX = 65, NY = 49, NL = 9 };
 	static float z[NX * NY];
@@ -42,7 +42,7 @@ static int render(golden_buf_t *m)
 	contour_grid_t g = { z, NX, NY, { 0 } };
 	contour_map_rect(g.m, NX, NY, 2, 2, 258, 194);
 	contour_style_t st = { lines, 1.5 };
-	meta_writer_t *w = meta_writer_new(golden_write, m, META_ENC_TEXT);
+	meta_writer_t *w = meta_writer_new(membuf_write, m, META_ENC_TEXT);
 	int rc = w ? 0 : -1;
 	if (rc == 0)
 		rc = meta_page(w, 260, 196);
@@ -61,7 +61,7 @@ static int render(golden_buf_t *m)
 
 int main(void)
 {
-	golden_buf_t m = { 0 };
+	membuf_t m = { 0 };
 	int rc = render(&m);
 	CHECK(rc == 0, "the contour map renders (%s)", contour_error());
 	golden_check(GOLDEN, &m);

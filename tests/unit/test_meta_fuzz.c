@@ -2,6 +2,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include "membuf.h"
 #include "unit.h"
 #include "locus_meta.h"
 
@@ -17,23 +18,6 @@ static unsigned rnd(unsigned n)
 {
 	rng ^= rng >> 12, rng ^= rng << 25, rng ^= rng >> 27;
 	return (unsigned)((rng * 2685821657736338717u) >> 33) % n;
-}
-
-typedef struct {
-	char *p;
-	size_t n, cap;
-} sink_t;
-
-static int sink(void *user, const void *buf, size_t n)
-{
-	sink_t *s = user;
-	if (s->n + n > s->cap) {
-		s->cap = (s->n + n) * 2;
-		s->p = realloc(s->p, s->cap);
-	}
-	memcpy(s->p + s->n, buf, n);
-	s->n += n;
-	return 0;
 }
 
 /* Mutate src into dst (room for n + 16 bytes); returns the new length. */
@@ -55,9 +39,9 @@ static size_t mutate(const char *src, size_t n, char *dst)
 
 int main(void)
 {
-	sink_t bin = { 0 };
+	membuf_t bin = { 0 };
 	meta_reader_t *r = meta_reader_mem(seed_text, sizeof seed_text - 1, "seed");
-	meta_writer_t *w = meta_writer_new(sink, &bin, META_ENC_BINARY);
+	meta_writer_t *w = meta_writer_new(membuf_write, &bin, META_ENC_BINARY);
 	meta_cmd_t c;
 	char *buf;
 	int rc, it, which;
@@ -73,10 +57,10 @@ int main(void)
 		size_t n = which ? bin.n : sizeof seed_text - 1;
 		for (it = 0; it < 4000; it++) {
 			size_t len = mutate(src, n, buf);
-			sink_t out = { 0 };
+			membuf_t out = { 0 };
 			const char *e;
 			r = meta_reader_mem(buf, len, "m");
-			w = meta_writer_new(sink, &out, which ? META_ENC_TEXT : META_ENC_BINARY);
+			w = meta_writer_new(membuf_write, &out, which ? META_ENC_TEXT : META_ENC_BINARY);
 			while ((rc = meta_read(r, &c)) > 0)
 				if (meta_write(w, &c) < 0)
 					rewritten = -1000000; /* the writer refused what the reader accepted */

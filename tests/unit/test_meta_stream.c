@@ -1,6 +1,7 @@
 /* test_meta_stream.c: the streaming reader over a callback that returns a few bytes at a time, and long lines across refills. */
 #include <stdlib.h>
 #include <string.h>
+#include "membuf.h"
 #include "unit.h"
 #include "locus_meta.h"
 
@@ -30,27 +31,10 @@ static long failing(void *user, void *buf, size_t n)
 	return -1;
 }
 
-typedef struct {
-	char *p;
-	size_t n, cap;
-} sink_t;
-
-static int sink(void *user, const void *buf, size_t n)
-{
-	sink_t *s = user;
-	if (s->n + n > s->cap) {
-		s->cap = (s->n + n) * 2;
-		s->p = realloc(s->p, s->cap);
-	}
-	memcpy(s->p + s->n, buf, n);
-	s->n += n;
-	return 0;
-}
-
 /* Re-encode everything r reads as text; returns the statement count or <0. */
-static long recode(meta_reader_t *r, sink_t *out)
+static long recode(meta_reader_t *r, membuf_t *out)
 {
-	meta_writer_t *w = meta_writer_new(sink, out, META_ENC_TEXT);
+	meta_writer_t *w = meta_writer_new(membuf_write, out, META_ENC_TEXT);
 	meta_cmd_t c;
 	long n = 0;
 	int rc;
@@ -85,7 +69,7 @@ static char *big_text(size_t *len)
 static void test_dribble(const char *what, const char *data, size_t len, int binary)
 {
 	unsigned steps[] = { 1, 3, 7, 64 };
-	sink_t ref = { 0 };
+	membuf_t ref = { 0 };
 	meta_reader_t *r = meta_reader_mem(data, len, "mem");
 	long nref = recode(r, &ref), n;
 	size_t i;
@@ -94,7 +78,7 @@ static void test_dribble(const char *what, const char *data, size_t len, int bin
 	meta_reader_free(r);
 	for (i = 0; i < sizeof steps / sizeof *steps; i++) {
 		src_t s = { data, len, 0, steps[i], 0 };
-		sink_t out = { 0 };
+		membuf_t out = { 0 };
 		r = meta_reader_new(dribble, &s, "cb");
 		n = recode(r, &out);
 		CHECK(n == nref && out.n == ref.n && memcmp(out.p, ref.p, ref.n) == 0,
@@ -109,7 +93,7 @@ int main(void)
 {
 	size_t len;
 	char *text = big_text(&len);
-	sink_t bin = { 0 };
+	membuf_t bin = { 0 };
 	meta_reader_t *r;
 	meta_writer_t *w;
 	meta_cmd_t c;
@@ -118,7 +102,7 @@ int main(void)
 	test_dribble("text with 330 KB lines", text, len, 0);
 
 	r = meta_reader_mem(text, len, "mem");
-	w = meta_writer_new(sink, &bin, META_ENC_BINARY);
+	w = meta_writer_new(membuf_write, &bin, META_ENC_BINARY);
 	while ((rc = meta_read(r, &c)) > 0)
 		meta_write(w, &c);
 	CHECK(rc == 0 && meta_writer_close(w) == 0, "binary copy written");

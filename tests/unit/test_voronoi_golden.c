@@ -62,8 +62,8 @@ static int page(meta_writer_t *w, int metric)
 
 int main(void)
 {
-	golden_buf_t m = { 0 };
-	meta_writer_t *w = meta_writer_new(golden_write, &m, META_ENC_TEXT);
+	membuf_t m = { 0 };
+	meta_writer_t *w = meta_writer_new(membuf_write, &m, META_ENC_TEXT);
 	int rc = w ? page(w, VORONOI_ADDITIVE) : -1;
 	if (rc == 0)
 		rc = page(w, VORONOI_MULTIPLICATIVE);
