@@ -349,7 +349,9 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	p.d = d;
 	d->err[0] = 0;
 	d->reader_error = 0;
-	int rc = d->ops->open ? d->ops->open(d) : 0;
+	int rc = dev_check_options(d);
+	if (rc == 0 && d->ops->open)
+		rc = d->ops->open(d);
 	meta_cmd_t c;
 	while (rc == 0) {
 		int k = meta_read(r, &c);

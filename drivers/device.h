@@ -90,6 +90,15 @@ typedef struct {
 
 typedef struct dev dev_device_t;
 
+/* One device option a driver accepts as -O key=value (dev_ops_t.option_list). */
+typedef struct {
+	const char *key;
+	const char *help;           /* one line: the values and the default */
+} dev_option_t;
+
+/* How a model page is mapped onto a device raster of its own (dev_device_t.fit). */
+enum { DEV_FIT_ASPECT = 0, DEV_FIT_FILL = 1, DEV_FIT_STRETCH = 2 };
+
 /* The operations table. Any member may be NULL (a default or nothing is used). */
 typedef struct dev_ops {
 	const char *name;           /* registry name, e.g. "png" */
@@ -98,6 +107,7 @@ typedef struct dev_ops {
 	unsigned caps;              /* DEV_CAP_* */
 	unsigned colours;           /* distinct colours the device shows; 0 = 24-bit */
 	size_t priv_size;           /* bytes of zeroed private state allocated for dev->priv */
+	const dev_option_t *option_list; /* the -O keys it accepts, {NULL} terminated; NULL: none */
 	int (*open)(dev_device_t *d);
 	int (*begin_page)(dev_device_t *d, const dev_page_t *pg);
 	int (*write_band)(dev_device_t *d, const dev_band_t *band);             /* raster */
@@ -118,6 +128,15 @@ struct dev {
 	const char *options;        /* device-specific "key=value,..." or NULL */
 	unsigned band_rows;         /* raster: rows per band, 0 = automatic */
 	size_t mem_budget;          /* raster: bytes a page buffer may take (automatic banding) */
+	/* A raster device with a raster of its own (framebuffer modes, film frames) sets these in
+	 * its open(): the framework then maps each model page onto raster_width x raster_height
+	 * device pixels of the given shape (pixel_aspect = width / height of one pixel, 0 = square)
+	 * as `fit` says, and bands and pages reach the device at that size. 0 x 0 = the model
+	 * page's own pixels (locus-raster). */
+	unsigned raster_width, raster_height;
+	double pixel_aspect;
+	int fit;                    /* DEV_FIT_* */
+	meta_rgb_t letterbox;       /* the bars' colour with DEV_FIT_ASPECT */
 	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
 	void *user;                 /* free for the program */
 	/* Optional program hook, called before the device's begin_page (end = 0) and after its
@@ -149,6 +168,14 @@ const char *dev_error(const dev_device_t *d);
  * the device or the framework with the place of the statement ("line 12: ..." or
  * "byte 1042: ..."). */
 int dev_play(meta_reader_t *r, dev_device_t *d);
+
+/* Device options (devopt.c). The value of key in d->options copied into buf (NULL when the
+ * key is absent or the value does not fit). */
+const char *dev_option(const dev_device_t *d, const char *key, char *buf, size_t n);
+/* 0 when every key in d->options is in d->ops->option_list, else DEV_EUSAGE with a one-line
+ * message naming the unknown key and the known ones. dev_play() calls it before open(). */
+int dev_check_options(dev_device_t *d);
+#define DEV_EUSAGE (-21)
 
 /* The device registry (registry.c): NULL-terminated list, and lookup by name. */
 extern const dev_ops_t *const dev_registry[];

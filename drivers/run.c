@@ -61,6 +61,7 @@ static int status_of(int rc)
 	switch (rc) {
 	case META_ESYNTAX: case META_ELIMIT: case META_EVERSION: case META_ESTATE: return 65;
 	case META_ENOMEM: return 70;
+	case DEV_EUSAGE: return 64;
 	default: return 74;
 	}
 }

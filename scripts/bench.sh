@@ -13,7 +13,13 @@
 # to run: plot check pov octree contour voronoi; default all), BENCH_KEEP=1 keeps the
 # run directory build/bench/run.PID (inputs and pictures) for looking at.
 set -u
-: "${BIN:=bin}" "${CC:=cc}" "${BENCH_RUNS:=5}" "${BENCH_ONLY:=plot check pov octree contour voronoi}"
+: "${BIN:=bin}" "${CC:=cc}" "${BENCH_RUNS:=5}"
+# groups: the built-in ones, then one per scripts/bench.d/GROUP.sh
+BENCH_GROUPS="plot check pov octree contour voronoi"
+for f in scripts/bench.d/*.sh; do
+	[ -f "$f" ] && BENCH_GROUPS="$BENCH_GROUPS $(basename "$f" .sh)"
+done
+: "${BENCH_ONLY:=$BENCH_GROUPS}"
 LIBDIR=build/native
 BB=build/bench
 # one directory per run, so that two runs at once do not overwrite each other's files
@@ -477,6 +483,15 @@ want pov && bench_pov
 want octree && bench_octree
 want contour && bench_contour
 want voronoi && bench_voronoi
+# Each scripts/bench.d/GROUP.sh is sourced here: it sees every helper above (emit, measure,
+# line, skip, fail, build, $W, $BIN) and defines bench_GROUP, which is then run.
+for f in scripts/bench.d/*.sh; do
+	[ -f "$f" ] || continue
+	g=$(basename "$f" .sh)
+	want "$g" || continue
+	. "./$f"
+	"bench_$g"
+done
 mv "$RTMP" "$RESULTS"
 echo "bench: $(grep -c '^BENCH ' "$RESULTS") comparisons, $(grep -c '^BENCH-SKIP' "$RESULTS") skipped," \
 	"$(grep -c '^BENCH-FAIL' "$RESULTS") failed; lines in $RESULTS" >&2

@@ -30,5 +30,10 @@ fi
 	fi
 	echo "demo: $dev -> out/default.$dev.$ext ($same)"
 done
+# Each driver adds its own demo outputs in scripts/demo.d/NAME.sh (sourced: $BIN is set and
+# out/default.meta exists).
+for f in scripts/demo.d/*.sh; do
+	[ -f "$f" ] && . "./$f"
+done
 echo "demo: done; pictures are in out/"
 ls -l out

@@ -10,6 +10,13 @@ check) pkgs="libpng-dev zlib1g-dev python3 time plotutils" ;;
 bench) pkgs="plotutils povray python3-contourpy python3-numpy time imagemagick qhull-bin" ;;
 *) echo "deps.sh: unknown purpose '$purpose'" >&2; exit 64 ;;
 esac
+# Each part of the project may list more packages in scripts/deps.d/PART.txt, one line per
+# purpose: "PURPOSE package package ..." (# starts a comment).
+for f in scripts/deps.d/*.txt; do
+	[ -f "$f" ] || continue
+	more=$(awk -v p="$purpose" '$1 == p { for (k = 2; k <= NF; k++) print $k }' "$f" | sed 's/#.*//')
+	pkgs="$pkgs $more"
+done
 missing=""
 for p in $pkgs; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"
