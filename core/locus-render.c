@@ -1,12 +1,12 @@
 /* locus-render.c: render a scene file into a meta file (ray tracing, octree, contours, Voronoi, wireframes). */
 #include "scene.h"
+#include "transport.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #define EX_USAGE 64
@@ -30,7 +30,7 @@ static const char usage[] =
 
 static int write_cb(void *user, const void *buf, size_t n)
 {
-	return fwrite(buf, 1, n, (FILE *)user) == n ? 0 : -1;
+	return io_write(user, buf, n);
 }
 
 static void progress(void *user, unsigned done, unsigned total)
@@ -106,41 +106,13 @@ int main(int argc, char **argv)
 			fprintf(stderr, "%s\n", sc->warnings[i]);
 	size_t nw0 = sc->nwarnings;
 
-	FILE *f = stdout;
-	char *tmp = NULL;
-	struct stat sb;
-	int special = strcmp(out, "-") && stat(out, &sb) == 0 && !S_ISREG(sb.st_mode);
-	if (special) {
-		/* a device or a pipe (e.g. /dev/null): written directly, never replaced */
-		f = fopen(out, "wb");
-		if (!f) {
-			fprintf(stderr, "%s: cannot open for writing: %s\n", out, strerror(errno));
-			scene_free(sc);
-			return EX_IOERR;
-		}
-	} else if (strcmp(out, "-")) {
-		size_t n = strlen(out);
-		tmp = malloc(n + 16);
-		if (!tmp) {
-			fprintf(stderr, "locus-render: out of memory\n");
-			scene_free(sc);
-			return EX_SOFTWARE;
-		}
-		snprintf(tmp, n + 16, "%s.tmp.XXXXXX", out);
-		int fd = mkstemp(tmp);
-		if (fd >= 0) {
-			mode_t um = umask(0);
-			umask(um);
-			fchmod(fd, 0666 & ~um);
-		}
-		if (fd < 0 || !(f = fdopen(fd, "wb"))) {
-			fprintf(stderr, "%s: cannot create a temporary file beside it: %s\n", out, strerror(errno));
-			if (fd >= 0)
-				close(fd), unlink(tmp);
-			free(tmp);
-			scene_free(sc);
-			return EX_IOERR;
-		}
+	/* a file via a new temporary renamed on success; a device or a pipe (e.g. /dev/null)
+	 * written in place, never replaced (drivers/transport.h) */
+	io_transport_t *f = io_open_write(out, err, sizeof err);
+	if (!f) {
+		fprintf(stderr, "%s\n", err);
+		scene_free(sc);
+		return EX_IOERR;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, binary ? META_ENC_BINARY : META_ENC_TEXT);
 	scene_opts_t o = {(unsigned)threads, NULL, NULL};
@@ -152,30 +124,16 @@ int main(int argc, char **argv)
 		fprintf(stderr, "locus-render: out of memory\n");
 		status = EX_SOFTWARE;
 	} else if (scene_render(sc, w, &o, &st, err, sizeof err) < 0) {
-		fprintf(stderr, "%s\n", err);
-		status = ferror(f) ? EX_IOERR : EX_DATAERR;
+		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : err);
+		status = io_failed(f) ? EX_IOERR : EX_DATAERR;
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
-		fprintf(stderr, "%s: write error\n", out);
+		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");
 		status = EX_IOERR;
 	}
-	if (fflush(f) != 0 && !status) {
-		fprintf(stderr, "%s: write error: %s\n", out, strerror(errno));
+	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
+		fprintf(stderr, "%s\n", err);
 		status = EX_IOERR;
-	}
-	if ((special || tmp) && fclose(f) != 0 && !status) {
-		fprintf(stderr, "%s: write error: %s\n", out, strerror(errno));
-		status = EX_IOERR;
-	}
-	if (tmp) {
-		if (status)
-			unlink(tmp);
-		else if (rename(tmp, out) != 0) {
-			fprintf(stderr, "%s: cannot rename the temporary file: %s\n", out, strerror(errno));
-			unlink(tmp);
-			status = EX_IOERR;
-		}
-		free(tmp);
 	}
 	if (!status && !quiet)
 		for (size_t i = nw0; i < sc->nwarnings; i++)

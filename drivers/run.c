@@ -8,7 +8,7 @@ typedef struct {
 	const dev_job_t *job;
 	io_transport_t **pages;   /* kept temporaries, one per page (file output) */
 	size_t npages, cap;
-	io_transport_t *std;      /* "-" */
+	io_transport_t *shared;   /* written in place (stdout, a device, a pipe): every page */
 	char err[512];
 } job_state_t;
 
@@ -28,14 +28,14 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 {
 	job_state_t *js = d->user;
 	(void)pg;
-	if (js->std || !js->job->out)
+	if (js->shared || !js->job->out)
 		return 0;
 	if (end) {
 		io_transport_t *t = d->out;
 		d->out = NULL;
 		if (io_close(t, IO_KEEP)) {
 			int rc = dev_fail(d, META_EIO, "%s", io_error(t));
-			io_finish(t, 0, NULL);
+			io_finish(t, 0, NULL, NULL, 0);
 			return rc;
 		}
 		js->pages[js->npages++] = t;
@@ -53,6 +53,8 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 	d->out = io_open_write(js->job->out, err, sizeof err);
 	if (!d->out)
 		return dev_fail(d, META_EIO, "%s", err);
+	if (io_in_place(d->out))
+		js->shared = d->out;   /* no file per page to rename: pages follow one another */
 	return 0;
 }
 
@@ -88,33 +90,38 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 		d->mem_budget = job->budget;
 	d->options = job->options;
 	if (job->out && strcmp(job->out, "-") == 0) {
-		js.std = io_open_write("-", err, errlen);
-		if (!js.std)
+		js.shared = io_open_write("-", err, errlen);
+		if (!js.shared)
 			status = 74;
-		d->out = js.std;
+		d->out = js.shared;
 	}
 	if (status == 0) {
 		int rc = dev_play(r, d);
+		io_transport_t *out = d->out ? d->out : js.shared;
 		if (rc) {
 			status = status_of(rc);
-			if (d->reader_error || status != 65)
+			if (status == 74 && out && io_failed(out))
+				snprintf(err, errlen, "%s", io_error(out));   /* names the output and the cause */
+			else if (d->reader_error || status != 65)
 				snprintf(err, errlen, "%s", dev_error(d));
 			else
 				snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
 		}
 	}
-	if (d->out && d->out != js.std)
+	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
-	if (js.std && io_close(js.std, status ? IO_ABORT : IO_COMMIT) && status == 0) {
-		snprintf(err, errlen, "<stdout>: write failed");
+	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
+		&& status == 0)
 		status = 74;
-	}
+	/* every page replayed: rename them all (or remove them all) */
 	for (size_t k = 0; k < js.npages; k++) {
 		char *name = js.npages > 1 ? dev_page_name(job->out, (unsigned)k + 1) : NULL;
-		if (io_finish(js.pages[k], status == 0, name) && status == 0) {
-			snprintf(err, errlen, "%s: cannot rename output into place", name ? name : job->out);
-			status = 74;
+		if (js.npages > 1 && !name && status == 0) {
+			snprintf(err, errlen, "out of memory");
+			status = 70;
 		}
+		if (io_finish(js.pages[k], status == 0, name, err, errlen) && status == 0)
+			status = 74;
 		free(name);
 	}
 	free(js.pages);

@@ -16,8 +16,10 @@ typedef struct {
 
 /* Run the job. A file output gets one file per page: out itself when the input has one page,
  * else out with -001, -002 ... before its suffix; all are written to temporaries and renamed
- * only when the whole input replayed without error. Returns a sysexits status (0 ok, 65 bad
- * input, 66 no input, 70 out of memory, 74 I/O) with a one-line message in err. */
+ * only when the whole input replayed without error (transport.h). An output written in place
+ * (stdout, a device node, a FIFO, a socket) takes the pages one after another. Returns a
+ * sysexits status (0 ok, 64 bad device option, 65 bad input, 66 no input, 70 out of memory,
+ * 74 I/O: the message then names the output and the cause) with a one-line message in err. */
 int dev_run(const dev_job_t *job, char *err, size_t errlen);
 /* "pic.png", 3 -> "pic-003.png" (malloc'd). */
 char *dev_page_name(const char *out, unsigned page);

@@ -1,31 +1,20 @@
-/* transport.c: file and stdio transports with atomic temp+rename; device links reserved. */
+/* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
+ * files (tr-file.c) and, later, device links. */
 #include <errno.h>
 #include <fcntl.h>
-#include <sys/stat.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "transport.h"
+#include "transport_int.h"
 
 #define IOBUF (1 << 16)
 
-struct io_transport {
-	int fd;
-	int std;          /* stdin/stdout: never closed, never renamed */
-	int writing;
-	char *name;       /* as given */
-	char *tmp;        /* temporary path (files being written) */
-	unsigned char *buf;
-	size_t nbuf;
-	int failed;
-	char err[512];
-};
-
-static int set_err(io_transport_t *t, const char *what)
+int io_set_err(io_transport_t *t, const char *what)
 {
-	snprintf(t->err, sizeof t->err, "%s: %s: %s", t->std ? (t->writing ? "<stdout>" : "<stdin>") :
-		t->name, what, strerror(errno));
+	const char *name = t->std ? (t->writing ? "<stdout>" : "<stdin>") : t->name;
+	snprintf(t->err, sizeof t->err, "%s: %s: %s", name, what, strerror(errno));
 	t->failed = 1;
 	return -1;
 }
@@ -42,28 +31,30 @@ static int reserved(const char *name, char *err, size_t errlen)
 	return 0;
 }
 
-static io_transport_t *alloc(const char *name, int writing)
+static io_transport_t *alloc(const char *name, int writing, char *err, size_t errlen)
 {
 	io_transport_t *t = calloc(1, sizeof *t);
-	if (!t)
-		return NULL;
-	t->name = strdup(name);
-	t->buf = malloc(IOBUF);
-	t->writing = writing;
-	t->fd = -1;
-	if (!t->name || !t->buf) {
+	if (t) {
+		t->name = strdup(name);
+		t->buf = malloc(IOBUF);
+		t->cap = IOBUF;
+		t->writing = writing;
+		t->fd = -1;
+		if (t->name && t->buf)
+			return t;
 		free(t->name);
 		free(t->buf);
 		free(t);
-		return NULL;
 	}
-	return t;
+	snprintf(err, errlen, "%s: out of memory", name);
+	return NULL;
 }
 
 static void destroy(io_transport_t *t)
 {
+	io_file_discard(t);
 	free(t->name);
-	free(t->tmp);
+	free(t->target);
 	free(t->buf);
 	free(t);
 }
@@ -72,31 +63,18 @@ io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
 {
 	if (reserved(name, err, errlen))
 		return NULL;
-	io_transport_t *t = alloc(name, 1);
-	if (!t) {
-		snprintf(err, errlen, "%s: out of memory", name);
+	io_transport_t *t = alloc(name, 1, err, errlen);
+	if (!t)
 		return NULL;
-	}
 	if (strcmp(name, "-") == 0) {
-		t->std = 1;
+		t->std = t->in_place = 1;
 		t->fd = 1;
 		return t;
 	}
-	size_t n = strlen(name) + 16;
-	t->tmp = malloc(n);
-	if (!t->tmp) {
-		snprintf(err, errlen, "%s: out of memory", name);
+	if (io_file_open(t, err, errlen) < 0) {
 		destroy(t);
 		return NULL;
 	}
-	snprintf(t->tmp, n, "%s.tmpXXXXXX", name);
-	t->fd = mkstemp(t->tmp);
-	if (t->fd < 0) {
-		snprintf(err, errlen, "%s: cannot create: %s", name, strerror(errno));
-		destroy(t);
-		return NULL;
-	}
-	fchmod(t->fd, 0644);
 	return t;
 }
 
@@ -104,17 +82,15 @@ io_transport_t *io_open_read(const char *name, char *err, size_t errlen)
 {
 	if (reserved(name, err, errlen))
 		return NULL;
-	io_transport_t *t = alloc(name, 0);
-	if (!t) {
-		snprintf(err, errlen, "%s: out of memory", name);
+	io_transport_t *t = alloc(name, 0, err, errlen);
+	if (!t)
 		return NULL;
-	}
 	if (strcmp(name, "-") == 0) {
 		t->std = 1;
 		t->fd = 0;
 		return t;
 	}
-	t->fd = open(name, O_RDONLY);
+	t->fd = open(name, O_RDONLY | O_CLOEXEC);
 	if (t->fd < 0) {
 		snprintf(err, errlen, "%s: cannot open: %s", name, strerror(errno));
 		destroy(t);
@@ -133,7 +109,11 @@ int io_flush(io_transport_t *t)
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
-			return set_err(t, "write failed");
+			return io_set_err(t, "write failed");
+		}
+		if (w == 0) {
+			errno = EIO;
+			return io_set_err(t, "write failed");
 		}
 		off += (size_t)w;
 	}
@@ -147,15 +127,55 @@ int io_write(io_transport_t *t, const void *buf, size_t n)
 	if (t->failed)
 		return -1;
 	while (n > 0) {
-		if (t->nbuf == IOBUF && io_flush(t))
+		if (t->nbuf == t->cap && io_flush(t))
 			return -1;
-		size_t c = IOBUF - t->nbuf < n ? IOBUF - t->nbuf : n;
+		size_t c = t->cap - t->nbuf < n ? t->cap - t->nbuf : n;
 		memcpy(t->buf + t->nbuf, p, c);
 		t->nbuf += c;
 		p += c;
 		n -= c;
 	}
 	return 0;
+}
+
+int io_printf(io_transport_t *t, const char *fmt, ...)
+{
+	va_list ap;
+	int rc = -1;
+	if (t->failed)
+		return -1;
+	va_start(ap, fmt);
+	for (;;) {
+		va_list aq;
+		size_t room = t->cap - t->nbuf;
+		va_copy(aq, ap);
+		int n = vsnprintf((char *)t->buf + t->nbuf, room, fmt, aq);
+		va_end(aq);
+		if (n < 0) {
+			io_set_err(t, "cannot format");
+			break;
+		}
+		if ((size_t)n < room) {   /* it fitted, with vsnprintf's NUL after it */
+			t->nbuf += (size_t)n;
+			rc = 0;
+			break;
+		}
+		if (t->nbuf) {
+			if (io_flush(t))
+				break;
+			continue;
+		}
+		unsigned char *b = realloc(t->buf, (size_t)n + 1);
+		if (!b) {
+			errno = ENOMEM;
+			io_set_err(t, "cannot format");
+			break;
+		}
+		t->buf = b;
+		t->cap = (size_t)n + 1;
+	}
+	va_end(ap);
+	return rc;
 }
 
 long io_read(io_transport_t *t, void *buf, size_t n)
@@ -165,51 +185,69 @@ long io_read(io_transport_t *t, void *buf, size_t n)
 		if (r >= 0)
 			return (long)r;
 		if (errno != EINTR)
-			return set_err(t, "read failed");
+			return io_set_err(t, "read failed");
 	}
 }
 
-int io_close(io_transport_t *t, int how)
+/* Flush (unless aborting) and close the descriptor; standard output stays open, but a close
+ * of a copy of it still reports what a close would (NFS reports late write errors there). */
+static int finish_fd(io_transport_t *t, int how)
 {
 	int rc = 0;
-	if (!t)
-		return 0;
 	if (t->writing && how != IO_ABORT)
 		rc = io_flush(t);
-	if (!t->std && t->fd >= 0) {
-		if (close(t->fd) < 0 && rc == 0 && how != IO_ABORT)
-			rc = set_err(t, "close failed");
+	if (t->fd < 0)
+		return rc;
+	if (t->std) {
+		if (t->writing && how != IO_ABORT && rc == 0) {
+			int d = dup(t->fd);
+			if (d >= 0 && close(d) < 0)
+				rc = io_set_err(t, "close failed");
+		}
+	} else if (close(t->fd) < 0 && rc == 0 && how != IO_ABORT) {
+		rc = io_set_err(t, "close failed");
 	}
 	t->fd = -1;
+	return rc;
+}
+
+int io_close_err(io_transport_t *t, int how, char *err, size_t errlen)
+{
+	if (!t)
+		return 0;
+	int rc = finish_fd(t, how);
+	if (how == IO_KEEP)
+		return rc;
 	if (t->writing && t->tmp) {
-		if (how == IO_KEEP && rc == 0)
-			return 0;
-		if (how == IO_COMMIT && rc == 0) {
-			if (rename(t->tmp, t->name) < 0)
-				rc = set_err(t, "cannot rename into place");
-		}
-		if (how != IO_COMMIT || rc != 0)
-			unlink(t->tmp);
+		if (how == IO_COMMIT && rc == 0)
+			rc = io_file_commit(t, NULL);
+		else
+			io_file_discard(t);
 	}
-	if (rc && how == IO_KEEP)
-		return rc;   /* caller still owns t for io_error; io_finish(t, 0) frees it */
+	if (rc && err)
+		snprintf(err, errlen, "%s", t->err);
 	destroy(t);
 	return rc;
 }
 
-int io_finish(io_transport_t *t, int commit, const char *target)
+int io_close(io_transport_t *t, int how)
+{
+	return io_close_err(t, how, NULL, 0);
+}
+
+int io_finish(io_transport_t *t, int commit, const char *target, char *err, size_t errlen)
 {
 	int rc = 0;
 	if (!t)
 		return 0;
 	if (t->tmp) {
-		if (commit && rename(t->tmp, target ? target : t->name) < 0) {
-			rc = -1;
-			unlink(t->tmp);
-		} else if (!commit) {
-			unlink(t->tmp);
-		}
+		if (commit && !t->failed)
+			rc = io_file_commit(t, target);
+		else
+			io_file_discard(t);
 	}
+	if (rc && err)
+		snprintf(err, errlen, "%s", t->err);
 	destroy(t);
 	return rc;
 }
@@ -217,6 +255,11 @@ int io_finish(io_transport_t *t, int commit, const char *target)
 const char *io_error(const io_transport_t *t)
 {
 	return t->err;
+}
+
+int io_failed(const io_transport_t *t)
+{
+	return t->failed;
 }
 
 const char *io_name(const io_transport_t *t)
@@ -227,4 +270,9 @@ const char *io_name(const io_transport_t *t)
 int io_is_std(const io_transport_t *t)
 {
 	return t->std;
+}
+
+int io_in_place(const io_transport_t *t)
+{
+	return t->in_place;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "locus_meta.h"
+#include "transport.h"
 
 #define EX_USAGE 64
 #define EX_DATAERR 65
@@ -21,7 +22,8 @@ static const char usage_text[] =
 	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
 	"Check, canonically format, describe or convert a Locus meta-language file\n"
 	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
-	"file is written as OUT.tmp and renamed only when the whole input was valid.\n"
+	"file is written to a new temporary beside it and renamed only when the whole\n"
+	"input was valid; a device or a pipe is written in place.\n"
 	"Exit status: 0 ok, 64 usage, 65 invalid input (one line names file and\n"
 	"place), 66 cannot open input, 74 I/O error.\n";
 
@@ -50,65 +52,33 @@ static meta_reader_t *open_in(const char *path, int *status)
 	return r;
 }
 
-/* ---- Output file: OUT.tmp renamed on success --------------------------- */
+/* ---- Output: through the driver transport (drivers/transport.h): a file via a new temporary
+ * renamed on success, a device or pipe in place; write errors name the output and the cause. */
 
-typedef struct {
-	int fd;
-	const char *path; /* NULL for stdout */
-	char tmp[4096];
-} out_t;
-
-static int fd_write(void *user, const void *buf, size_t n)
+static int out_write(void *user, const void *buf, size_t n)
 {
-	out_t *o = user;
-	const char *p = buf;
-	while (n) {
-		ssize_t k = write(o->fd, p, n);
-		if (k < 0 && errno == EINTR)
-			continue;
-		if (k <= 0)
-			return -1;
-		p += k;
-		n -= (size_t)k;
-	}
-	return 0;
+	return io_write(user, buf, n);
 }
 
-static int out_open(out_t *o, const char *path)
+static io_transport_t *out_open(const char *path, int *status)
 {
-	if (!path || strcmp(path, "-") == 0) {
-		o->fd = 1;
-		o->path = NULL;
-		return 0;
+	char err[600];
+	io_transport_t *o = io_open_write(path ? path : "-", err, sizeof err);
+	if (!o) {
+		fprintf(stderr, "%s\n", err);
+		*status = EX_IOERR;
 	}
-	o->path = path;
-	if (snprintf(o->tmp, sizeof o->tmp, "%s.tmp", path) >= (int)sizeof o->tmp) {
-		fprintf(stderr, "%s: output path too long\n", path);
-		return EX_USAGE;
-	}
-	o->fd = open(o->tmp, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-	if (o->fd < 0) {
-		fprintf(stderr, "%s: cannot create: %s\n", o->tmp, strerror(errno));
-		return EX_IOERR;
-	}
-	return 0;
+	return o;
 }
 
-/* Finish the output: rename on success (status 0), remove the temporary otherwise. */
-static int out_close(out_t *o, int status)
+/* Finish the output: commit on success (status 0), discard otherwise; 74 if that fails. */
+static int out_close(io_transport_t *o, int status)
 {
-	if (!o->path)
-		return status;
-	if (close(o->fd) < 0 && status == 0) {
-		fprintf(stderr, "%s: %s\n", o->tmp, strerror(errno));
+	char err[600];
+	if (io_close_err(o, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && status == 0) {
+		fprintf(stderr, "%s\n", err);
 		status = EX_IOERR;
 	}
-	if (status == 0 && rename(o->tmp, o->path) < 0) {
-		fprintf(stderr, "%s: cannot rename to %s: %s\n", o->tmp, o->path, strerror(errno));
-		status = EX_IOERR;
-	}
-	if (status != 0)
-		unlink(o->tmp);
 	return status;
 }
 
@@ -136,12 +106,12 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 {
 	meta_cmd_t c;
 	meta_writer_t *w = NULL;
-	out_t o;
 	int rc, status = 0;
 	meta_reader_t *r = open_in(in, &status);
 	if (!r)
 		return status;
-	if ((status = out_open(&o, outpath)) != 0) {
+	io_transport_t *o = out_open(outpath, &status);
+	if (!o) {
 		meta_reader_free(r);
 		return status;
 	}
@@ -149,14 +119,17 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 		if (!w) {
 			if (enc < 0)
 				enc = meta_reader_is_binary(r) ? META_ENC_TEXT : META_ENC_BINARY;
-			w = meta_writer_new(fd_write, &o, enc);
+			w = meta_writer_new(out_write, o, enc);
 			if (!w) {
 				rc = META_ENOMEM;
 				break;
 			}
 		}
 		if ((rc = meta_write(w, &c)) < 0) {
-			fprintf(stderr, "%s: %s\n", o.path ? o.tmp : "<stdout>", meta_writer_error(w));
+			if (io_failed(o))
+				fprintf(stderr, "%s\n", io_error(o));
+			else
+				fprintf(stderr, "%s: %s\n", io_is_std(o) ? "<stdout>" : io_name(o), meta_writer_error(w));
 			status = status_of(rc);
 			break;
 		}
@@ -166,11 +139,11 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 		status = status_of(rc);
 	}
 	if (w && (rc = meta_writer_close(w)) < 0 && !status) {
-		fprintf(stderr, "%s: write error\n", o.path ? o.tmp : "<stdout>");
+		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : "locus-meta: write error");
 		status = EX_IOERR;
 	}
 	meta_reader_free(r);
-	return out_close(&o, status);
+	return out_close(o, status);
 }
 
 typedef struct {
@@ -229,21 +202,21 @@ static void arc_box(box_t *b, double cx, double cy, double r, double start, doub
 	}
 }
 
-static void print_page(unsigned page, const meta_cmd_t *pg, const meta_fix_t *size, unsigned long long nst, const box_t *b)
+static void print_page(io_transport_t *o, unsigned page, const meta_cmd_t *pg, const meta_fix_t *size, unsigned long long nst, const box_t *b)
 {
 	char w[16], h[16];
-	printf("page %u: %u x %u px", page, pg->u[0], pg->u[1]);
+	io_printf(o, "page %u: %u x %u px", page, pg->u[0], pg->u[1]);
 	if (size[0]) {
 		meta_fix_format(size[0], w);
 		meta_fix_format(size[1], h);
-		printf(", %s x %s mm", w, h);
+		io_printf(o, ", %s x %s mm", w, h);
 	}
-	printf(", %llu statements", nst);
+	io_printf(o, ", %llu statements", nst);
 	if (b->any)
-		printf(", geometry bounds x %.3f .. %.3f, y %.3f .. %.3f", b->x0, b->x1, b->y0, b->y1);
+		io_printf(o, ", geometry bounds x %.3f .. %.3f, y %.3f .. %.3f", b->x0, b->x1, b->y0, b->y1);
 	else
-		printf(", no geometry");
-	printf("\n");
+		io_printf(o, ", no geometry");
+	io_printf(o, "\n");
 }
 
 static int cmd_info(const char *path)
@@ -260,6 +233,11 @@ static int cmd_info(const char *path)
 	meta_reader_t *r = open_in(path, &status);
 	if (!r)
 		return status;
+	io_transport_t *o = out_open("-", &status);
+	if (!o) {
+		meta_reader_free(r);
+		return status;
+	}
 	memset(cs.set, 0xff, sizeof cs.set);
 	memset(&pg, 0, sizeof pg);
 	while ((rc = meta_read(r, &c)) > 0) {
@@ -269,7 +247,7 @@ static int cmd_info(const char *path)
 		switch (c.op) {
 		case META_PAGE:
 			if (!pages++)
-				printf("%s: %s encoding\n", path, meta_reader_is_binary(r) ? "binary" : "text");
+				io_printf(o, "%s: %s encoding\n", path, meta_reader_is_binary(r) ? "binary" : "text");
 			pg = c;
 			cur = 0x000000; /* the default colour of every page */
 			size[0] = size[1] = 0;
@@ -277,7 +255,7 @@ static int cmd_info(const char *path)
 			nst = 1;
 			break;
 		case META_SIZE: size[0] = c.f[0]; size[1] = c.f[1]; break;
-		case META_END_PAGE: print_page(pages, &pg, size, nst, &box); break;
+		case META_END_PAGE: print_page(o, pages, &pg, size, nst, &box); break;
 		case META_CLEAR: colour_add(&cs, c.rgb); break;
 		case META_COLOUR: cur = c.rgb; break;
 		case META_END: colour_add(&cs, cur); break; /* the colour a path is painted with */
@@ -306,18 +284,18 @@ static int cmd_info(const char *path)
 	}
 	(void)imgrow;
 	if (rc < 0) {
-		fflush(stdout);
-		fprintf(stderr, "%s\n", meta_reader_error(r));
+		status = io_flush(o) < 0 ? EX_IOERR : status_of(rc);   /* what was read so far, first */
+		fprintf(stderr, "%s\n", status == EX_IOERR ? io_error(o) : meta_reader_error(r));
 		meta_reader_free(r);
-		return status_of(rc);
+		return out_close(o, status);
 	}
-	printf("pages: %u\nstatements:", pages);
+	io_printf(o, "pages: %u\nstatements:", pages);
 	for (i = 0; i < META_OP_COUNT; i++)
 		if (count[i])
-			printf(" %s %llu", i == META_COMMENT ? "comment" : meta_op_name((meta_op_t)i), count[i]);
-	printf("\n");
+			io_printf(o, " %s %llu", i == META_COMMENT ? "comment" : meta_op_name((meta_op_t)i), count[i]);
+	io_printf(o, "\n");
 	if (cs.overflow) {
-		printf("colours: more than %d distinct\n", MAX_COLOURS);
+		io_printf(o, "colours: more than %d distinct\n", MAX_COLOURS);
 	} else {
 		meta_rgb_t list[MAX_COLOURS];
 		size_t n = 0;
@@ -325,13 +303,13 @@ static int cmd_info(const char *path)
 			if (cs.set[k] != 0xffffffffu)
 				list[n++] = cs.set[k];
 		qsort(list, n, sizeof *list, cmp_rgb);
-		printf("colours: %zu distinct", n);
+		io_printf(o, "colours: %zu distinct", n);
 		for (k = 0; k < n && k < 32; k++)
-			printf(" #%06x", list[k]);
-		printf("%s\n", n > 32 ? " ..." : "");
+			io_printf(o, " #%06x", list[k]);
+		io_printf(o, "%s\n", n > 32 ? " ..." : "");
 	}
 	meta_reader_free(r);
-	return fflush(stdout) == 0 ? 0 : EX_IOERR;
+	return out_close(o, 0);
 }
 
 int main(int argc, char **argv)

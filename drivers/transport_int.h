@@ -1,0 +1,50 @@
+/* transport_int.h: the transport object and the live-temporary table, shared by transport.c,
+ * tr-file.c and tempfiles.c (not public). */
+#ifndef LOCUS_TRANSPORT_INT_H
+#define LOCUS_TRANSPORT_INT_H
+
+#include <signal.h>
+#include <sys/types.h>
+#include "transport.h"
+
+/* One temporary that a signal must remove (tempfiles.c). */
+typedef struct io_temp io_temp_t;
+
+struct io_transport {
+	int fd;
+	int std;            /* standard output or input: never closed */
+	int in_place;       /* written where it is (stdout, devices, pipes, sockets, /dev/fd/N) */
+	int writing;
+	char *name;         /* as given */
+	char *target;       /* regular file: the path its temporary replaces */
+	char *tmp;          /* that temporary, NULL once renamed or removed */
+	io_temp_t *live;    /* the temporary's entry in the signal table */
+	unsigned char *buf;
+	size_t nbuf, cap;
+	int failed;
+	char err[512];
+};
+
+/* Record errno's cause as the transport's error: "NAME: what: strerror". Returns -1. */
+int io_set_err(io_transport_t *t, const char *what);
+
+/* tr-file.c: open t->name for writing: a regular file (or a name that does not exist yet)
+ * through a new temporary beside it, anything else in place. 0, or -1 with a message in err. */
+int io_file_open(io_transport_t *t, char *err, size_t errlen);
+/* Rename the (closed) temporary over target (NULL: the one chosen at open), keeping that
+ * file's mode. 0, or -1 with the cause in t's error; the temporary is removed either way. */
+int io_file_commit(io_transport_t *t, const char *target);
+/* Remove the temporary, if any. */
+void io_file_discard(io_transport_t *t);
+
+/* tempfiles.c: register path (copied) as a live temporary: SIGINT, SIGTERM and SIGHUP (where
+ * they are not ignored or handled by the program) remove every live temporary, then the
+ * program dies of the signal. NULL when out of memory. Call with the signals blocked. */
+io_temp_t *io_temp_add(const char *path);
+/* The temporary is gone or renamed: the handlers leave it alone from now on. */
+void io_temp_drop(io_temp_t *e);
+/* Block SIGINT, SIGTERM and SIGHUP in this thread (old mask saved), and restore it. */
+void io_signals_block(sigset_t *old);
+void io_signals_restore(const sigset_t *old);
+
+#endif
