@@ -35,6 +35,8 @@ typedef struct {
 	int kind;
 	char *path;        /* NEW, REGULAR: the file to replace (malloc'd) */
 	mode_t mode;       /* the mode the replacement gets */
+	uid_t uid;         /* REGULAR: its owner and group, kept where the system allows */
+	gid_t gid;
 } target_t;
 
 static int fail(char *err, size_t errlen, const char *name, const char *what)
@@ -69,7 +71,7 @@ static int classify(const char *name, target_t *tg)
 {
 	struct stat st;
 	pthread_once(&umask_once, read_umask);
-	tg->path = NULL;
+	memset(tg, 0, sizeof *tg);
 	tg->mode = new_mode;
 	tg->kind = KIND_NEW;
 	if (lstat(name, &st) < 0) {
@@ -85,6 +87,8 @@ static int classify(const char *name, target_t *tg)
 	} else {
 		tg->kind = KIND_REGULAR;
 		tg->mode = st.st_mode & 0777;
+		tg->uid = st.st_uid;
+		tg->gid = st.st_gid;
 	}
 	if (tg->kind == KIND_NEW || tg->kind == KIND_REGULAR) {
 		char *real = tg->kind == KIND_REGULAR ? realpath(name, NULL) : NULL;
@@ -171,6 +175,11 @@ static int open_temp(io_transport_t *t, target_t *tg, char *err, size_t errlen)
 	t->tmp = tmp;
 	t->target = tg->path;
 	tg->path = NULL;
+	/* the owner and group of a replaced file too, where allowed (root; a group of one's own);
+	 * before the mode, as a change of owner may clear mode bits */
+	if (tg->kind == KIND_REGULAR && fchown(fd, tg->uid, tg->gid) < 0 && fchown(fd, (uid_t)-1, tg->gid) < 0) {
+		/* neither allowed: the file becomes this user's, as a new file would */
+	}
 	if (fchmod(fd, tg->mode) < 0) {
 		e = errno;
 		io_file_discard(t);
@@ -182,6 +191,10 @@ static int open_temp(io_transport_t *t, target_t *tg, char *err, size_t errlen)
 
 int io_file_open(io_transport_t *t, char *err, size_t errlen)
 {
+	if (!t->name[0]) {
+		snprintf(err, errlen, "the output name is empty");
+		return -1;
+	}
 	int n = fd_name(t->name);
 	if (n >= 0) {
 		t->fd = fcntl(n, F_DUPFD_CLOEXEC, 3);
@@ -216,7 +229,7 @@ int io_file_open(io_transport_t *t, char *err, size_t errlen)
 int io_file_commit(io_transport_t *t, const char *target)
 {
 	int rc = 0;
-	target_t tg = { KIND_REGULAR, NULL, 0 };
+	target_t tg = { KIND_REGULAR, NULL, 0, 0, 0 };
 	const char *dest = t->target, *shown = t->name;
 	if (target && strcmp(target, t->name)) {
 		/* a name chosen after the fact (page k of a job): the same rules as at open */

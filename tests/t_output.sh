@@ -189,6 +189,12 @@ for p in $PROGS; do
 	run $p "$D/out" 2> "$T/err"; rc=$?
 	[ $rc = 0 ] && [ "$(stat -c %a "$D/out")" = 600 ] && cmp -s "$D/out" "$T/ref/$p" \
 		&& ok "$p: a replaced file keeps its mode (600)" || notok "$p: mode: exit $rc, $(stat -c %a "$D/out")"
+	if [ "$(id -u)" = 0 ]; then
+		chown 65534:65534 "$D/out"
+		run $p "$D/out" 2> "$T/err"
+		[ "$(stat -c %u:%g:%a "$D/out")" = 65534:65534:600 ] && ok "$p: root replacing a file keeps its owner and group" \
+			|| notok "$p: owner $(stat -c %u:%g:%a "$D/out")"
+	fi
 	(umask 002; run $p "$D/new") 2> "$T/err"
 	[ "$(stat -c %a "$D/new")" = 664 ] && ok "$p: a new file gets 0666 & ~umask (664 under umask 002)" \
 		|| notok "$p: new file mode $(stat -c %a "$D/new")"
