@@ -16,6 +16,7 @@
 
 struct io_temp {
 	io_temp_t *next;      /* set before publication, then fixed */
+	pid_t owner;          /* the process that made it: a forked child leaves it alone */
 	atomic_int live;
 	char path[];
 };
@@ -27,8 +28,9 @@ static const int caught[] = { SIGINT, SIGTERM, SIGHUP };
 
 static void remove_live(void)
 {
+	pid_t self = getpid();
 	for (io_temp_t *e = atomic_load(&head); e; e = e->next)
-		if (atomic_load(&e->live))
+		if (e->owner == self && atomic_load(&e->live))
 			unlink(e->path);
 }
 
@@ -75,6 +77,7 @@ io_temp_t *io_temp_add(const char *path)
 	if (!e)
 		return NULL;
 	memcpy(e->path, path, n);
+	e->owner = getpid();
 	atomic_init(&e->live, 1);
 	e->next = atomic_load(&head);
 	while (!atomic_compare_exchange_weak(&head, &e->next, e))

@@ -12,6 +12,7 @@
 #define EX_USAGE 64
 #define EX_DATAERR 65
 #define EX_NOINPUT 66
+#define EX_SOFTWARE 70
 #define EX_IOERR 74
 #define MAX_COLOURS 1024 /* info: distinct colours counted before saying "more than" */
 
@@ -25,7 +26,7 @@ static const char usage_text[] =
 	"file is written to a new temporary beside it and renamed only when the whole\n"
 	"input was valid; a device or a pipe is written in place.\n"
 	"Exit status: 0 ok, 64 usage, 65 invalid input (one line names file and\n"
-	"place), 66 cannot open input, 74 I/O error.\n";
+	"place), 66 cannot open input, 70 out of memory, 74 I/O error.\n";
 
 static int usage(const char *msg)
 {
@@ -38,7 +39,7 @@ static int usage(const char *msg)
 /* Map a reader/writer error code to an exit status. */
 static int status_of(int rc)
 {
-	return rc == META_EIO ? EX_IOERR : rc == META_ENOMEM ? 71 : EX_DATAERR;
+	return rc == META_EIO ? EX_IOERR : rc == META_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 }
 
 static meta_reader_t *open_in(const char *path, int *status)

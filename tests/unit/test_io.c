@@ -157,6 +157,16 @@ static void test_exit(void)
 	int status = 0;
 	waitpid(pid, &status, 0);
 	CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 3 && entries() == 0, "exit() removes the temporaries");
+	/* a forked child that exits leaves its parent's temporaries alone */
+	char err[600], path[400];
+	snprintf(path, sizeof path, "%s/parent.meta", dir);
+	io_transport_t *t = exit_kept = io_open_write(path, err, sizeof err);   /* global: no leak report */
+	fflush(stdout);
+	if (t && (pid = fork()) == 0)
+		exit(0);
+	waitpid(pid, &status, 0);
+	CHECK(t && entries() == 1 && io_close(t, IO_COMMIT) == 0 && access(path, F_OK) == 0,
+		"a forked child's exit() leaves the parent's temporary, which commits");
 	empty_dir();
 }
 
