@@ -19,6 +19,21 @@ static const char usage[] =
 	"  --mem-budget MIB raster devices: page buffer budget for automatic banding (default 64)\n"
 	"  --help, --version\n";
 
+/* -l: name, output suffix (- for none), description; a write error is named with its cause. */
+static int list_devices(cli_t *c)
+{
+	char err[600];
+	io_transport_t *t = io_open_write("-", err, sizeof err);
+	if (!t)
+		return cli_fail(c, 74, "%s", err);
+	for (size_t i = 0; dev_registry[i]; i++) {
+		const char *ext = dev_registry[i]->extension;
+		io_printf(t, "%-10s %-5s %s\n", dev_registry[i]->name, ext && ext[0] == '.' ? ext + 1 : "-",
+			dev_registry[i]->description);
+	}
+	return io_close_err(t, IO_COMMIT, err, sizeof err) ? cli_fail(c, 74, "%s", err) : 0;
+}
+
 static int on_option(cli_t *c, int key, const char *arg)
 {
 	switch (key) {
@@ -26,13 +41,7 @@ static int on_option(cli_t *c, int key, const char *arg)
 		c->user = (void *)arg;
 		return CLI_RUN;
 	case 'l':
-		for (size_t i = 0; dev_registry[i]; i++) {
-			const char *ext = dev_registry[i]->extension;
-			printf("%-10s %-5s %s\n", dev_registry[i]->name, ext && ext[0] == '.' ? ext + 1 : "-",
-				dev_registry[i]->description);
-		}
-		return fflush(stdout) == 0 && !ferror(stdout) ? 0
-			: cli_fail(c, 74, "<stdout>: write failed");
+		return list_devices(c);
 	default:
 		return cli_fail(c, 64, "unhandled option");
 	}

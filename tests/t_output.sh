@@ -69,7 +69,7 @@ if [ -n "$DEVS" ]; then
 			|| notok "$p: stdout on /dev/full: exit $rc, '$(cat "$T/err")'"
 	done
 	"$BIN/locus-play" -l > "$DEVS/full" 2> "$T/err"; rc=$?
-	[ $rc = 74 ] && one_line "$T/err" "<stdout>" && ok "locus-play -l on /dev/full: exit 74, one line" \
+	[ $rc = 74 ] && one_line "$T/err" "<stdout>" "No space left on device" && ok "locus-play -l on /dev/full: exit 74, one line" \
 		|| notok "locus-play -l on /dev/full: exit $rc, '$(cat "$T/err")'"
 else
 	ok "device node cases # SKIP cannot make private device nodes as root"
