@@ -1,5 +1,5 @@
 /* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
- * files (tr-file.c) and, later, device links. */
+ * files (tr-file.c) and device links (the io_link_t table; none implemented yet). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
@@ -19,16 +19,19 @@ int io_set_err(io_transport_t *t, const char *what)
 	return -1;
 }
 
-static int reserved(const char *name, char *err, size_t errlen)
+/* The device links; a later issue fills in their open, write, read and close. */
+static const io_link_t links[] = {
+	{ "serial:", NULL, NULL, NULL, NULL },
+	{ "usb:", NULL, NULL, NULL, NULL },
+	{ "hid:", NULL, NULL, NULL, NULL },
+};
+
+static const io_link_t *link_of(const char *name)
 {
-	static const char *const schemes[] = { "serial:", "usb:", "hid:" };
-	for (size_t k = 0; k < 3; k++)
-		if (strncmp(name, schemes[k], strlen(schemes[k])) == 0) {
-			snprintf(err, errlen, "%s: %.*s transports are not supported yet", name,
-				(int)strlen(schemes[k]) - 1, schemes[k]);
-			return 1;
-		}
-	return 0;
+	for (size_t k = 0; k < sizeof links / sizeof links[0]; k++)
+		if (strncmp(name, links[k].scheme, strlen(links[k].scheme)) == 0)
+			return &links[k];
+	return NULL;
 }
 
 static io_transport_t *alloc(const char *name, int writing, char *err, size_t errlen)
@@ -59,10 +62,32 @@ static void destroy(io_transport_t *t)
 	free(t);
 }
 
+/* A device link: its open, or "not supported yet". */
+static io_transport_t *open_link(const io_link_t *l, const char *name, int writing, char *err, size_t errlen)
+{
+	if (!l->open) {
+		snprintf(err, errlen, "%s: %.*s transports are not supported yet", name,
+			(int)strlen(l->scheme) - 1, l->scheme);
+		return NULL;
+	}
+	io_transport_t *t = alloc(name, writing, err, errlen);
+	if (!t)
+		return NULL;
+	t->link = l;
+	t->in_place = 1;
+	if (l->open(t, name + strlen(l->scheme), writing, err, errlen) < 0) {
+		t->link = NULL;   /* nothing to close */
+		destroy(t);
+		return NULL;
+	}
+	return t;
+}
+
 io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
 {
-	if (reserved(name, err, errlen))
-		return NULL;
+	const io_link_t *l = link_of(name);
+	if (l)
+		return open_link(l, name, 1, err, errlen);
 	io_transport_t *t = alloc(name, 1, err, errlen);
 	if (!t)
 		return NULL;
@@ -80,8 +105,9 @@ io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
 
 io_transport_t *io_open_read(const char *name, char *err, size_t errlen)
 {
-	if (reserved(name, err, errlen))
-		return NULL;
+	const io_link_t *l = link_of(name);
+	if (l)
+		return open_link(l, name, 0, err, errlen);
 	io_transport_t *t = alloc(name, 0, err, errlen);
 	if (!t)
 		return NULL;
@@ -105,7 +131,8 @@ int io_flush(io_transport_t *t)
 		return t->failed ? -1 : 0;
 	size_t off = 0;
 	while (off < t->nbuf) {
-		ssize_t w = write(t->fd, t->buf + off, t->nbuf - off);
+		ssize_t w = t->link ? t->link->write(t, t->buf + off, t->nbuf - off)
+			: write(t->fd, t->buf + off, t->nbuf - off);
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
@@ -181,7 +208,7 @@ int io_printf(io_transport_t *t, const char *fmt, ...)
 long io_read(io_transport_t *t, void *buf, size_t n)
 {
 	for (;;) {
-		ssize_t r = read(t->fd, buf, n);
+		ssize_t r = t->link ? t->link->read(t, buf, n) : read(t->fd, buf, n);
 		if (r >= 0)
 			return (long)r;
 		if (errno != EINTR)
@@ -196,6 +223,12 @@ static int finish_fd(io_transport_t *t, int how)
 	int rc = 0;
 	if (t->writing && how != IO_ABORT)
 		rc = io_flush(t);
+	if (t->link) {
+		if (t->link->close(t) < 0 && rc == 0 && how != IO_ABORT)
+			rc = io_set_err(t, "close failed");
+		t->link = NULL;
+		return rc;
+	}
 	if (t->fd < 0)
 		return rc;
 	if (t->std) {

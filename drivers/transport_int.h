@@ -10,7 +10,20 @@
 /* One temporary that a signal must remove (tempfiles.c). */
 typedef struct io_temp io_temp_t;
 
+/* A device link (serial:, usb:, hid:): the scheme's own open, byte moves and close. A link
+ * whose open is NULL is reserved: naming it gives "not supported yet". write and read return
+ * the bytes moved (write: > 0) or -1 with errno set; close returns 0 or -1 with errno. */
+typedef struct io_link {
+	const char *scheme;         /* "serial:" */
+	int (*open)(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+	long (*write)(io_transport_t *t, const void *buf, size_t n);
+	long (*read)(io_transport_t *t, void *buf, size_t n);
+	int (*close)(io_transport_t *t);
+} io_link_t;
+
 struct io_transport {
+	const io_link_t *link;      /* NULL: a descriptor (stdio, files, devices, pipes, sockets) */
+	void *link_state;           /* the link's own */
 	int fd;
 	int std;            /* standard output or input: never closed */
 	int in_place;       /* written where it is (stdout, devices, pipes, sockets, /dev/fd/N) */
