@@ -36,6 +36,15 @@ static int usage(const char *msg)
 	return EX_USAGE;
 }
 
+/* After --help or --version on stdio: 0, or 74 with one line naming the cause. */
+static int stdout_status(void)
+{
+	if (fflush(stdout) == 0 && !ferror(stdout))
+		return 0;
+	fprintf(stderr, "locus-meta: <stdout>: write failed: %s\n", strerror(errno));
+	return EX_IOERR;
+}
+
 /* Map a reader/writer error code to an exit status. */
 static int status_of(int rc)
 {
@@ -319,11 +328,11 @@ int main(int argc, char **argv)
 	int enc = -1, i;
 	if (argc >= 2 && strcmp(argv[1], "--help") == 0) {
 		fputs(usage_text, stdout);
-		return 0;
+		return stdout_status();
 	}
 	if (argc >= 2 && strcmp(argv[1], "--version") == 0) {
 		printf("locus-meta %s (meta-language version %d)\n", LOCUS_VERSION, META_VERSION);
-		return 0;
+		return stdout_status();
 	}
 	if (argc < 2)
 		return usage("missing subcommand");
@@ -332,7 +341,7 @@ int main(int argc, char **argv)
 		const char *a = argv[i];
 		if (strcmp(a, "--help") == 0) {
 			fputs(usage_text, stdout);
-			return 0;
+			return stdout_status();
 		} else if (strcmp(a, "-o") == 0) {
 			if (++i >= argc)
 				return usage("-o needs a file name");

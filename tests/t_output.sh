@@ -68,6 +68,9 @@ if [ -n "$DEVS" ]; then
 			&& ok "$p: standard output on /dev/full: exit 74, one line naming <stdout> and the cause" \
 			|| notok "$p: stdout on /dev/full: exit $rc, '$(cat "$T/err")'"
 	done
+	"$BIN/locus-meta" --help > "$DEVS/full" 2> "$T/err"; rc=$?
+	[ $rc = 74 ] && one_line "$T/err" "<stdout>" "No space left on device" && ok "locus-meta --help on /dev/full: exit 74, one line" \
+		|| notok "locus-meta --help on /dev/full: exit $rc, '$(cat "$T/err")'"
 	"$BIN/locus-play" -l > "$DEVS/full" 2> "$T/err"; rc=$?
 	[ $rc = 74 ] && one_line "$T/err" "<stdout>" "No space left on device" && ok "locus-play -l on /dev/full: exit 74, one line" \
 		|| notok "locus-play -l on /dev/full: exit $rc, '$(cat "$T/err")'"
