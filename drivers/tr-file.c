@@ -239,8 +239,11 @@ int io_file_commit(io_transport_t *t, const char *target)
 		} else if (tg.kind == KIND_DIR || tg.kind == KIND_IN_PLACE) {
 			errno = tg.kind == KIND_DIR ? EISDIR : EEXIST;
 			rc = -1;
-		} else if (chmod(t->tmp, tg.mode) < 0) {
-			rc = -1;
+		} else {
+			if (tg.kind == KIND_REGULAR && chown(t->tmp, tg.uid, tg.gid) < 0 && chown(t->tmp, (uid_t)-1, tg.gid) < 0) {
+				/* as at open: the owner stays this user where it may not be kept */
+			}
+			rc = chmod(t->tmp, tg.mode);
 		}
 		dest = tg.path;
 	}
