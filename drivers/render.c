@@ -1,8 +1,10 @@
 /* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
+#include <errno.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "render.h"
 
 enum { REC_CLEAR = 1, REC_FILL, REC_STROKE, REC_SPAN, REC_ROW };
@@ -38,6 +40,9 @@ struct dev_render {
 	uint8_t *pix;
 	painter_t main;         /* its band: the whole page, a spooled band, or the split's top */
 	FILE *spool;            /* NULL: single band, painted directly */
+	uint64_t spooled, spool_max; /* bytes in the spool; its limit */
+	char spool_dir[200];    /* where the (unlinked) spool file lives, for messages */
+	char err[320];          /* the last failure (dev_render_error) */
 	unsigned char *rbuf;    /* record payload while replaying */
 	size_t rcap;
 	/* split single-band page: a helper thread paints rows [0, mid) from records that the
@@ -174,6 +179,63 @@ static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, 
 	return 0;
 }
 
+uint64_t dev_render_spool_default(void)
+{
+	const char *e = getenv("LOCUS_SPOOL_MAX_MB");
+	char *end;
+	unsigned long long mb = e && *e ? strtoull(e, &end, 10) : 0;
+	if (!e || !*e || *end || mb == 0 || mb > ((uint64_t)1 << 40))
+		return DEV_SPOOL_MAX_DEFAULT;
+	return (uint64_t)mb << 20;
+}
+
+void dev_render_set_spool_limit(dev_render_t *r, uint64_t bytes)
+{
+	r->spool_max = bytes;
+}
+
+const char *dev_render_error(const dev_render_t *r)
+{
+	return r->err;
+}
+
+/* Record why the spool failed (errno, or the limit when err_no is 0); returns META_EIO. */
+static int spool_fail(dev_render_t *r, int err_no, const char *doing)
+{
+	if (err_no)
+		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): %s: %s", r->spool_dir,
+			doing, strerror(err_no));
+	else
+		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): the page needs more "
+			"than its limit of %llu %s (LOCUS_SPOOL_MAX_MB)", r->spool_dir,
+			(unsigned long long)(r->spool_max >= 1 << 20 ? r->spool_max >> 20 : r->spool_max),
+			r->spool_max >= 1 << 20 ? "MiB" : "bytes");
+	return META_EIO;
+}
+
+/* The spool: a file created in $TMPDIR (else /tmp) and unlinked at once, so that nothing is
+ * left behind whatever happens to the process. */
+static int spool_open(dev_render_t *r)
+{
+	const char *dir = getenv("TMPDIR");
+	if (!dir || !*dir || strlen(dir) > sizeof r->spool_dir - 24)
+		dir = "/tmp";
+	snprintf(r->spool_dir, sizeof r->spool_dir, "%s", dir);
+	char path[sizeof r->spool_dir + 32];
+	snprintf(path, sizeof path, "%s/locus-spool-XXXXXX", dir);
+	int fd = mkstemp(path);
+	if (fd < 0)
+		return spool_fail(r, errno, "cannot create it");
+	unlink(path);
+	r->spool = fdopen(fd, "w+b");
+	if (!r->spool) {
+		int e = errno;
+		close(fd);
+		return spool_fail(r, e, "cannot open it");
+	}
+	return 0;
+}
+
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen)
 {
@@ -212,9 +274,9 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 			r->help.band.jhi = (int)r->mid;
 		}
 	} else {
-		r->spool = tmpfile();
-		if (!r->spool) {
-			snprintf(err, errlen, "cannot create a temporary spool file for banded rendering");
+		r->spool_max = dev_render_spool_default();
+		if (spool_open(r)) {
+			snprintf(err, errlen, "%s", r->err);
 			dev_render_free(r);
 			return NULL;
 		}
@@ -265,9 +327,16 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
 	if (r->split)
 		return split_put(r, &h, a, na, b, nb, c, nc);
+	if (r->err[0])
+		return META_EIO;   /* sticky */
+	uint64_t need = sizeof h + na + nb + nc;
+	if (r->spooled + need > r->spool_max)
+		return spool_fail(r, 0, NULL);
+	errno = 0;
 	if (fwrite(&h, sizeof h, 1, r->spool) != 1 || (na && fwrite(a, 1, na, r->spool) != na) ||
 			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
-		return META_EIO;
+		return spool_fail(r, errno ? errno : EIO, "cannot write it");
+	r->spooled += need;
 	return 0;
 }
 
@@ -461,11 +530,12 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 static int replay(dev_render_t *r)
 {
 	rec_t h;
-	rewind(r->spool);
+	if (fseek(r->spool, 0, SEEK_SET))
+		return spool_fail(r, errno, "cannot seek in it");
 	while (fread(&h, sizeof h, 1, r->spool) == 1) {
 		if (h.jhi <= r->main.band.jlo || h.jlo >= r->main.band.jhi) {
 			if (fseek(r->spool, h.len, SEEK_CUR))
-				return META_EIO;
+				return spool_fail(r, errno, "cannot seek in it");
 			continue;
 		}
 		if (h.len > r->rcap) {
@@ -476,12 +546,12 @@ static int replay(dev_render_t *r)
 			r->rcap = h.len;
 		}
 		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
-			return META_EIO;
+			return spool_fail(r, ferror(r->spool) ? errno : EIO, "cannot read it back");
 		int rc = replay_rec(&r->main, &h, r->rbuf);
 		if (rc)
 			return rc;
 	}
-	return ferror(r->spool) ? META_EIO : 0;
+	return ferror(r->spool) ? spool_fail(r, errno, "cannot read it back") : 0;
 }
 
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
@@ -495,8 +565,11 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 		out.nrows = r->height;
 		return fn(user, &out);
 	}
-	if (fflush(r->spool))
+	if (r->err[0])
 		return META_EIO;
+	errno = 0;
+	if (fflush(r->spool))
+		return spool_fail(r, errno ? errno : EIO, "cannot write it");
 	for (unsigned top = 0; top < r->height; top += r->band_rows) {
 		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
 		r->main.band.jhi = (int)(r->height - top);
