@@ -93,9 +93,13 @@ static int png_header(dev_imgw_t *w)
 {
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
-	if (w->wmm > 0 && w->hmm > 0)
-		png_set_pHYs(w->png, w->info, (png_uint_32)(w->width / (w->wmm / 1000.0) + 0.5),
-			(png_uint_32)(w->height / (w->hmm / 1000.0) + 0.5), PNG_RESOLUTION_METER);
+	if (w->wmm > 0 && w->hmm > 0) {
+		/* spec §4 `size`: pixels stay square; the pitch is the largest at which the page fits
+		 * the size, so one resolution for both axes (the finer of the two) */
+		double px = w->width / (w->wmm / 1000.0), py = w->height / (w->hmm / 1000.0);
+		png_uint_32 ppm = (png_uint_32)((px > py ? px : py) + 0.5);
+		png_set_pHYs(w->png, w->info, ppm, ppm, PNG_RESOLUTION_METER);
+	}
 	png_write_info(w->png, w->info);
 	w->info_done = 1;
 	return 0;

@@ -26,7 +26,9 @@ typedef struct dev_imgw dev_imgw_t;
 dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
 		size_t errlen);
 /* Record the physical size (PNG: the pHYs chunk, pixels per metre); call before the first row.
- * Formats without such a field ignore it. */
+ * Pixels stay square (spec §4 `size`): both axes get the resolution at which the page fits
+ * width_mm x height_mm, max(width/width_mm, height/height_mm). Formats without such a field
+ * ignore it. */
 void dev_imgw_physical(dev_imgw_t *w, double width_mm, double height_mm);
 /* Append n rows (top first), 3 bytes per pixel, row k at pix + k*stride. 0 or <0. */
 int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n);

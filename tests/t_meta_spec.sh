@@ -25,4 +25,12 @@ rc=$?
 grep -q ":3781:1: expected at most 33554432 points" "$T/e1" && [ $rc = 65 ] && grep -q "3781" "$T/e2" && [ ! -e "$T/f.png" ] && ok "flattened points: refused by the reader at line 3781, 65, no file" || notok "flat points: $rc $(cat "$T/e1" "$T/e2")"
 head -n 3780 fixtures/bad/flat-points.meta > "$T/ok.meta"; printf 'end\nend-page\n' >> "$T/ok.meta"
 check "3776 circles of radius 10^6 (33553536 points): valid" "$M" check "$T/ok.meta"
+# §4 size: pixels stay square, so a PNG's pHYs has one resolution for both axes, read back by
+# ImageMagick: 100 x 50 pixels in 100 x 100 mm is 1 mm a pixel, 10 pixels per centimetre
+"$BIN/locus-raster" $S/size-aspect.meta -o "$T/sa.png"
+res=$(identify -format '%x %y %U' "$T/sa.png" 2>&1)
+[ "$res" = "10 10 PixelsPerCentimeter" ] && ok "size of another aspect: square pHYs ($res)" || notok "size-aspect pHYs: '$res'"
+res=$(identify -format '%x %y' fixtures/raster/f-test.raster.png 2>&1)
+"$BIN/locus-raster" fixtures/meta/f-test.meta -o "$T/f.png"
+same_file "a size of the page's own aspect: the golden's bytes (pHYs $res) unchanged" "$T/f.png" fixtures/raster/f-test.raster.png
 done_tests
