@@ -47,6 +47,14 @@ int meta_circle_chords(int64_t r);
  * ceil(|sweep| * M / 360000)). */
 int64_t meta_arc_chords(int64_t r, int64_t sweep);
 
+/* The next character of the UTF-8 bytes buf[0, n), n >= 1, decoded as Unicode's "maximal
+ * subpart" practice (the WHATWG decoder, Python's errors="replace"): a well-formed sequence is
+ * one character (*cp its code point); an ill-formed one is one U+FFFD per maximal subpart (a
+ * lead byte and the continuation bytes valid after it, stopping at the first that is not) or per
+ * other byte. Overlong forms, surrogates and values above U+10FFFF are ill-formed. Returns the
+ * bytes taken (1 to 4). The text encoding (§2) and the stroke font (§5.5) both count by it. */
+size_t meta_utf8_next(const void *buf, size_t n, uint32_t *cp);
+
 /* Error codes (negative). */
 enum {
 	META_EOK = 0,

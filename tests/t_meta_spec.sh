@@ -33,4 +33,19 @@ res=$(identify -format '%x %y %U' "$T/sa.png" 2>&1)
 res=$(identify -format '%x %y' fixtures/raster/f-test.raster.png 2>&1)
 "$BIN/locus-raster" fixtures/meta/f-test.meta -o "$T/f.png"
 same_file "a size of the page's own aspect: the golden's bytes (pHYs $res) unchanged" "$T/f.png" fixtures/raster/f-test.raster.png
+# §2/§5.5: one UTF-8 rule. The recorded counts are a standard decoder's (Python's), and the font
+# draws by them: utf8-text.meta paints the pixels of utf8-glyphs.meta (one replacement per count)
+python3 - $S/utf8-cases.txt > "$T/u8" <<'PY'
+import sys
+bad = 0
+for line in open(sys.argv[1]):
+    if line.startswith('#'): continue
+    h, n = line.split()
+    if len(bytes.fromhex(h).decode('utf-8', 'replace')) != int(n): bad += 1
+print(bad)
+PY
+[ "$(cat "$T/u8")" = 0 ] && ok "utf8-cases.txt holds Python's decoder counts" || notok "utf8-cases.txt: $(cat "$T/u8") counts differ from Python's"
+"$BIN/locus-diff" $S/utf8-text.meta $S/utf8-glyphs.meta > "$T/out"
+[ $? = 0 ] && ok "text: surrogate 3 glyphs, truncated 1, euro 1, overlong 2, stray 1" || notok "UTF-8 glyphs: $(cat "$T/out")"
+"$M" fmt $S/utf8-text.meta -o "$T/u8.meta" && grep -qF "text 4 32 10 0 \"a$(printf '\342\202\254')b\"" "$T/u8.meta" && grep -q 'a\\xed\\xa0\\x80b' "$T/u8.meta" && ok "fmt keeps the euro sign raw and escapes the surrogate" || notok "fmt escaping: $(grep text "$T/u8.meta")"
 done_tests
