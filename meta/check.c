@@ -6,6 +6,13 @@
 
 #define FAIL(code, w, ...) do { *where = (w); meta_fmt(msg, n, __VA_ARGS__); return (code); } while (0)
 
+/* A value as §6 shows it: the canonical text form of §2, quoted by the caller. */
+static const char *fx(meta_fix_t v, char *buf)
+{
+	buf[meta_fix_format(v, buf)] = 0;
+	return buf;
+}
+
 static int is_path_op(meta_op_t op)
 {
 	return op == META_MOVE || op == META_DRAW || op == META_ARC || op == META_CIRCLE ||
@@ -15,14 +22,15 @@ static int is_path_op(meta_op_t op)
 /* Every 'f' operand must lie within the number range (the writer may be handed anything). */
 static int check_range(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
+	char vb[24];
 	const char *sig = meta_ops[cmd->op].sig;
 	int i, fi = 0;
 	for (i = 0; sig[i]; i++) {
 		if (sig[i] != 'f')
 			continue;
 		if (cmd->f[fi] > META_MAX_COORD || cmd->f[fi] < -META_MAX_COORD)
-			FAIL(META_ELIMIT, i, "expected a number from -1000000 to 1000000 for '%s', found %.3f",
-			     meta_ops[cmd->op].kw, cmd->f[fi] / 1000.0);
+			FAIL(META_ELIMIT, i, "expected a number from -1000000 to 1000000 for '%s', found '%s'",
+			     meta_ops[cmd->op].kw, fx(cmd->f[fi], vb));
 		fi++;
 	}
 	return 0;
@@ -36,7 +44,7 @@ static int check_string(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 	if (cmd->len && !cmd->str)
 		FAIL(META_EARG, arg, "expected a string for '%s', found a null pointer", meta_ops[cmd->op].kw);
 	if (cmd->len > META_MAX_STRING)
-		FAIL(META_ELIMIT, arg, "expected at most %d bytes in a %s, found %zu", META_MAX_STRING,
+		FAIL(META_ELIMIT, arg, "expected at most %d bytes in a %s, found %zu bytes", META_MAX_STRING,
 		     comment ? "comment" : "string", cmd->len);
 	for (i = 0; i < cmd->len; i++) {
 		unsigned char c = (unsigned char)cmd->str[i];
@@ -51,6 +59,7 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
 	const char *kw = meta_ops[cmd->op].kw;
 	size_t i;
+	char vb[24];
 	int rc = check_range(cmd, where, msg, n);
 	if (rc)
 		return rc;
@@ -58,14 +67,14 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 	case META_PAGE:
 		for (i = 0; i < 2; i++)
 			if (cmd->u[i] < 1 || cmd->u[i] > META_MAX_DIM)
-				FAIL(META_ELIMIT, (int)i, "expected a page %s from 1 to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected a page %s from 1 to %d, found '%u'",
 				     i ? "height" : "width", META_MAX_DIM, cmd->u[i]);
 		break;
 	case META_SIZE:
 		for (i = 0; i < 2; i++)
 			if (cmd->f[i] <= 0)
-				FAIL(META_ESYNTAX, (int)i, "expected a positive physical %s for 'size', found %.3f",
-				     i ? "height" : "width", cmd->f[i] / 1000.0);
+				FAIL(META_ESYNTAX, (int)i, "expected a positive physical %s for 'size', found '%s'",
+				     i ? "height" : "width", fx(cmd->f[i], vb));
 		break;
 	case META_CLEAR: case META_COLOUR:
 		if (cmd->rgb > 0xffffff)
@@ -73,54 +82,54 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 		break;
 	case META_WIDTH:
 		if (cmd->f[0] < 0)
-			FAIL(META_ESYNTAX, 0, "expected a width >= 0, found %.3f", cmd->f[0] / 1000.0);
+			FAIL(META_ESYNTAX, 0, "expected a width >= 0, found '%s'", fx(cmd->f[0], vb));
 		break;
 	case META_MITER_LIMIT:
 		if (cmd->f[0] < META_FIX_ONE)
-			FAIL(META_ESYNTAX, 0, "expected a miter limit >= 1, found %.3f", cmd->f[0] / 1000.0);
+			FAIL(META_ESYNTAX, 0, "expected a miter limit >= 1, found '%s'", fx(cmd->f[0], vb));
 		break;
 	case META_DASH:
 		if (cmd->nlist > META_MAX_DASH)
-			FAIL(META_ELIMIT, 0, "expected at most %d dash lengths, found %zu", META_MAX_DASH, cmd->nlist);
+			FAIL(META_ELIMIT, 0, "expected at most %d dash lengths, found %zu lengths", META_MAX_DASH, cmd->nlist);
 		if (cmd->nlist && !cmd->list)
 			FAIL(META_EARG, 0, "expected a dash list, found a null pointer");
 		for (i = 0; i < cmd->nlist; i++)
 			if (cmd->list[i] <= 0 || cmd->list[i] > META_MAX_COORD)
-				FAIL(META_ESYNTAX, 0, "expected dash lengths > 0 and <= 1000000, found %.3f (entry %zu)",
-				     cmd->list[i] / 1000.0, i + 1);
+				FAIL(META_ESYNTAX, 0, "expected dash lengths > 0 and <= 1000000, found '%s' (entry %zu)",
+				     fx(cmd->list[i], vb), i + 1);
 		break;
 	case META_CAP: case META_JOIN: case META_FILL_RULE:
 		if (cmd->k < 0 || cmd->k >= meta_ops[cmd->op].nwords)
-			FAIL(META_ESYNTAX, 0, "expected a keyword index below %d for '%s', found %d",
+			FAIL(META_ESYNTAX, 0, "expected a keyword index below %d for '%s', found '%d'",
 			     meta_ops[cmd->op].nwords, kw, cmd->k);
 		break;
 	case META_ARC: case META_CIRCLE:
 		if (cmd->f[2] <= 0)
-			FAIL(META_ESYNTAX, 2, "expected a radius > 0 for '%s', found %.3f", kw, cmd->f[2] / 1000.0);
+			FAIL(META_ESYNTAX, 2, "expected a radius > 0 for '%s', found '%s'", kw, fx(cmd->f[2], vb));
 		if (cmd->op == META_ARC && (cmd->f[4] > 360 * META_FIX_ONE || cmd->f[4] < -360 * META_FIX_ONE))
-			FAIL(META_ESYNTAX, 4, "expected a sweep from -360 to 360 for 'arc', found %.3f",
-			     cmd->f[4] / 1000.0);
+			FAIL(META_ESYNTAX, 4, "expected a sweep from -360 to 360 for 'arc', found '%s'",
+			     fx(cmd->f[4], vb));
 		break;
 	case META_TEXT:
 		if (cmd->f[2] < 0)
-			FAIL(META_ESYNTAX, 2, "expected a text size >= 0, found %.3f", cmd->f[2] / 1000.0);
+			FAIL(META_ESYNTAX, 2, "expected a text size >= 0, found '%s'", fx(cmd->f[2], vb));
 		return check_string(cmd, where, msg, n);
 	case META_COMMENT:
 		return check_string(cmd, where, msg, n);
 	case META_SPAN:
 		for (i = 0; i < 3; i++)
 			if (cmd->u[i] > META_MAX_DIM)
-				FAIL(META_ELIMIT, (int)i, "expected a span %s from 0 to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected a span %s from 0 to %d, found '%u'",
 				     i == 0 ? "x" : i == 1 ? "y" : "length", META_MAX_DIM, cmd->u[i]);
 		if (cmd->u[2] < 1)
-			FAIL(META_ESYNTAX, 2, "expected a span length >= 1, found 0");
+			FAIL(META_ESYNTAX, 2, "expected a span length >= 1, found '0'");
 		if (cmd->rgb > 0xffffff)
 			FAIL(META_EARG, 3, "expected a colour 0xRRGGBB for 'span', found 0x%x", cmd->rgb);
 		break;
 	case META_IMAGE:
 		for (i = 0; i < 4; i++)
 			if (cmd->u[i] > META_MAX_DIM || (i >= 2 && cmd->u[i] < 1))
-				FAIL(META_ELIMIT, (int)i, "expected an image %s from %d to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected an image %s from %d to %d, found '%u'",
 				     i == 0 ? "x" : i == 1 ? "y" : i == 2 ? "width" : "height",
 				     i >= 2, META_MAX_DIM, cmd->u[i]);
 		break;
