@@ -44,7 +44,8 @@ static void png_out(png_structp png, png_bytep data, size_t n)
 {
 	dev_imgw_t *w = png_get_io_ptr(png);
 	if (io_write(w->t, data, n)) {
-		w->io_failed = 1;
+		w->io_failed = 1;   /* the transport's message names the output and the cause */
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
 		png_error(png, "write failed");
 	}
 }
@@ -57,7 +58,8 @@ static void png_flush_cb(png_structp png)
 static void png_err(png_structp png, png_const_charp msg)
 {
 	dev_imgw_t *w = png_get_error_ptr(png);
-	snprintf(w->err, sizeof w->err, "png: %s", msg);
+	if (!w->io_failed)
+		snprintf(w->err, sizeof w->err, "png: %s", msg);
 	png_longjmp(png, 1);
 }
 
@@ -211,8 +213,8 @@ int dev_imgw_finish(dev_imgw_t *w)
 	} else if (w->fmt == DEV_FMT_PNG) {
 		rc = png_end(w);
 	}
-	if (rc == 0)
-		rc = io_flush(w->t);
+	if (rc == 0 && (rc = io_flush(w->t)) != 0)
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
 	if (rc)
 		return rc;   /* caller reads the message, then aborts */
 	dev_imgw_abort(w);
