@@ -20,6 +20,7 @@ same_file "page 2's bytes do not depend on page 1 (reference reset at 'page')" "
 # §6: the flattened-points limit is the reader's: check and the raster device stop at the same
 # statement, at once (before: 2^25 points were flattened first)
 "$M" check fixtures/bad/flat-points.meta 2> "$T/e1"
+rm -f "$T/f.png"
 "$BIN/locus-raster" fixtures/bad/flat-points.meta -o "$T/f.png" 2> "$T/e2"
 rc=$?
 grep -q ":3781:1: expected at most 33554432 points" "$T/e1" && [ $rc = 65 ] && grep -q "3781" "$T/e2" && [ ! -e "$T/f.png" ] && ok "flattened points: refused by the reader at line 3781, 65, no file" || notok "flat points: $rc $(cat "$T/e1" "$T/e2")"
