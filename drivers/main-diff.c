@@ -5,23 +5,56 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "cli.h"
 #include "device.h"
 #include "image.h"
 
-static void usage(FILE *f)
+static const char usage[] =
+	"usage: locus-diff [--max-pixels N] [--max-diff D] [--psnr DB] [--page N] [-o OUT]\n"
+	"                  [--band-rows N] [--mem-budget MIB] A B\n"
+	"Compare two pictures: PNG, PPM (P6), Locus RLE, or Locus meta files (rendered by the\n"
+	"reference raster device; --page picks the page, default 1). Prints the number of\n"
+	"differing pixels, the largest channel difference and the PSNR (to OUT, default stdout).\n"
+	"Inputs are read a row at a time (meta files a band at a time), so memory does not grow\n"
+	"with the size of the pictures. Exit 0: same (or within the tolerances), 1: they differ,\n"
+	"64: usage, 65: bad input, 66: no input, 70: out of memory, 74: read or write error.\n"
+	"  --max-pixels N   accept up to N differing pixels\n"
+	"  --max-diff D     pixels whose channels differ by at most D count as equal\n"
+	"  --psnr DB        accept when the PSNR is at least DB decibels\n"
+	"  --band-rows N, --mem-budget MIB   banding of the meta files' replay\n"
+	"  --help, --version\n";
+
+/* The program's own options (cli.h). */
+typedef struct {
+	unsigned long maxpix, maxdiff, page;
+	double psnr_min;
+} opts_t;
+
+enum { OPT_MAX_PIXELS = 0x2000, OPT_MAX_DIFF, OPT_PSNR, OPT_PAGE };
+
+static const struct option extra[] = {
+	{ "max-pixels", required_argument, NULL, OPT_MAX_PIXELS },
+	{ "max-diff", required_argument, NULL, OPT_MAX_DIFF },
+	{ "psnr", required_argument, NULL, OPT_PSNR },
+	{ "page", required_argument, NULL, OPT_PAGE },
+	{ NULL, 0, NULL, 0 },
+};
+
+static int on_option(cli_t *c, int key, const char *arg)
 {
-	fprintf(f,
-		"usage: locus-diff [--max-pixels N] [--max-diff D] [--psnr DB] [--page N] A B\n"
-		"Compare two pictures: PNG, PPM (P6), Locus RLE, or Locus meta files (rendered by the\n"
-		"reference raster device; --page picks the page, default 1). Prints the number of\n"
-		"differing pixels, the largest channel difference and the PSNR.\n"
-		"Inputs are read a row at a time (meta files a band at a time), so memory does not grow\n"
-		"with the size of the pictures. Exit 0: same (or within the tolerances), 1: they differ,\n"
-		"65: bad input, 66: no input, 70: out of memory, 74: read or write error.\n"
-		"  --max-pixels N   accept up to N differing pixels\n"
-		"  --max-diff D     pixels whose channels differ by at most D count as equal\n"
-		"  --psnr DB        accept when the PSNR is at least DB decibels\n"
-		"  --help, --version\n");
+	opts_t *o = c->user;
+	const char *name = key == OPT_MAX_PIXELS ? "--max-pixels" : key == OPT_MAX_DIFF ? "--max-diff"
+		: key == OPT_PSNR ? "--psnr" : "--page";
+	int bad = 0;
+	if (key == OPT_PSNR) {
+		char *e;
+		o->psnr_min = strtod(arg, &e);
+		bad = *e || e == arg || !(o->psnr_min >= 0) || o->psnr_min > 1000;
+	} else {
+		unsigned long *v = key == OPT_MAX_PIXELS ? &o->maxpix : key == OPT_MAX_DIFF ? &o->maxdiff : &o->page;
+		bad = cli_number(arg, key == OPT_PAGE, key == OPT_MAX_DIFF ? 255 : 4294967295UL, v) != 0;
+	}
+	return bad ? cli_fail(c, 64, "bad number '%s' for %s", arg, name) : CLI_RUN;
 }
 
 /* One input, read a row at a time: an image file through the streaming reader, or a meta file
@@ -122,7 +155,7 @@ static void *player(void *arg)
 }
 
 /* Open path; 0 or an exit status with the message in s->err. */
-static int src_open(src_t *s, const char *path, unsigned page)
+static int src_open(src_t *s, const char *path, unsigned page, unsigned band_rows, size_t budget)
 {
 	memset(s, 0, sizeof *s);
 	s->name = strcmp(path, "-") ? path : "<stdin>";
@@ -149,6 +182,9 @@ static int src_open(src_t *s, const char *path, unsigned page)
 			return 70;
 		}
 		s->dev->user = s;
+		s->dev->band_rows = band_rows;
+		if (budget)
+			s->dev->mem_budget = budget;
 		if (pthread_mutex_init(&s->mu, NULL) || pthread_cond_init(&s->cv, NULL) ||
 				pthread_create(&s->thr, NULL, player, s)) {
 			snprintf(s->err, sizeof s->err, "cannot start a thread to render %s", s->name);
@@ -253,12 +289,13 @@ static int src_fail(const src_t *s, int st)
 	return st;
 }
 
-/* Compare row by row; prints the report; returns the exit status. */
-static int compare(src_t *src, const char *const *file, unsigned long maxpix, unsigned long maxdiff,
-		double psnr_min)
+/* Compare row by row; the report line goes to line; returns the exit status. */
+static int compare(src_t *src, const char *const *file, const opts_t *o, char *line, size_t n)
 {
+	unsigned long maxpix = o->maxpix, maxdiff = o->maxdiff;
+	double psnr_min = o->psnr_min;
 	if (src[0].width != src[1].width || src[0].height != src[1].height) {
-		printf("%s %s: sizes differ: %ux%u vs %ux%u\n", file[0], file[1], src[0].width,
+		snprintf(line, n, "%s %s: sizes differ: %ux%u vs %ux%u\n", file[0], file[1], src[0].width,
 			src[0].height, src[1].width, src[1].height);
 		return 1;
 	}
@@ -300,8 +337,8 @@ static int compare(src_t *src, const char *const *file, unsigned long maxpix, un
 		snprintf(ps, sizeof ps, "inf");
 	else
 		snprintf(ps, sizeof ps, "%.2f", psnr);
-	printf("%s %s: %zu of %zu pixels differ, max channel difference %u, PSNR %s dB\n", file[0],
-		file[1], ndiff, npix, maxc, ps);
+	snprintf(line, n, "%s %s: %zu of %zu pixels differ, max channel difference %u, PSNR %s dB\n",
+		file[0], file[1], ndiff, npix, maxc, ps);
 	int same = ndiff <= maxpix || (psnr_min >= 0 && psnr >= psnr_min);
 	if (psnr_min >= 0 && maxpix == 0)
 		same = psnr >= psnr_min || ndiff == 0;
@@ -310,63 +347,48 @@ static int compare(src_t *src, const char *const *file, unsigned long maxpix, un
 
 int main(int argc, char **argv)
 {
-	const char *file[2] = { NULL, NULL };
-	unsigned long maxpix = 0, maxdiff = 0, page = 1;
-	double psnr_min = -1;
-	int nf = 0;
-	for (int k = 1; k < argc; k++) {
-		const char *a = argv[k];
-		char *e = NULL;
-		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-			usage(stdout);
-			return 0;
-		} else if (!strcmp(a, "--version")) {
-			printf("locus-diff %s\n", LOCUS_VERSION);
-			return 0;
-		} else if (!strcmp(a, "--max-pixels") && k + 1 < argc) {
-			maxpix = strtoul(argv[++k], &e, 10);
-		} else if (!strcmp(a, "--max-diff") && k + 1 < argc) {
-			maxdiff = strtoul(argv[++k], &e, 10);
-		} else if (!strcmp(a, "--page") && k + 1 < argc) {
-			page = strtoul(argv[++k], &e, 10);
-			if (page == 0)
-				e = (char *)"x";
-		} else if (!strcmp(a, "--psnr") && k + 1 < argc) {
-			psnr_min = strtod(argv[++k], &e);
-		} else if (a[0] == '-' && a[1]) {
-			fprintf(stderr, "locus-diff: unknown or incomplete option '%s' (try --help)\n", a);
-			return 64;
-		} else if (nf < 2) {
-			file[nf++] = a;
-		} else {
-			fprintf(stderr, "locus-diff: more than two files ('%s')\n", a);
-			return 64;
-		}
-		if (e && (*e || e == argv[k])) {
-			fprintf(stderr, "locus-diff: bad number '%s' for %s\n", argv[k], argv[k - 1]);
-			return 64;
-		}
-	}
-	if (nf != 2) {
-		fprintf(stderr, "locus-diff: need two files to compare (try --help)\n");
-		return 64;
-	}
-	if (!strcmp(file[0], "-") && !strcmp(file[1], "-")) {
-		fprintf(stderr, "locus-diff: standard input given twice\n");
-		return 64;
+	opts_t o = { 0, 0, 1, -1 };
+	cli_t c = { .prog = "locus-diff", .usage = usage, .extra = extra, .on_option = on_option,
+		.user = &o, .max_inputs = 2 };
+	int st = cli_parse(&c, argc, argv);
+	if (st != CLI_RUN)
+		return st;
+	if (c.options[0])
+		return cli_fail(&c, 64, "locus-diff has no device options (-O)");
+	if (c.nin != 2)
+		return cli_fail(&c, 64, "need two files to compare (try --help)");
+	const char *file[2] = { c.in[0], c.in[1] };
+	if (!strcmp(file[0], "-") && !strcmp(file[1], "-"))
+		return cli_fail(&c, 64, "standard input given twice");
+	char err[600];
+	io_transport_t *out = io_open_write(c.out ? c.out : "-", err, sizeof err);
+	if (!out) {
+		fprintf(stderr, "locus-diff: %s\n", err);
+		return 74;
 	}
 	src_t src[2];
-	int st = 0;
+	char line[2200] = "";
 	memset(src, 0, sizeof src);
+	st = 0;
 	for (int k = 0; k < 2 && st == 0; k++)
-		if ((st = src_open(&src[k], file[k], (unsigned)page)))
+		if ((st = src_open(&src[k], file[k], (unsigned)o.page, c.band_rows, c.budget)))
 			src_fail(&src[k], st);
 	if (st == 0)
-		st = compare(src, file, maxpix, maxdiff, psnr_min);
+		st = compare(src, file, &o, line, sizeof line);
 	src_close(&src[0]);
 	src_close(&src[1]);
-	if (fflush(stdout) || ferror(stdout)) {
-		fprintf(stderr, "locus-diff: <stdout>: cannot write the report: %s\n", strerror(errno));
+	if (st > 1) {
+		io_close(out, IO_ABORT);   /* no report, and no partial file */
+		return st;
+	}
+	if (io_write(out, line, strlen(line)) || io_flush(out)) {
+		fprintf(stderr, "locus-diff: %s\n", io_error(out));   /* names the output and the cause */
+		io_close(out, IO_ABORT);
+		return 74;
+	}
+	const char *name = c.out ? c.out : "<stdout>";
+	if (io_close(out, IO_COMMIT)) {   /* frees out: its message is gone, errno is the cause */
+		fprintf(stderr, "locus-diff: %s: cannot finish writing the report: %s\n", name, strerror(errno));
 		return 74;
 	}
 	return st;

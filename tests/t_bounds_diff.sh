@@ -33,7 +33,20 @@ printf 'LOCUS-META 1\npage 6000 6000\nclear #000000\nend-page\n' > "$T/black.met
 limited timeout 30 "$D" - fixtures/raster/f-test.raster.png < /dev/zero 2> "$T/err"
 [ $? = 65 ] && grep -q "<stdin>: byte 0: not a PNG" "$T/err" && ok "stdin from /dev/zero alone: refused at byte 0" || notok "zero stdin: $(cat "$T/err")"
 # two meta files, each replayed by a thread of its own, a band at a time
-expect_exit 0 "meta = meta, banded through a small budget" "$D" fixtures/meta/f-test.meta fixtures/meta/f-test.meta
+"$D" --band-rows 7 fixtures/meta/f-test.meta --mem-budget 1 fixtures/raster/f-test.raster.png > "$T/out" && grep -q "0 of 19200 pixels differ" "$T/out" && ok "meta in bands of 7 rows = its golden" || notok "banded meta: $(cat "$T/out")"
+"$D" --band-rows 5 "$T/black.meta" "$T/black.meta" > "$T/out" && grep -q "0 of 36000000 pixels differ" "$T/out" && ok "meta = meta, each in bands of 5 rows by a thread of its own" || notok "meta = meta: $(cat "$T/out")"
+"$D" --mem-budget 1 fixtures/meta/multipage.meta --page 3 fixtures/raster/multipage.raster-003.png > /dev/null && ok "page 3, banded" || notok "page 3 banded"
+# the report through -o: a file written whole, none on failure, one line for a missing directory
+"$D" fixtures/raster/f-test.raster.png fixtures/raster/f-test.raster.ppm -o "$T/report.txt"
+[ $? = 0 ] && grep -q "0 of 19200 pixels differ" "$T/report.txt" && ok "-o OUT holds the report" || notok "-o OUT"
+rm -f "$T/r2.txt"
+expect_exit 65 "bad input with -o: 65" "$D" "$T/huge.rle" "$T/huge.rle" -o "$T/r2.txt"
+[ ! -e "$T/r2.txt" ] && [ -z "$(ls "$T" | grep '^r2')" ] && ok "bad input with -o: no report file, no temporary" || notok "left: $(ls "$T" | grep '^r2')"
+"$D" fixtures/raster/f-test.raster.png fixtures/raster/f-test.raster.ppm -o "$T/no/such/dir/r.txt" 2> "$T/err"
+rc=$?
+[ $rc = 74 ] && [ "$(wc -l < "$T/err")" = 1 ] && grep -q "no/such/dir/r.txt" "$T/err" && ok "-o into a missing directory: one line naming it, 74" || notok "missing dir: exit $rc: $(cat "$T/err")"
+expect_exit 64 "-O refused (no device options)" "$D" -O a=1 fixtures/raster/f-test.raster.png fixtures/raster/f-test.raster.ppm
+expect_exit 64 "--max-diff 256 refused" "$D" --max-diff 256 fixtures/raster/f-test.raster.png fixtures/raster/f-test.raster.ppm
 expect_exit 64 "standard input twice: 64" "$D" - -
 # the report lost to a full disk: one line, exit 74
 "$D" fixtures/raster/f-test.raster.png fixtures/raster/f-test.raster.ppm > /dev/full 2> "$T/err"
