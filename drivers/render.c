@@ -1,6 +1,7 @@
 /* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
 #include <errno.h>
 #include <pthread.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -361,7 +362,8 @@ static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, 
 	return rc;
 }
 
-/* Fixed part of a stroke record. */
+/* Head of a stroke record; only the ndash entries in use are spooled (STROKE_HEAD(n) bytes), so
+ * that a record costs the path and a few dozen bytes, not a whole dash array. */
 typedef struct {
 	meta_rgb_t rgb;
 	int32_t cap, join;
@@ -369,6 +371,7 @@ typedef struct {
 	uint64_t ndash;
 	int64_t dash[2 * META_MAX_DASH];
 } stroke_head_t;
+#define STROKE_HEAD(n) (offsetof(stroke_head_t, dash) + (size_t)(n) * sizeof(int64_t))
 
 typedef struct {
 	meta_rgb_t rgb;
@@ -414,12 +417,14 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 	h.width = st->width;
 	h.miter_limit = st->miter_limit;
 	h.ndash = st->dash ? st->ndash : 0;
-	for (size_t k = 0; k < h.ndash && k < 2 * META_MAX_DASH; k++)
+	if (h.ndash > 2 * META_MAX_DASH)
+		h.ndash = 2 * META_MAX_DASH;
+	for (size_t k = 0; k < h.ndash; k++)
 		h.dash[k] = st->dash[k];
 	int64_t w = st->width < 1000 ? 1000 : st->width;
 	int64_t lim = st->miter_limit < 1500 ? 1500 : st->miter_limit;
 	int64_t ext = (int64_t)((double)w / 2.0 * ((double)lim / 1000.0)) + 2000;
-	return spool_path(r, REC_STROKE, ext, &h, sizeof h, p);
+	return spool_path(r, REC_STROKE, ext, &h, STROKE_HEAD(h.ndash), p);
 }
 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
@@ -500,9 +505,10 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 			rc = scan_fill(pt->ctx, &pt->band, &pt->path, f.rule, f.rgb);
 	} else if (h.kind == REC_STROKE) {
 		stroke_head_t s;
-		memcpy(&s, q, sizeof s);
+		memcpy(&s, q, STROKE_HEAD(0));
+		memcpy(s.dash, q + STROKE_HEAD(0), s.ndash * sizeof(int64_t));
 		scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
-		if (!(rc = load_path(pt, q + sizeof s)))
+		if (!(rc = load_path(pt, q + STROKE_HEAD(s.ndash))))
 			rc = scan_stroke(pt->ctx, &pt->band, &pt->path, &st, s.rgb);
 	} else if (h.kind == REC_SPAN) {
 		int64_t v[3];
