@@ -44,6 +44,16 @@ for i in range(1, 21):
 PY
 timeout 20 "$R" "$T/twice.scene" -o "$T/t.meta" 2> "$T/err"
 [ $? = 65 ] && grep -q "twice.scene:46:15: expected a shape that costs at most 2048 distance evaluations" "$T/err" && ok "distance to the previous shape twice, 20 deep: refused in time" || notok "cost: $(cat "$T/err")"
+# distance-to the previous shape and c shape of it, 12 levels (1 KB; 24 s for 8 x 8 before)
+python3 - "$T/mix.scene" <<'PY'
+import sys
+f = open(sys.argv[1], 'w')
+f.write("view\n  size 8 8\nend\nshape s0\n  point 0 0 0\n  c 1\nend\n")
+for i in range(1, 13):
+    f.write("shape s%d\n  distance-to s%d\n  c shape s%d 0.5 0.1\n  bound -2 -2 -2 2 2 2\nend\n" % (i, i - 1, i - 1))
+PY
+timeout 20 "$R" "$T/mix.scene" -o "$T/m.meta" 2> "$T/err"
+[ $? = 65 ] && grep -q "mix.scene:40:11: expected a shape that costs at most 2048" "$T/err" && ok "distance-to and c shape of the previous shape, 12 deep: refused at once" || notok "mix: $(cat "$T/err")"
 printf "view\n  size 8 8\nend\nshape a\n  point 0 0 0\n  c 1\nend\n" > "$T/cs.scene"
 for i in 1 2 3 4 5 6 7 8 9; do printf "shape s$i\n  point 0 0 0\n  c shape %s 0.5 1\n  bound -2 -2 -2 2 2 2\nend\n" $( [ $i = 1 ] && echo a || echo s$((i - 1)) ) >> "$T/cs.scene"; done
 timeout 20 "$R" "$T/cs.scene" -o "$T/cs.meta" 2> "$T/err"
