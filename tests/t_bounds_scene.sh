@@ -70,6 +70,7 @@ printf 'view\n  size 30000 30000\nend\nobject t\n  point 0 0 0\n  c 1\nend\n' > 
 if [ "${SANITIZE:-}" = 1 ]; then
 	ok "out of memory: skipped under ASan (no address-space limit)"
 else
+	rm -f "$T/big.meta"
 	LIM=1000000 limited "$R" "$T/big.scene" -o "$T/big.meta" 2> "$T/err"
 	rc=$?
 	[ $rc = 70 ] && [ ! -e "$T/big.meta" ] && grep -q "out of memory" "$T/err" && ok "out of memory: 70, no file" || notok "out of memory: exit $rc: $(cat "$T/err")"
