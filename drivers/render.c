@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <pthread.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -341,7 +342,11 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	return 0;
 }
 
-/* Serialised path: npts, nsubs (uint64), subs, points. */
+/* Serialised path: npts (PACKED set when the points are int32 pairs), nsubs (uint64), subs,
+ * points. Points within 32 bits (every path of the meta-language's range but wide text) take
+ * half the spool. */
+#define PACKED ((uint64_t)1 << 63)
+
 static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
 		const scan_path_t *p)
 {
@@ -349,15 +354,26 @@ static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, 
 	if (!scan_path_bbox(p, &x0, &y0, &x1, &y1))
 		return 0;
 	int64_t jlo = (y0 - ext) / 1000 - 2, jhi = (y1 + ext) / 1000 + 2;
-	uint64_t cnt[2] = { p->npts, p->nsubs };
+	int packed = x0 >= INT32_MIN && y0 >= INT32_MIN && x1 <= INT32_MAX && y1 <= INT32_MAX;
+	uint64_t cnt[2] = { p->npts | (packed ? PACKED : 0), p->nsubs };
 	size_t nsz = sizeof cnt + p->nsubs * sizeof(scan_subpath_t);
-	unsigned char *meta = malloc(nhead + nsz);
+	size_t npt = p->npts * (packed ? 2 * sizeof(int32_t) : sizeof(scan_pt_t));
+	unsigned char *meta = malloc(nhead + nsz + (packed ? npt : 0));
 	if (!meta)
 		return META_ENOMEM;
 	memcpy(meta, head, nhead);
 	memcpy(meta + nhead, cnt, sizeof cnt);
 	memcpy(meta + nhead + sizeof cnt, p->subs, p->nsubs * sizeof(scan_subpath_t));
-	int rc = spool(r, kind, jlo, jhi, meta, nhead + nsz, p->pts, p->npts * sizeof(scan_pt_t), NULL, 0);
+	const void *pts = p->pts;
+	if (packed) {
+		int32_t *q = (int32_t *)(void *)(meta + nhead + nsz);
+		for (size_t k = 0; k < p->npts; k++) {
+			q[2 * k] = (int32_t)p->pts[k].x;
+			q[2 * k + 1] = (int32_t)p->pts[k].y;
+		}
+		pts = q;
+	}
+	int rc = spool(r, kind, jlo, jhi, meta, nhead + nsz, pts, npt, NULL, 0);
 	free(meta);
 	return rc;
 }
@@ -464,6 +480,8 @@ static int load_path(painter_t *pt, const unsigned char *q)
 	uint64_t cnt[2];
 	memcpy(cnt, q, sizeof cnt);
 	q += sizeof cnt;
+	int packed = (cnt[0] & PACKED) != 0;
+	cnt[0] &= ~PACKED;
 	scan_path_t *p = &pt->path;
 	if (cnt[0] > p->cappts) {
 		scan_pt_t *n = realloc(p->pts, cnt[0] * sizeof(scan_pt_t));
@@ -483,7 +501,16 @@ static int load_path(painter_t *pt, const unsigned char *q)
 	p->nsubs = cnt[1];
 	memcpy(p->subs, q, cnt[1] * sizeof(scan_subpath_t));
 	q += cnt[1] * sizeof(scan_subpath_t);
-	memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
+	if (!packed) {
+		memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
+		return 0;
+	}
+	for (size_t k = 0; k < cnt[0]; k++) {
+		int32_t v[2];
+		memcpy(v, q + 8 * k, sizeof v);
+		p->pts[k].x = v[0];
+		p->pts[k].y = v[1];
+	}
 	return 0;
 }
 
