@@ -299,9 +299,9 @@ int model_check_nesting(model_shape_t *s, char *err, size_t errlen)
 				nest = e->shape->nest + 1;
 			ev += e->shape->eval_cost;
 			gr += e->shape->eval_cost + e->shape->grad_cost;
-		} else {
-			ev += e->np ? (double)e->np : 1;
-			gr += e->np ? (double)e->np : 1;
+		} else {   /* one distance evaluation, however many points the element holds */
+			ev += 1;
+			gr += 1;
 		}
 	}
 	if (s->c.kind == MODEL_C_SHAPE && s->c.shape) {

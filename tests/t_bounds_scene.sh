@@ -58,6 +58,10 @@ printf "view\n  size 8 8\nend\nshape a\n  point 0 0 0\n  c 1\nend\n" > "$T/cs.sc
 for i in 1 2 3 4 5 6 7 8 9; do printf "shape s$i\n  point 0 0 0\n  c shape %s 0.5 1\n  bound -2 -2 -2 2 2 2\nend\n" $( [ $i = 1 ] && echo a || echo s$((i - 1)) ) >> "$T/cs.scene"; done
 timeout 20 "$R" "$T/cs.scene" -o "$T/cs.meta" 2> "$T/err"
 [ $? = 65 ] && grep -q "cs.scene:[0-9]*:11: expected shapes nested at most 8 deep\|cs.scene:[0-9]*:11: expected a shape that costs" "$T/err" && ok "c shape chains count too" || notok "c shape nesting: $(cat "$T/err")"
+# the cost counts distance evaluations, not points: one element of 3000 points is cheap
+python3 -c "
+print('view\n  size 8 8\nend\nobject t\n  points ' + ' '.join('%d 0 0' % i for i in range(3000)) + '\n  c 5000\n  bound -10 -10 -10 10 10 10\nend')" > "$T/pts.scene"
+check "a 3000-point element is within the cost limit" "$R" "$T/pts.scene" -o "$T/pts.meta" --quiet
 # octree: depth 12 with draw no only counts (memory stays small); drawn, beyond the leaf limit
 # it is refused with the render block's place
 OCT='object t\n  point 1 0 0\n  point -1 0 0\n  point 0 1.2 0.3\n  c 3.6\n  bound -3 -3 -3 3 3 3\nend\nview\n  size 8 8\nend\nrender octree\n'
