@@ -114,18 +114,50 @@ static int accept(parser_t *p, char c)
 static void parse_expr(parser_t *p);
 static void parse_unary(parser_t *p);
 
+size_t expr_decimal_len(const char *s)
+{
+	size_t n = 0, digits = 0;
+	while (isdigit((unsigned char)s[n]))
+		n++, digits++;
+	if (s[n] == '.') {
+		n++;
+		while (isdigit((unsigned char)s[n]))
+			n++, digits++;
+	}
+	if (!digits)
+		return 0;
+	if (s[n] == 'e' || s[n] == 'E') {
+		size_t k = n + 1;
+		if (s[k] == '+' || s[k] == '-')
+			k++;
+		if (isdigit((unsigned char)s[k])) {
+			while (isdigit((unsigned char)s[k]))
+				k++;
+			n = k;
+		}
+	}
+	return n;
+}
+
 static void parse_primary(parser_t *p)
 {
 	skip(p);
 	const char *c = p->s + p->pos;
 	if (isdigit((unsigned char)*c) || (*c == '.' && isdigit((unsigned char)c[1]))) {
-		char *end;
-		double v = strtod(c, &end);
-		if (!isfinite(v)) {
-			fail(p, "a finite number");
+		size_t n = expr_decimal_len(c);
+		char buf[64];
+		if (n >= sizeof buf || isalnum((unsigned char)c[n]) || c[n] == '.' || c[n] == '_') {
+			fail(p, "a decimal number (digits, a fraction, an exponent)");
 			return;
 		}
-		p->pos += (size_t)(end - c);
+		memcpy(buf, c, n);
+		buf[n] = 0;
+		double v = strtod(buf, NULL);
+		if (!isfinite(v) || fabs(v) > EXPR_MAX_NUMBER) {
+			fail(p, "a number between -1e6 and 1e6 (the float kernels' range)");
+			return;
+		}
+		p->pos += n;
 		emit(p, OP_CONST, v);
 		return;
 	}

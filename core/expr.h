@@ -9,7 +9,8 @@
  *            | FUNC "(" expr ")"              sin cos tan sqrt abs exp log floor
  *            | ("min" | "max") "(" expr "," expr ("," expr)* ")"
  *            | "(" expr ")"
- * Numbers are decimal with an optional fraction and exponent (1, 2.5, 1e-3).
+ * Numbers are decimal with an optional fraction and exponent (1, 2.5, 1e-3) and lie within
+ * +-EXPR_MAX_NUMBER (docs/scene-language.md §1); hexadecimal, "inf" and "nan" are not numbers.
  *
  * Evaluation follows C's math library (sqrt of a negative is NaN, log(0) is
  * -inf); callers treat non-finite results as "no surface here".
@@ -26,6 +27,14 @@
 #define LOCUS_EXPR_H
 
 #include <stddef.h>
+
+/* The largest magnitude of a number written in a scene (the float kernels' range). */
+#define EXPR_MAX_NUMBER 1e6
+
+/* Length of the unsigned decimal number at s: digits [. digits] or . digits, then an optional
+ * exponent e[+-]digits; 0 when s does not start with one. The scene lexer and the expression
+ * compiler both read numbers by this one rule. */
+size_t expr_decimal_len(const char *s);
 
 /* A compiled expression (opaque). */
 typedef struct expr expr_t;

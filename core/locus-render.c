@@ -99,7 +99,7 @@ int main(int argc, char **argv)
 	int rc = scene_load(in, &sc, err, sizeof err);
 	if (rc < 0) {
 		fprintf(stderr, "%s\n", err);
-		return rc == -2 ? EX_NOINPUT : EX_DATAERR;
+		return rc == -2 ? EX_NOINPUT : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (!quiet)
 		for (size_t i = 0; i < sc->nwarnings; i++)
@@ -123,9 +123,9 @@ int main(int argc, char **argv)
 	if (!w) {
 		fprintf(stderr, "locus-render: out of memory\n");
 		status = EX_SOFTWARE;
-	} else if (scene_render(sc, w, &o, &st, err, sizeof err) < 0) {
+	} else if ((rc = scene_render(sc, w, &o, &st, err, sizeof err)) < 0) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : err);
-		status = io_failed(f) ? EX_IOERR : EX_DATAERR;
+		status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");

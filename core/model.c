@@ -276,7 +276,60 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 			e.pf[i] = (float)e.p[i];
 		e.pf[3 * np] = (float)r;
 	}
-	return push(s, &e, err, errlen);
+	if (push(s, &e, err, errlen) < 0)
+		return -1;
+	if (kind == MODEL_SHAPE && model_check_nesting(s, err, errlen) < 0) {
+		s->nel--;   /* refused: the shape stays as it was */
+		free(s->el[s->nel].p);
+		free(s->el[s->nel].pf);
+		model_check_nesting(s, NULL, 0);
+		return -1;
+	}
+	return 0;
+}
+
+int model_check_nesting(model_shape_t *s, char *err, size_t errlen)
+{
+	int nest = 0;
+	double ev = 1, gr = 1;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (e->kind == MODEL_SHAPE) {
+			if (e->shape->nest + 1 > nest)
+				nest = e->shape->nest + 1;
+			ev += e->shape->eval_cost;
+			gr += e->shape->eval_cost + e->shape->grad_cost;
+		} else {   /* one distance evaluation, however many points the element holds */
+			ev += 1;
+			gr += 1;
+		}
+	}
+	if (s->c.kind == MODEL_C_SHAPE && s->c.shape) {
+		if (s->c.shape->nest + 1 > nest)
+			nest = s->c.shape->nest + 1;
+		ev += s->c.shape->eval_cost;
+		gr += 6 * s->c.shape->eval_cost;   /* central differences of c */
+	} else if (s->c.kind != MODEL_C_CONST) {
+		ev += 1;
+		gr += 6;
+	}
+	s->nest = nest;
+	s->eval_cost = ev;
+	s->grad_cost = gr;
+	if (nest > MODEL_MAX_NEST) {
+		if (err)
+			snprintf(err, errlen, "shapes nested at most %d deep (through distance-to and c shape), "
+				"found %d", MODEL_MAX_NEST, nest);
+		return -1;
+	}
+	if (ev + gr > MODEL_MAX_COST) {
+		if (err)
+			snprintf(err, errlen, "a shape that costs at most %d distance evaluations per point with "
+				"its gradient, found %.0f (every distance-to repeats the other shape's work)",
+				MODEL_MAX_COST, ev + gr);
+		return -1;
+	}
+	return 0;
 }
 
 /* Nearest point q of the element to p (setup frame); returns the distance. */

@@ -102,7 +102,17 @@ struct model_shape {
 	int bounded;               /* 1 when the surface lies in the sphere below */
 	double centre[3], radius;  /* bounding sphere (actual frame) */
 	int fast_points;           /* points/segments only, constant c, translated frame: model_eval8's fast path */
+	/* kept by model_add / model_check_nesting: */
+	int nest;                  /* levels of shapes below this one (0: none) */
+	double eval_cost, grad_cost; /* distance evaluations per point of model_eval, model_grad */
 };
+
+/* Work bounds: a shape refers to shapes (distance-to, c shape) at most MODEL_MAX_NEST deep,
+ * and one evaluation of f and its gradient at a point costs at most MODEL_MAX_COST distance
+ * evaluations (a shape that is the distance to another twice costs twice that one). Beyond
+ * them the shape is refused before any work is done on it. */
+#define MODEL_MAX_NEST 8
+#define MODEL_MAX_COST 2048
 
 /* A new empty shape (c = 0, identity transform), NULL when out of memory. */
 model_shape_t *model_new(void);
@@ -120,6 +130,12 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
  * or -1 with a message. (model_add with MODEL_VORONOI takes plain points.) */
 int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
                      char *err, size_t errlen);
+
+/* Recompute s->nest and the costs from the elements and the parameter (the shapes referred
+ * to must have theirs). Returns 0, or -1 with a message ("expected ..." follows it) when a
+ * bound above is passed; err may be NULL. model_add calls it for shape elements; call it
+ * after setting a MODEL_C_SHAPE parameter. */
+int model_check_nesting(model_shape_t *s, char *err, size_t errlen);
 
 /* Transforms, applied after the ones already given (SETUP -> ACTUAL). Angles in degrees. */
 void model_translate(model_shape_t *s, double x, double y, double z);

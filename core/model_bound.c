@@ -111,6 +111,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		snprintf(err, errlen, "a shape needs at least one distance element (or a defining parameter that is not a constant)");
 		return -1;
 	}
+	if (model_check_nesting(s, err, errlen) < 0)
+		return -1;
 	double C[3], R, lo[3], hi[3];
 	const double *mi = s->minv;
 	s->fast_points = s->c.kind == MODEL_C_CONST && mi[0] == 1 && mi[1] == 0 && mi[2] == 0 && mi[4] == 0

@@ -12,7 +12,8 @@ typedef struct {
 	oct_leaf_t *leaves;
 	size_t n, cap;
 	oct_stats_t *st;
-	int oom;
+	int oom, too_many;
+	int keep;                /* store the leaves (else only count them) */
 	int exact_points;        /* identity linear part: point ranges are exact */
 	double margin;           /* float rounding allowance of the float tests */
 	int fast_cubical;        /* points only, constant c, translation only */
@@ -20,6 +21,12 @@ typedef struct {
 
 static void add_leaf(build_t *b, const double *p, double h)
 {
+	if (!b->keep)
+		return;   /* counting only */
+	if (b->n == OCT_MAX_LEAVES) {
+		b->too_many = 1;
+		return;
+	}
 	if (b->n == b->cap) {
 		size_t cap = b->cap ? 2 * b->cap : 1024;
 		oct_leaf_t *q = realloc(b->leaves, cap * sizeof *q);
@@ -168,7 +175,7 @@ static void visit_children(build_t *b, const double *p, double h, int level)
 		for (int c = 0; c < 8; c++)
 			keep[c] = cubical(b, q[c], hc);
 	}
-	for (int c = 0; c < 8 && !b->oom; c++) {
+	for (int c = 0; c < 8 && !b->oom && !b->too_many; c++) {
 		if (!keep[c])
 			continue;
 		if (level + 1 == b->depth) {
@@ -183,7 +190,8 @@ static void visit_children(build_t *b, const double *p, double h, int level)
 int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, size_t *n,
               oct_stats_t *st, char *err, size_t errlen)
 {
-	*leaves = NULL;
+	if (leaves)
+		*leaves = NULL;
 	*n = 0;
 	memset(st, 0, sizeof *st);
 	if (depth < 1 || depth > 12) {
@@ -200,6 +208,7 @@ int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, 
 	b.depth = depth;
 	b.test = test;
 	b.st = st;
+	b.keep = leaves != NULL;
 	const double *m = s->m;
 	b.exact_points = m[0] == 1 && m[1] == 0 && m[2] == 0 && m[4] == 0 && m[5] == 1 && m[6] == 0
 	              && m[8] == 0 && m[9] == 0 && m[10] == 1;
@@ -215,11 +224,17 @@ int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, 
 		b.margin += 1e-5 * fabs(s->el[i].w) * (2 * h + 1);
 	st->visited = 1;   /* the root is kept without a test: it is the clip box */
 	visit_children(&b, p, h, 0);
-	if (b.oom) {
+	if (b.oom || b.too_many) {
 		free(b.leaves);
-		snprintf(err, errlen, "out of memory for the octree leaves");
+		if (b.oom)
+			snprintf(err, errlen, "out of memory for the octree leaves");
+		else
+			snprintf(err, errlen, "the octree has more than %u leaves to draw (the memory limit of "
+				"drawing): lower its depth, or count its cells with 'draw no'", (unsigned)OCT_MAX_LEAVES);
 		return -1;
 	}
+	if (!leaves)
+		return 0;
 	*leaves = b.leaves;
 	*n = b.n;
 	return 0;

@@ -41,8 +41,13 @@ typedef struct {
 	uint64_t visited, leaves, evals;
 } oct_stats_t;
 
+/* The most leaves oct_build keeps for drawing: with their faces about 300 MB. Drawing a
+ * deeper conversion is refused with a message; counting (leaves == NULL) has no limit. */
+#define OCT_MAX_LEAVES ((size_t)1 << 21)
+
 /* Subdivide s to depth (1..12) with the given test; *leaves (malloc'd, the
- * caller frees) receives the leaves. Returns 0 or -1 with a message. */
+ * caller frees) receives the leaves, or, with leaves NULL, they are only counted (memory
+ * then does not grow with the depth). Returns 0 or -1 with a message. */
 int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, size_t *n,
               oct_stats_t *st, char *err, size_t errlen);
 

@@ -1,6 +1,7 @@
 /* scene.c: parser of the scene language: view, lights, background, shapes and objects, render blocks. */
 #include "scene_int.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -224,6 +225,11 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 			return scene_lex_expected(lx, &n, "a shape with a Lipschitz bound");
 		c->kind = MODEL_C_SHAPE;
 		c->shape = o->shape;
+		char e[200], msg[256];
+		if (model_check_nesting(m, e, sizeof e) < 0) {
+			snprintf(msg, sizeof msg, "expected %s", e);
+			return scene_lex_error(lx, n.line, n.col, msg);
+		}
 		if (scene_lex_number(lx, &c->c0, "a base value") < 0 || scene_lex_number(lx, &c->amp, "an amplitude") < 0)
 			return -1;
 		return scene_lex_eol(lx);
@@ -536,7 +542,7 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 	*out = NULL;
 	if (!sc) {
 		snprintf(err, errlen, "%s: out of memory", name);
-		return -1;
+		return SCENE_ENOMEM;
 	}
 	snprintf(sc->name, sizeof sc->name, "%s", name);
 	cam_t *c = &sc->cam;
@@ -578,7 +584,7 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 	}
 	if (lx.failed) {
 		scene_free(sc);
-		return -1;
+		return strstr(err, "out of memory") ? SCENE_ENOMEM : -1;
 	}
 	*out = sc;
 	return 0;
@@ -590,7 +596,7 @@ int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 	const char *name = strcmp(path, "-") ? path : "<stdin>";
 	*out = NULL;
 	if (!f) {
-		snprintf(err, errlen, "%s: cannot open: %s", path, "no such file or not readable");
+		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
 		return -2;
 	}
 	size_t cap = 1 << 16, n = 0;
@@ -613,9 +619,13 @@ int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 		if (r == 0)
 			break;
 	}
-	int bad = !buf || ferror(f) || n + 1 >= cap;
+	int bad = !buf || ferror(f) || n + 1 >= cap, nomem = !buf && n + 1 < cap;
 	if (f != stdin)
 		fclose(f);
+	if (nomem) {
+		snprintf(err, errlen, "%s: out of memory reading the scene", name);
+		return SCENE_ENOMEM;
+	}
 	if (bad) {
 		free(buf);
 		snprintf(err, errlen, "%s: cannot read (I/O error, or larger than 64 MiB)", name);

@@ -80,12 +80,16 @@ typedef struct {
 	size_t nwarnings;
 } scene_t;
 
+/* Returned (instead of -1) when the failure was an allocation: every such message of core/
+ * says "out of memory", and the programs exit 70 for it rather than 65. */
+#define SCENE_ENOMEM (-3)
+
 /* Parse scene text (NUL-terminated); name is used in messages. Returns 0
- * with *out, or -1 with "name:line:col: expected ..." in err. */
+ * with *out, or -1 with "name:line:col: expected ..." in err (SCENE_ENOMEM). */
 int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen);
 
 /* Read and parse a file ("-" = stdin). Returns 0, -1 (syntax: err holds the
- * message) or -2 (the file cannot be read). */
+ * message), -2 (the file cannot be read) or SCENE_ENOMEM. */
 int scene_load(const char *path, scene_t **out, char *err, size_t errlen);
 
 /* Free a scene. */
@@ -110,7 +114,7 @@ typedef struct {
 } scene_opts_t;
 
 /* Render every render block (none: one ray-traced page) to w. Returns 0 or
- * -1 with a message. Warnings (e.g. an empty picture) are added to s. */
+ * -1 (SCENE_ENOMEM) with a message. Warnings (e.g. an empty picture) are added to s. */
 int scene_render(scene_t *s, meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st,
                  char *err, size_t errlen);
 

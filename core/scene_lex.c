@@ -1,5 +1,6 @@
 /* scene_lex.c: tokens, numbers and positioned error messages of the scene language. */
 #include "scene_lex.h"
+#include "expr.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -130,11 +131,16 @@ int scene_lex_number(scene_lex_t *lx, double *v, const char *what)
 		return scene_lex_expected(lx, &t, msg);
 	memcpy(buf, t.s, t.len);
 	buf[t.len] = 0;
-	char *end;
-	double x = strtod(buf, &end);
-	if (*end || end == buf || !isfinite(x))
+	size_t sign = buf[0] == '-' || buf[0] == '+';
+	if (expr_decimal_len(buf + sign) != t.len - sign) {
+		char *end;
+		double y = strtod(buf, &end);
+		if (!*end && isfinite(y))   /* C would read it (0x10): say what the language reads */
+			snprintf(msg, sizeof msg, "%s (a decimal number)", what);
 		return scene_lex_expected(lx, &t, msg);
-	if (fabs(x) > 1e6) {
+	}
+	double x = strtod(buf, NULL);
+	if (!isfinite(x) || fabs(x) > EXPR_MAX_NUMBER) {
 		snprintf(msg, sizeof msg, "%s between -1e6 and 1e6 (the float kernels' range)", what);
 		return scene_lex_expected(lx, &t, msg);
 	}

@@ -339,22 +339,20 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 			oct_stats_t os = {0, 0, 0};
 			double tb = scene_now();
 			rc = oct_build(objs[i].shape, r->depth, r->test == SCENE_CUBICAL ? OCT_CUBICAL : OCT_SPHERICAL,
-			               &leaves, &nl, &os, err, errlen);
+			               r->draw ? &leaves : NULL, &nl, &os, err, errlen);
 			st->seconds_trace += scene_now() - tb;   /* the conversion only, not the faces */
 			st->oct_visited += os.visited;
 			st->oct_leaves += os.leaves;
 			st->oct_evals += os.evals;
 			if (rc == 0 && r->test == SCENE_BOTH_TESTS) {
 				/* the thesis' table 6.1: the same conversion with the cubical test */
-				oct_leaf_t *l2 = NULL;
 				size_t n2 = 0;
 				oct_stats_t o2 = {0, 0, 0};
 				double tc = scene_now();
-				rc = oct_build(objs[i].shape, r->depth, OCT_CUBICAL, &l2, &n2, &o2, err, errlen);
+				rc = oct_build(objs[i].shape, r->depth, OCT_CUBICAL, NULL, &n2, &o2, err, errlen);
 				st->seconds_cubical += scene_now() - tc;
 				st->oct_cubical_visited += o2.visited;
 				st->oct_cubical_leaves += o2.leaves;
-				free(l2);
 			}
 			if (rc == 0 && r->draw && oct_faces(cam, &objs[i], s->lights, s->nlights, leaves, nl, r->shading, &faces, &nf, &cap) < 0)
 				rc = -1, snprintf(err, errlen, "out of memory for the octree faces");
@@ -430,6 +428,19 @@ static int render_block(scene_t *s, const scene_render_t *r, unsigned pw, unsign
 	return 0;
 }
 
+/* A failed block: its message gains the block's place (FILE:LINE:COL: of its `render` line) unless
+ * it names one already; SCENE_ENOMEM when it was an allocation. */
+static int block_failed(const scene_t *s, const scene_render_t *r, char *err, size_t errlen)
+{
+	size_t n = strlen(s->name);
+	if (r->line && !(strncmp(err, s->name, n) == 0 && err[n] == ':')) {
+		char msg[1024];
+		snprintf(msg, sizeof msg, "%s:%u:%u: %s", s->name, r->line, r->col, err);
+		snprintf(err, errlen, "%s", msg);
+	}
+	return strstr(err, "out of memory") ? SCENE_ENOMEM : -1;
+}
+
 int scene_render(scene_t *s, meta_writer_t *w, const scene_opts_t *o, scene_stats_t *st,
                  char *err, size_t errlen)
 {
@@ -444,14 +455,16 @@ int scene_render(scene_t *s, meta_writer_t *w, const scene_opts_t *o, scene_stat
 		r.accuracy = 1e-3;
 		r.step = 0.5;
 		r.threshold = 8;
-		return render_block(s, &r, 0, 0, 0, w, o, st, err, errlen);
+		if (render_block(s, &r, 0, 0, 0, w, o, st, err, errlen) < 0)
+			return block_failed(s, &r, err, errlen);
+		return 0;
 	}
 	unsigned pw = 0, ph = 0;     /* size of the page drawn last */
 	for (size_t i = 0; i < s->nrenders; i++) {
 		const scene_render_t *r = &s->renders[i];
 		int keep_open = i + 1 < s->nrenders && s->renders[i + 1].has_inset;
 		if (render_block(s, r, pw, ph, keep_open, w, o, st, err, errlen) < 0)
-			return -1;
+			return block_failed(s, r, err, errlen);
 		if (!r->has_inset) {
 			int flat = r->kind == SCENE_CONTOUR || r->kind == SCENE_VORONOI;
 			pw = flat ? s->cam.nxpix : page_width(s);

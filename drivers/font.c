@@ -129,23 +129,14 @@ const char *scan_glyph_source(int ch, double *advance)
 	return g->src;
 }
 
-/* Next character of s: a byte 0x20-0x7e as itself, anything else (a control byte, a whole
- * valid UTF-8 sequence, or one invalid byte) as -1 (replacement). Returns bytes consumed. */
+/* Next character of s (spec §5.5): a byte 0x20-0x7e as itself, anything else as -1 (the
+ * replacement glyph): a control byte, a well-formed UTF-8 sequence, or an ill-formed one, counted
+ * as a standard decoder counts U+FFFD (meta_utf8_next). Returns bytes consumed. */
 static size_t next_char(const unsigned char *s, size_t len, int *ch)
 {
-	unsigned c = s[0];
-	*ch = -1;
-	if (c < 0x80) {
-		if (c >= 0x20 && c <= 0x7e)
-			*ch = (int)c;
-		return 1;
-	}
-	size_t n = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 1;
-	if (n > len)
-		return 1;
-	for (size_t k = 1; k < n; k++)
-		if ((s[k] & 0xc0) != 0x80)
-			return 1;
+	uint32_t cp;
+	size_t n = meta_utf8_next(s, len, &cp);
+	*ch = cp >= 0x20 && cp <= 0x7e ? (int)cp : -1;
 	return n;
 }
 

@@ -1,4 +1,4 @@
-/* image.c: streaming PNG (libpng), PPM (P6) and RLE raster writers, and their readers. */
+/* image.c: streaming PNG (libpng), PPM (P6) and RLE raster writers (readers: imgread.c). */
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
@@ -44,7 +44,8 @@ static void png_out(png_structp png, png_bytep data, size_t n)
 {
 	dev_imgw_t *w = png_get_io_ptr(png);
 	if (io_write(w->t, data, n)) {
-		w->io_failed = 1;
+		w->io_failed = 1;   /* the transport's message names the output and the cause */
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
 		png_error(png, "write failed");
 	}
 }
@@ -57,7 +58,8 @@ static void png_flush_cb(png_structp png)
 static void png_err(png_structp png, png_const_charp msg)
 {
 	dev_imgw_t *w = png_get_error_ptr(png);
-	snprintf(w->err, sizeof w->err, "png: %s", msg);
+	if (!w->io_failed)
+		snprintf(w->err, sizeof w->err, "png: %s", msg);
 	png_longjmp(png, 1);
 }
 
@@ -93,9 +95,13 @@ static int png_header(dev_imgw_t *w)
 {
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
-	if (w->wmm > 0 && w->hmm > 0)
-		png_set_pHYs(w->png, w->info, (png_uint_32)(w->width / (w->wmm / 1000.0) + 0.5),
-			(png_uint_32)(w->height / (w->hmm / 1000.0) + 0.5), PNG_RESOLUTION_METER);
+	if (w->wmm > 0 && w->hmm > 0) {
+		/* spec §4 `size`: pixels stay square; the pitch is the largest at which the page fits
+		 * the size, so one resolution for both axes (the finer of the two) */
+		double px = w->width / (w->wmm / 1000.0), py = w->height / (w->hmm / 1000.0);
+		png_uint_32 ppm = (png_uint_32)((px > py ? px : py) + 0.5);
+		png_set_pHYs(w->png, w->info, ppm, ppm, PNG_RESOLUTION_METER);
+	}
 	png_write_info(w->png, w->info);
 	w->info_done = 1;
 	return 0;
@@ -207,8 +213,8 @@ int dev_imgw_finish(dev_imgw_t *w)
 	} else if (w->fmt == DEV_FMT_PNG) {
 		rc = png_end(w);
 	}
-	if (rc == 0)
-		rc = io_flush(w->t);
+	if (rc == 0 && (rc = io_flush(w->t)) != 0)
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
 	if (rc)
 		return rc;   /* caller reads the message, then aborts */
 	dev_imgw_abort(w);
@@ -228,172 +234,4 @@ void dev_imgw_abort(dev_imgw_t *w)
 const char *dev_imgw_error(const dev_imgw_t *w)
 {
 	return w->err;
-}
-
-/* ---- readers ---- */
-
-void dev_image_free(dev_image_t *img)
-{
-	free(img->pix);
-	img->pix = NULL;
-	img->width = img->height = 0;
-}
-
-static int bad(char *err, size_t errlen, const char *name, size_t off, const char *what)
-{
-	snprintf(err, errlen, "%s: byte %zu: %s", name, off, what);
-	return -65;
-}
-
-static int alloc_img(dev_image_t *img, unsigned w, unsigned h)
-{
-	if (w == 0 || h == 0 || w > 65536 || h > 65536)
-		return -1;
-	img->width = w;
-	img->height = h;
-	img->pix = malloc((size_t)w * h * 3);
-	return img->pix ? 0 : -1;
-}
-
-static int load_ppm(const unsigned char *b, size_t n, const char *name, dev_image_t *img, char *err, size_t el)
-{
-	size_t i = 2;
-	unsigned v[3];
-	for (int k = 0; k < 3; k++) {
-		while (i < n && (b[i] == ' ' || b[i] == '\t' || b[i] == '\n' || b[i] == '\r' || b[i] == '#')) {
-			if (b[i] == '#')
-				while (i < n && b[i] != '\n')
-					i++;
-			else
-				i++;
-		}
-		if (i >= n || b[i] < '0' || b[i] > '9')
-			return bad(err, el, name, i, "expected a number in the PPM header");
-		unsigned long x = 0;
-		while (i < n && b[i] >= '0' && b[i] <= '9' && x < 1000000)
-			x = x * 10 + (unsigned)(b[i++] - '0');
-		v[k] = (unsigned)x;
-	}
-	if (v[2] != 255)
-		return bad(err, el, name, i, "only PPM with maxval 255 is supported");
-	if (i >= n)
-		return bad(err, el, name, i, "truncated PPM header");
-	i++;
-	if (alloc_img(img, v[0], v[1]))
-		return bad(err, el, name, 3, "bad or too large PPM size");
-	size_t need = (size_t)v[0] * v[1] * 3;
-	if (n - i < need) {
-		dev_image_free(img);
-		return bad(err, el, name, n, "truncated PPM pixel data");
-	}
-	memcpy(img->pix, b + i, need);
-	return 0;
-}
-
-static uint32_t be32(const unsigned char *p)
-{
-	return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
-}
-
-static int load_rle(const unsigned char *b, size_t n, const char *name, dev_image_t *img, char *err, size_t el)
-{
-	if (n < DEV_RLE_HEADER)
-		return bad(err, el, name, n, "truncated RLE header");
-	if (b[4] != DEV_RLE_VERSION)
-		return bad(err, el, name, 4, "unsupported RLE version");
-	if (alloc_img(img, be32(b + 5), be32(b + 9)))
-		return bad(err, el, name, 5, "bad or too large RLE size");
-	size_t i = DEV_RLE_HEADER;
-	for (unsigned y = 0; y < img->height; y++) {
-		unsigned x = 0;
-		uint8_t *row = img->pix + (size_t)y * img->width * 3;
-		while (x < img->width) {
-			if (n - i < 4) {
-				dev_image_free(img);
-				return bad(err, el, name, i, "truncated RLE data");
-			}
-			unsigned c = (unsigned)b[i] + 1;
-			if (x + c > img->width) {
-				dev_image_free(img);
-				return bad(err, el, name, i, "RLE run crosses the end of its row");
-			}
-			for (unsigned k = 0; k < c; k++)
-				memcpy(row + 3 * (x + k), b + i + 1, 3);
-			x += c;
-			i += 4;
-		}
-	}
-	if (i != n) {
-		dev_image_free(img);
-		return bad(err, el, name, i, "trailing bytes after the RLE image");
-	}
-	return 0;
-}
-
-static int load_png(const unsigned char *b, size_t n, const char *name, dev_image_t *img, char *err, size_t el)
-{
-	png_image pi;
-	memset(&pi, 0, sizeof pi);
-	pi.version = PNG_IMAGE_VERSION;
-	if (!png_image_begin_read_from_memory(&pi, b, n)) {
-		snprintf(err, el, "%s: bad PNG: %s", name, pi.message);
-		return -65;
-	}
-	pi.format = PNG_FORMAT_RGB;
-	if (alloc_img(img, pi.width, pi.height)) {
-		png_image_free(&pi);
-		return bad(err, el, name, 16, "bad or too large PNG size");
-	}
-	if (!png_image_finish_read(&pi, NULL, img->pix, 0, NULL)) {
-		snprintf(err, el, "%s: bad PNG: %s", name, pi.message);
-		dev_image_free(img);
-		return -65;
-	}
-	return 0;
-}
-
-int dev_image_decode(const unsigned char *b, size_t n, const char *name, dev_image_t *img,
-		char *err, size_t errlen)
-{
-	memset(img, 0, sizeof *img);
-	if (n >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
-		return load_png(b, n, name, img, err, errlen);
-	if (n >= 2 && b[0] == 'P' && b[1] == '6')
-		return load_ppm(b, n, name, img, err, errlen);
-	if (n >= 4 && memcmp(b, DEV_RLE_MAGIC, 4) == 0)
-		return load_rle(b, n, name, img, err, errlen);
-	return bad(err, errlen, name, 0, "not a PNG, PPM (P6) or Locus RLE image");
-}
-
-int dev_image_load(const char *path, dev_image_t *img, char *err, size_t errlen)
-{
-	io_transport_t *t = io_open_read(path, err, errlen);
-	if (!t)
-		return -66;
-	size_t cap = 1 << 16, n = 0;
-	unsigned char *b = malloc(cap);
-	long r = 0;
-	while (b) {
-		if (n == cap) {
-			unsigned char *q = realloc(b, cap * 2);
-			if (!q)
-				break;
-			b = q;
-			cap *= 2;
-		}
-		r = io_read(t, b + n, cap - n);
-		if (r <= 0)
-			break;
-		n += (size_t)r;
-	}
-	if (!b || r < 0) {
-		snprintf(err, errlen, "%s", b ? io_error(t) : "out of memory");
-		free(b);
-		io_close(t, IO_ABORT);
-		return -66;
-	}
-	io_close(t, IO_ABORT);
-	int rc = dev_image_decode(b, n, strcmp(path, "-") ? path : "<stdin>", img, err, errlen);
-	free(b);
-	return rc;
 }

@@ -1,8 +1,12 @@
 /* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
+#include <errno.h>
 #include <pthread.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "render.h"
 
 enum { REC_CLEAR = 1, REC_FILL, REC_STROKE, REC_SPAN, REC_ROW };
@@ -38,6 +42,9 @@ struct dev_render {
 	uint8_t *pix;
 	painter_t main;         /* its band: the whole page, a spooled band, or the split's top */
 	FILE *spool;            /* NULL: single band, painted directly */
+	uint64_t spooled, spool_max; /* bytes in the spool; its limit */
+	char spool_dir[200];    /* where the (unlinked) spool file lives, for messages */
+	char err[320];          /* the last failure (dev_render_error) */
 	unsigned char *rbuf;    /* record payload while replaying */
 	size_t rcap;
 	/* split single-band page: a helper thread paints rows [0, mid) from records that the
@@ -174,6 +181,63 @@ static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, 
 	return 0;
 }
 
+uint64_t dev_render_spool_default(void)
+{
+	const char *e = getenv("LOCUS_SPOOL_MAX_MB");
+	char *end;
+	unsigned long long mb = e && *e ? strtoull(e, &end, 10) : 0;
+	if (!e || !*e || *end || mb == 0 || mb > ((uint64_t)1 << 40))
+		return DEV_SPOOL_MAX_DEFAULT;
+	return (uint64_t)mb << 20;
+}
+
+void dev_render_set_spool_limit(dev_render_t *r, uint64_t bytes)
+{
+	r->spool_max = bytes;
+}
+
+const char *dev_render_error(const dev_render_t *r)
+{
+	return r->err;
+}
+
+/* Record why the spool failed (errno, or the limit when err_no is 0); returns META_EIO. */
+static int spool_fail(dev_render_t *r, int err_no, const char *doing)
+{
+	if (err_no)
+		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): %s: %s", r->spool_dir,
+			doing, strerror(err_no));
+	else
+		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): the page needs more "
+			"than its limit of %llu %s (LOCUS_SPOOL_MAX_MB)", r->spool_dir,
+			(unsigned long long)(r->spool_max >= 1 << 20 ? r->spool_max >> 20 : r->spool_max),
+			r->spool_max >= 1 << 20 ? "MiB" : "bytes");
+	return META_EIO;
+}
+
+/* The spool: a file created in $TMPDIR (else /tmp) and unlinked at once, so that nothing is
+ * left behind whatever happens to the process. */
+static int spool_open(dev_render_t *r)
+{
+	const char *dir = getenv("TMPDIR");
+	if (!dir || !*dir || strlen(dir) > sizeof r->spool_dir - 24)
+		dir = "/tmp";
+	snprintf(r->spool_dir, sizeof r->spool_dir, "%s", dir);
+	char path[sizeof r->spool_dir + 32];
+	snprintf(path, sizeof path, "%s/locus-spool-XXXXXX", dir);
+	int fd = mkstemp(path);
+	if (fd < 0)
+		return spool_fail(r, errno, "cannot create it");
+	unlink(path);
+	r->spool = fdopen(fd, "w+b");
+	if (!r->spool) {
+		int e = errno;
+		close(fd);
+		return spool_fail(r, e, "cannot open it");
+	}
+	return 0;
+}
+
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen)
 {
@@ -212,9 +276,9 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 			r->help.band.jhi = (int)r->mid;
 		}
 	} else {
-		r->spool = tmpfile();
-		if (!r->spool) {
-			snprintf(err, errlen, "cannot create a temporary spool file for banded rendering");
+		r->spool_max = dev_render_spool_default();
+		if (spool_open(r)) {
+			snprintf(err, errlen, "%s", r->err);
 			dev_render_free(r);
 			return NULL;
 		}
@@ -265,13 +329,24 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
 	if (r->split)
 		return split_put(r, &h, a, na, b, nb, c, nc);
+	if (r->err[0])
+		return META_EIO;   /* sticky */
+	uint64_t need = sizeof h + na + nb + nc;
+	if (r->spooled + need > r->spool_max)
+		return spool_fail(r, 0, NULL);
+	errno = 0;
 	if (fwrite(&h, sizeof h, 1, r->spool) != 1 || (na && fwrite(a, 1, na, r->spool) != na) ||
 			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
-		return META_EIO;
+		return spool_fail(r, errno ? errno : EIO, "cannot write it");
+	r->spooled += need;
 	return 0;
 }
 
-/* Serialised path: npts, nsubs (uint64), subs, points. */
+/* Serialised path: npts (PACKED set when the points are int32 pairs), nsubs (uint64), subs,
+ * points. Points within 32 bits (every path of the meta-language's range but wide text) take
+ * half the spool. */
+#define PACKED ((uint64_t)1 << 63)
+
 static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
 		const scan_path_t *p)
 {
@@ -279,20 +354,32 @@ static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, 
 	if (!scan_path_bbox(p, &x0, &y0, &x1, &y1))
 		return 0;
 	int64_t jlo = (y0 - ext) / 1000 - 2, jhi = (y1 + ext) / 1000 + 2;
-	uint64_t cnt[2] = { p->npts, p->nsubs };
+	int packed = x0 >= INT32_MIN && y0 >= INT32_MIN && x1 <= INT32_MAX && y1 <= INT32_MAX;
+	uint64_t cnt[2] = { p->npts | (packed ? PACKED : 0), p->nsubs };
 	size_t nsz = sizeof cnt + p->nsubs * sizeof(scan_subpath_t);
-	unsigned char *meta = malloc(nhead + nsz);
+	size_t npt = p->npts * (packed ? 2 * sizeof(int32_t) : sizeof(scan_pt_t));
+	unsigned char *meta = malloc(nhead + nsz + (packed ? npt : 0));
 	if (!meta)
 		return META_ENOMEM;
 	memcpy(meta, head, nhead);
 	memcpy(meta + nhead, cnt, sizeof cnt);
 	memcpy(meta + nhead + sizeof cnt, p->subs, p->nsubs * sizeof(scan_subpath_t));
-	int rc = spool(r, kind, jlo, jhi, meta, nhead + nsz, p->pts, p->npts * sizeof(scan_pt_t), NULL, 0);
+	const void *pts = p->pts;
+	if (packed) {
+		int32_t *q = (int32_t *)(void *)(meta + nhead + nsz);
+		for (size_t k = 0; k < p->npts; k++) {
+			q[2 * k] = (int32_t)p->pts[k].x;
+			q[2 * k + 1] = (int32_t)p->pts[k].y;
+		}
+		pts = q;
+	}
+	int rc = spool(r, kind, jlo, jhi, meta, nhead + nsz, pts, npt, NULL, 0);
 	free(meta);
 	return rc;
 }
 
-/* Fixed part of a stroke record. */
+/* Head of a stroke record; only the ndash entries in use are spooled (STROKE_HEAD(n) bytes), so
+ * that a record costs the path and a few dozen bytes, not a whole dash array. */
 typedef struct {
 	meta_rgb_t rgb;
 	int32_t cap, join;
@@ -300,6 +387,7 @@ typedef struct {
 	uint64_t ndash;
 	int64_t dash[2 * META_MAX_DASH];
 } stroke_head_t;
+#define STROKE_HEAD(n) (offsetof(stroke_head_t, dash) + (size_t)(n) * sizeof(int64_t))
 
 typedef struct {
 	meta_rgb_t rgb;
@@ -345,12 +433,14 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 	h.width = st->width;
 	h.miter_limit = st->miter_limit;
 	h.ndash = st->dash ? st->ndash : 0;
-	for (size_t k = 0; k < h.ndash && k < 2 * META_MAX_DASH; k++)
+	if (h.ndash > 2 * META_MAX_DASH)
+		h.ndash = 2 * META_MAX_DASH;
+	for (size_t k = 0; k < h.ndash; k++)
 		h.dash[k] = st->dash[k];
 	int64_t w = st->width < 1000 ? 1000 : st->width;
 	int64_t lim = st->miter_limit < 1500 ? 1500 : st->miter_limit;
 	int64_t ext = (int64_t)((double)w / 2.0 * ((double)lim / 1000.0)) + 2000;
-	return spool_path(r, REC_STROKE, ext, &h, sizeof h, p);
+	return spool_path(r, REC_STROKE, ext, &h, STROKE_HEAD(h.ndash), p);
 }
 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
@@ -390,6 +480,8 @@ static int load_path(painter_t *pt, const unsigned char *q)
 	uint64_t cnt[2];
 	memcpy(cnt, q, sizeof cnt);
 	q += sizeof cnt;
+	int packed = (cnt[0] & PACKED) != 0;
+	cnt[0] &= ~PACKED;
 	scan_path_t *p = &pt->path;
 	if (cnt[0] > p->cappts) {
 		scan_pt_t *n = realloc(p->pts, cnt[0] * sizeof(scan_pt_t));
@@ -409,7 +501,16 @@ static int load_path(painter_t *pt, const unsigned char *q)
 	p->nsubs = cnt[1];
 	memcpy(p->subs, q, cnt[1] * sizeof(scan_subpath_t));
 	q += cnt[1] * sizeof(scan_subpath_t);
-	memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
+	if (!packed) {
+		memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
+		return 0;
+	}
+	for (size_t k = 0; k < cnt[0]; k++) {
+		int32_t v[2];
+		memcpy(v, q + 8 * k, sizeof v);
+		p->pts[k].x = v[0];
+		p->pts[k].y = v[1];
+	}
 	return 0;
 }
 
@@ -431,9 +532,10 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 			rc = scan_fill(pt->ctx, &pt->band, &pt->path, f.rule, f.rgb);
 	} else if (h.kind == REC_STROKE) {
 		stroke_head_t s;
-		memcpy(&s, q, sizeof s);
+		memcpy(&s, q, STROKE_HEAD(0));
+		memcpy(s.dash, q + STROKE_HEAD(0), s.ndash * sizeof(int64_t));
 		scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
-		if (!(rc = load_path(pt, q + sizeof s)))
+		if (!(rc = load_path(pt, q + STROKE_HEAD(s.ndash))))
 			rc = scan_stroke(pt->ctx, &pt->band, &pt->path, &st, s.rgb);
 	} else if (h.kind == REC_SPAN) {
 		int64_t v[3];
@@ -461,11 +563,12 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 static int replay(dev_render_t *r)
 {
 	rec_t h;
-	rewind(r->spool);
+	if (fseek(r->spool, 0, SEEK_SET))
+		return spool_fail(r, errno, "cannot seek in it");
 	while (fread(&h, sizeof h, 1, r->spool) == 1) {
 		if (h.jhi <= r->main.band.jlo || h.jlo >= r->main.band.jhi) {
 			if (fseek(r->spool, h.len, SEEK_CUR))
-				return META_EIO;
+				return spool_fail(r, errno, "cannot seek in it");
 			continue;
 		}
 		if (h.len > r->rcap) {
@@ -476,12 +579,12 @@ static int replay(dev_render_t *r)
 			r->rcap = h.len;
 		}
 		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
-			return META_EIO;
+			return spool_fail(r, ferror(r->spool) ? errno : EIO, "cannot read it back");
 		int rc = replay_rec(&r->main, &h, r->rbuf);
 		if (rc)
 			return rc;
 	}
-	return ferror(r->spool) ? META_EIO : 0;
+	return ferror(r->spool) ? spool_fail(r, errno, "cannot read it back") : 0;
 }
 
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
@@ -495,8 +598,11 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 		out.nrows = r->height;
 		return fn(user, &out);
 	}
-	if (fflush(r->spool))
+	if (r->err[0])
 		return META_EIO;
+	errno = 0;
+	if (fflush(r->spool))
+		return spool_fail(r, errno ? errno : EIO, "cannot write it");
 	for (unsigned top = 0; top < r->height; top += r->band_rows) {
 		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
 		r->main.band.jhi = (int)(r->height - top);

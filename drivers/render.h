@@ -18,6 +18,19 @@ typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
  * message in err on failure. */
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen);
+/* The spool of a multi-band page is a temporary file in $TMPDIR (else /tmp), unlinked as soon as
+ * it is created; it may grow to this many bytes (environment: LOCUS_SPOOL_MAX_MB) before the
+ * page is refused with a message naming the spool and the limit. A failed write names the cause
+ * (strerror: "No space left on device"). */
+#define DEV_SPOOL_MAX_DEFAULT ((uint64_t)4 << 30)
+/* The spool limit of new renderers: LOCUS_SPOOL_MAX_MB MiB if set to a positive number, else
+ * DEV_SPOOL_MAX_DEFAULT. */
+uint64_t dev_render_spool_default(void);
+/* Change the spool limit of r (bytes). */
+void dev_render_set_spool_limit(dev_render_t *r, uint64_t bytes);
+/* The message of the last failure ("band spool (a temporary file in /tmp): ..."), or "" when
+ * the failure was not the renderer's own (out of memory: the caller says so). */
+const char *dev_render_error(const dev_render_t *r);
 /* Free the renderer and its spool. */
 void dev_render_free(dev_render_t *r);
 /* Number of bands the page is rendered in. */

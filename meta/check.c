@@ -1,9 +1,17 @@
 /* check.c: structural and value validation of statements (spec sections 4 and 6), shared by reader and writer. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include "meta_int.h"
 
 #define FAIL(code, w, ...) do { *where = (w); meta_fmt(msg, n, __VA_ARGS__); return (code); } while (0)
+
+/* A value as §6 shows it: the canonical text form of §2, quoted by the caller. */
+static const char *fx(meta_fix_t v, char *buf)
+{
+	buf[meta_fix_format(v, buf)] = 0;
+	return buf;
+}
 
 static int is_path_op(meta_op_t op)
 {
@@ -14,14 +22,15 @@ static int is_path_op(meta_op_t op)
 /* Every 'f' operand must lie within the number range (the writer may be handed anything). */
 static int check_range(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
+	char vb[24];
 	const char *sig = meta_ops[cmd->op].sig;
 	int i, fi = 0;
 	for (i = 0; sig[i]; i++) {
 		if (sig[i] != 'f')
 			continue;
 		if (cmd->f[fi] > META_MAX_COORD || cmd->f[fi] < -META_MAX_COORD)
-			FAIL(META_ELIMIT, i, "expected a number from -1000000 to 1000000 for '%s', found %.3f",
-			     meta_ops[cmd->op].kw, cmd->f[fi] / 1000.0);
+			FAIL(META_ELIMIT, i, "expected a number from -1000000 to 1000000 for '%s', found '%s'",
+			     meta_ops[cmd->op].kw, fx(cmd->f[fi], vb));
 		fi++;
 	}
 	return 0;
@@ -35,7 +44,7 @@ static int check_string(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 	if (cmd->len && !cmd->str)
 		FAIL(META_EARG, arg, "expected a string for '%s', found a null pointer", meta_ops[cmd->op].kw);
 	if (cmd->len > META_MAX_STRING)
-		FAIL(META_ELIMIT, arg, "expected at most %d bytes in a %s, found %zu", META_MAX_STRING,
+		FAIL(META_ELIMIT, arg, "expected at most %d bytes in a %s, found %zu bytes", META_MAX_STRING,
 		     comment ? "comment" : "string", cmd->len);
 	for (i = 0; i < cmd->len; i++) {
 		unsigned char c = (unsigned char)cmd->str[i];
@@ -50,6 +59,7 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
 	const char *kw = meta_ops[cmd->op].kw;
 	size_t i;
+	char vb[24];
 	int rc = check_range(cmd, where, msg, n);
 	if (rc)
 		return rc;
@@ -57,14 +67,14 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 	case META_PAGE:
 		for (i = 0; i < 2; i++)
 			if (cmd->u[i] < 1 || cmd->u[i] > META_MAX_DIM)
-				FAIL(META_ELIMIT, (int)i, "expected a page %s from 1 to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected a page %s from 1 to %d, found '%u'",
 				     i ? "height" : "width", META_MAX_DIM, cmd->u[i]);
 		break;
 	case META_SIZE:
 		for (i = 0; i < 2; i++)
 			if (cmd->f[i] <= 0)
-				FAIL(META_ESYNTAX, (int)i, "expected a positive physical %s for 'size', found %.3f",
-				     i ? "height" : "width", cmd->f[i] / 1000.0);
+				FAIL(META_ESYNTAX, (int)i, "expected a positive physical %s for 'size', found '%s'",
+				     i ? "height" : "width", fx(cmd->f[i], vb));
 		break;
 	case META_CLEAR: case META_COLOUR:
 		if (cmd->rgb > 0xffffff)
@@ -72,54 +82,54 @@ static int check_values(const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 		break;
 	case META_WIDTH:
 		if (cmd->f[0] < 0)
-			FAIL(META_ESYNTAX, 0, "expected a width >= 0, found %.3f", cmd->f[0] / 1000.0);
+			FAIL(META_ESYNTAX, 0, "expected a width >= 0, found '%s'", fx(cmd->f[0], vb));
 		break;
 	case META_MITER_LIMIT:
 		if (cmd->f[0] < META_FIX_ONE)
-			FAIL(META_ESYNTAX, 0, "expected a miter limit >= 1, found %.3f", cmd->f[0] / 1000.0);
+			FAIL(META_ESYNTAX, 0, "expected a miter limit >= 1, found '%s'", fx(cmd->f[0], vb));
 		break;
 	case META_DASH:
 		if (cmd->nlist > META_MAX_DASH)
-			FAIL(META_ELIMIT, 0, "expected at most %d dash lengths, found %zu", META_MAX_DASH, cmd->nlist);
+			FAIL(META_ELIMIT, 0, "expected at most %d dash lengths, found %zu lengths", META_MAX_DASH, cmd->nlist);
 		if (cmd->nlist && !cmd->list)
 			FAIL(META_EARG, 0, "expected a dash list, found a null pointer");
 		for (i = 0; i < cmd->nlist; i++)
 			if (cmd->list[i] <= 0 || cmd->list[i] > META_MAX_COORD)
-				FAIL(META_ESYNTAX, 0, "expected dash lengths > 0 and <= 1000000, found %.3f (entry %zu)",
-				     cmd->list[i] / 1000.0, i + 1);
+				FAIL(META_ESYNTAX, 0, "expected dash lengths > 0 and <= 1000000, found '%s' (entry %zu)",
+				     fx(cmd->list[i], vb), i + 1);
 		break;
 	case META_CAP: case META_JOIN: case META_FILL_RULE:
 		if (cmd->k < 0 || cmd->k >= meta_ops[cmd->op].nwords)
-			FAIL(META_ESYNTAX, 0, "expected a keyword index below %d for '%s', found %d",
+			FAIL(META_ESYNTAX, 0, "expected a keyword index below %d for '%s', found '%d'",
 			     meta_ops[cmd->op].nwords, kw, cmd->k);
 		break;
 	case META_ARC: case META_CIRCLE:
 		if (cmd->f[2] <= 0)
-			FAIL(META_ESYNTAX, 2, "expected a radius > 0 for '%s', found %.3f", kw, cmd->f[2] / 1000.0);
+			FAIL(META_ESYNTAX, 2, "expected a radius > 0 for '%s', found '%s'", kw, fx(cmd->f[2], vb));
 		if (cmd->op == META_ARC && (cmd->f[4] > 360 * META_FIX_ONE || cmd->f[4] < -360 * META_FIX_ONE))
-			FAIL(META_ESYNTAX, 4, "expected a sweep from -360 to 360 for 'arc', found %.3f",
-			     cmd->f[4] / 1000.0);
+			FAIL(META_ESYNTAX, 4, "expected a sweep from -360 to 360 for 'arc', found '%s'",
+			     fx(cmd->f[4], vb));
 		break;
 	case META_TEXT:
 		if (cmd->f[2] < 0)
-			FAIL(META_ESYNTAX, 2, "expected a text size >= 0, found %.3f", cmd->f[2] / 1000.0);
+			FAIL(META_ESYNTAX, 2, "expected a text size >= 0, found '%s'", fx(cmd->f[2], vb));
 		return check_string(cmd, where, msg, n);
 	case META_COMMENT:
 		return check_string(cmd, where, msg, n);
 	case META_SPAN:
 		for (i = 0; i < 3; i++)
 			if (cmd->u[i] > META_MAX_DIM)
-				FAIL(META_ELIMIT, (int)i, "expected a span %s from 0 to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected a span %s from 0 to %d, found '%u'",
 				     i == 0 ? "x" : i == 1 ? "y" : "length", META_MAX_DIM, cmd->u[i]);
 		if (cmd->u[2] < 1)
-			FAIL(META_ESYNTAX, 2, "expected a span length >= 1, found 0");
+			FAIL(META_ESYNTAX, 2, "expected a span length >= 1, found '0'");
 		if (cmd->rgb > 0xffffff)
 			FAIL(META_EARG, 3, "expected a colour 0xRRGGBB for 'span', found 0x%x", cmd->rgb);
 		break;
 	case META_IMAGE:
 		for (i = 0; i < 4; i++)
 			if (cmd->u[i] > META_MAX_DIM || (i >= 2 && cmd->u[i] < 1))
-				FAIL(META_ELIMIT, (int)i, "expected an image %s from %d to %d, found %u",
+				FAIL(META_ELIMIT, (int)i, "expected an image %s from %d to %d, found '%u'",
 				     i == 0 ? "x" : i == 1 ? "y" : i == 2 ? "width" : "height",
 				     i >= 2, META_MAX_DIM, cmd->u[i]);
 		break;
@@ -148,16 +158,50 @@ static int check_row(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *m
 	return 0;
 }
 
+int meta_circle_chords(int64_t r)
+{
+	double rp = (double)r / 1000.0;
+	if (!(rp > 0.25))
+		return 8;
+	double m = ceil(2.0 * M_PI / acos(1.0 - 0.25 / rp));
+	if (!(m < 1e7))
+		m = 1e7;
+	return m < 8 ? 8 : (int)m;
+}
+
+int64_t meta_arc_chords(int64_t r, int64_t sweep)
+{
+	int64_t m = meta_circle_chords(r), as = sweep < 0 ? -sweep : sweep;
+	int64_t k = (as * m + 359999) / 360000;
+	return k < 1 ? 1 : k;
+}
+
+/* Points a path statement adds once flattened (§6): move 1, draw 1, arc N + 1, circle M, and
+ * one more for a draw or arc that begins a new subpath at the start of a closed one. */
+static uint64_t flat_points(const meta_check_t *c, const meta_cmd_t *cmd)
+{
+	switch (cmd->op) {
+	case META_MOVE: return 1;
+	case META_DRAW: return 1 + (uint64_t)c->closed;
+	case META_ARC: return (uint64_t)meta_arc_chords(cmd->f[2], cmd->f[4]) + 1 + (uint64_t)(c->has_point && c->closed);
+	case META_CIRCLE: return (uint64_t)meta_circle_chords(cmd->f[2]);
+	default: return 0;
+	}
+}
+
 int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg, size_t n)
 {
 	meta_op_t op = cmd->op;
 	const char *kw;
 	int rc;
 	if ((op == META_DRAW || op == META_MOVE) && c->in_path && (c->has_point || op == META_MOVE) &&
-	    c->path_points < META_MAX_PATH_POINTS && cmd->f[0] <= META_MAX_COORD && cmd->f[0] >= -META_MAX_COORD &&
+	    c->path_points < META_MAX_PATH_POINTS && c->flat + 2 <= META_MAX_FLAT_POINTS &&
+	    cmd->f[0] <= META_MAX_COORD && cmd->f[0] >= -META_MAX_COORD &&
 	    cmd->f[1] <= META_MAX_COORD && cmd->f[1] >= -META_MAX_COORD) {
 		c->path_points++; /* fast path of the most common statements */
+		c->flat += op == META_DRAW && c->closed ? 2 : 1;
 		c->has_point = 1;
+		c->closed = 0;
 		return 0;
 	}
 	if ((unsigned)op >= META_OP_COUNT)
@@ -191,7 +235,9 @@ int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg
 	case META_STROKE: case META_FILL:
 		c->in_path = 1;
 		c->has_point = 0;
+		c->closed = 0;
 		c->path_points = 0;
+		c->flat = 0;
 		break;
 	case META_MOVE: case META_DRAW: case META_ARC: case META_CIRCLE: case META_CLOSE: case META_END:
 		if (!c->in_path)
@@ -205,6 +251,10 @@ int meta_check_cmd(meta_check_t *c, const meta_cmd_t *cmd, int *where, char *msg
 		if (op != META_CLOSE && ++c->path_points > META_MAX_PATH_POINTS)
 			FAIL(META_ELIMIT, -1, "expected at most %d points in one path, found more",
 			     META_MAX_PATH_POINTS);
+		if ((c->flat += flat_points(c, cmd)) > META_MAX_FLAT_POINTS)
+			FAIL(META_ELIMIT, -1, "expected at most %d points in one path once its arcs and "
+			     "circles are flattened, found more", META_MAX_FLAT_POINTS);
+		c->closed = op == META_CLOSE;
 		c->has_point = op != META_CIRCLE;
 		break;
 	case META_IMAGE:

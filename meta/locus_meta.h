@@ -35,9 +35,25 @@ extern "C" {
 #define META_MAX_DIM        32768     /* page width/height in pixels */
 #define META_MAX_COORD      1000000000 /* |fixed| <= 1e9, i.e. 1,000,000.000 */
 #define META_MAX_PATH_POINTS 1000000  /* points (move/draw/arc/circle) in one path */
+#define META_MAX_FLAT_POINTS (1 << 25) /* points of one path once arcs and circles are flattened */
 #define META_MAX_DASH       16        /* entries in a dash list */
 #define META_MAX_STRING     4096      /* bytes in a text string or comment */
 #define META_MAX_LINE       (1 << 20) /* bytes in one text line */
+
+/* Chords of a full circle of radius r thousandths (spec §5.4): max(8, ceil(2 pi / acos(1 -
+ * 0.25 / r_px))) above a quarter pixel, else 8; at most 8886 within the number range. */
+int meta_circle_chords(int64_t r);
+/* Chords of an arc of radius r and sweep thousandths of a degree (§5.4): max(1,
+ * ceil(|sweep| * M / 360000)). */
+int64_t meta_arc_chords(int64_t r, int64_t sweep);
+
+/* The next character of the UTF-8 bytes buf[0, n), n >= 1, decoded as Unicode's "maximal
+ * subpart" practice (the WHATWG decoder, Python's errors="replace"): a well-formed sequence is
+ * one character (*cp its code point); an ill-formed one is one U+FFFD per maximal subpart (a
+ * lead byte and the continuation bytes valid after it, stopping at the first that is not) or per
+ * other byte. Overlong forms, surrogates and values above U+10FFFF are ill-formed. Returns the
+ * bytes taken (1 to 4). The text encoding (§2) and the stroke font (§5.5) both count by it. */
+size_t meta_utf8_next(const void *buf, size_t n, uint32_t *cp);
 
 /* Error codes (negative). */
 enum {

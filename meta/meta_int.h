@@ -29,7 +29,9 @@ typedef struct {
 	int first;           /* no non-comment statement since page (size allowed) */
 	int in_path;         /* between stroke/fill and end */
 	int has_point;       /* the path has a current point */
+	int closed;          /* the last subpath was closed and nothing followed (§4 close) */
 	uint32_t path_points;
+	uint64_t flat;       /* points of the path once flattened (§6) */
 	uint32_t rows_left;  /* rows still owed to the current image */
 	uint32_t image_w;
 } meta_check_t;

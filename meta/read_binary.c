@@ -1,5 +1,6 @@
 /* read_binary.c: the binary decoder: LEB128 and zigzag varints, delta-coded points, byte-offset errors. */
 #include <string.h>
+#include <stdio.h>
 #include "meta_int.h"
 
 #define AT() (r->base + r->pos)
@@ -85,8 +86,23 @@ static int32_t unzigzag(uint32_t u)
 	return (int32_t)v;
 }
 
+/* A value of thousandths in the canonical text form of §2 (how §6 shows values found). */
+static const char *fix64(int64_t v, char *buf)
+{
+	uint64_t m = v < 0 ? (uint64_t)-(v + 1) + 1 : (uint64_t)v;
+	unsigned frac = (unsigned)(m % 1000);
+	int k = snprintf(buf, 32, "%s%llu", v < 0 ? "-" : "", (unsigned long long)(m / 1000));
+	if (frac) {
+		k += snprintf(buf + k, 32 - (size_t)k, ".%03u", frac);
+		while (buf[k - 1] == '0')
+			buf[--k] = 0;
+	}
+	return buf;
+}
+
 static int number(meta_reader_t *r, const char *kw, meta_fix_t *out)
 {
+	char vb[32];
 	uint64_t at = AT();
 	uint32_t u;
 	int rc = varint(r, kw, &u);
@@ -95,8 +111,8 @@ static int number(meta_reader_t *r, const char *kw, meta_fix_t *out)
 		return rc;
 	v = unzigzag(u);
 	if (v > META_MAX_COORD || v < -META_MAX_COORD)
-		return meta_rd_fail(r, META_ELIMIT, at, "expected a number from -1000000 to 1000000 in '%s', found %d thousandths",
-		                    kw, (int)v);
+		return meta_rd_fail(r, META_ELIMIT, at, "expected a number from -1000000 to 1000000 in '%s', found '%s'",
+		                    kw, fix64(v, vb));
 	*out = v;
 	return 0;
 }
@@ -104,6 +120,7 @@ static int number(meta_reader_t *r, const char *kw, meta_fix_t *out)
 /* A delta-coded coordinate: the reference plus the stored difference. */
 static inline int delta(meta_reader_t *r, const char *kw, int32_t *ref, meta_fix_t *out)
 {
+	char vb[32];
 	uint64_t at = AT();
 	uint32_t u;
 	int rc = varint(r, kw, &u);
@@ -112,8 +129,8 @@ static inline int delta(meta_reader_t *r, const char *kw, int32_t *ref, meta_fix
 		return rc;
 	v = (int64_t)*ref + unzigzag(u);
 	if (v > META_MAX_COORD || v < -META_MAX_COORD)
-		return meta_rd_fail(r, META_ELIMIT, at, "expected a coordinate from -1000000 to 1000000 in '%s', found %lld thousandths (reference plus delta)",
-		                    kw, (long long)v);
+		return meta_rd_fail(r, META_ELIMIT, at, "expected a coordinate from -1000000 to 1000000 in '%s', found '%s' (reference plus delta)",
+		                    kw, fix64(v, vb));
 	*out = *ref = (int32_t)v;
 	return 0;
 }
@@ -136,7 +153,7 @@ static int string(meta_reader_t *r, const char *kw, meta_cmd_t *cmd)
 	if (rc < 0)
 		return rc;
 	if (len > META_MAX_STRING)
-		return meta_rd_fail(r, META_ELIMIT, at, "expected a string of at most %d bytes in '%s', found %u",
+		return meta_rd_fail(r, META_ELIMIT, at, "expected a string of at most %d bytes in '%s', found %u bytes",
 		                    META_MAX_STRING, kw, len);
 	while (got < len) {
 		size_t k;
@@ -146,6 +163,14 @@ static int string(meta_reader_t *r, const char *kw, meta_cmd_t *cmd)
 		if (k > len - got)
 			k = len - got;
 		memcpy(r->str + got, r->buf + r->pos, k);
+		/* a byte no string may hold is reported at its own offset (§6) */
+		int comment = cmd->op == META_COMMENT;
+		for (size_t j = 0; j < k; j++) {
+			unsigned char c = r->buf[r->pos + j];
+			if (c == 0 || (comment && (c == '\n' || c == '\r')))
+				return meta_rd_fail(r, META_ESYNTAX, AT() + j, "expected no %s byte in a %s, found 0x%02x",
+				                    c ? "line-break" : "NUL", comment ? "comment" : "string", c);
+		}
 		r->pos += k;
 		got += (uint32_t)k;
 	}
@@ -164,7 +189,7 @@ static int runs(meta_reader_t *r, meta_cmd_t *cmd)
 	if (rc < 0)
 		return rc;
 	if (n > META_MAX_DIM || (width && n > width))
-		return meta_rd_fail(r, META_ELIMIT, at, "expected at most %u runs in 'row', found %u",
+		return meta_rd_fail(r, META_ELIMIT, at, "expected at most %u runs in 'row', found %u runs",
 		                    width ? width : META_MAX_DIM, n);
 	if (meta_rd_runs(r, n, at) < 0)
 		return r->state;
@@ -173,7 +198,7 @@ static int runs(meta_reader_t *r, meta_cmd_t *cmd)
 		if ((rc = varint(r, "row", &r->runs[i].count)) < 0 || (rc = colour(r, "row", &r->runs[i].rgb)) < 0)
 			return rc;
 		if (r->runs[i].count == 0)
-			return meta_rd_fail(r, META_ESYNTAX, rat, "expected a run count of 1 or more in 'row', found 0");
+			return meta_rd_fail(r, META_ESYNTAX, rat, "expected a run count of 1 or more in 'row', found '0'");
 		sum += r->runs[i].count;
 		if (width && sum > width)
 			return meta_rd_fail(r, META_ESYNTAX, rat, "expected runs adding up to the image width %u, found %llu by run %u",
@@ -252,7 +277,7 @@ int meta_read_binary(meta_reader_t *r, meta_cmd_t *cmd)
 		case 'k':
 			if ((rc = byte(r, kw, &c)) == 0) {
 				if ((int)c >= meta_ops[op].nwords)
-					return meta_rd_fail(r, META_ESYNTAX, r->opos[i], "expected a keyword index below %d in '%s', found %u",
+					return meta_rd_fail(r, META_ESYNTAX, r->opos[i], "expected a keyword index below %d in '%s', found '%u'",
 					                    meta_ops[op].nwords, kw, c);
 				cmd->k = (int)c;
 			}
@@ -265,13 +290,14 @@ int meta_read_binary(meta_reader_t *r, meta_cmd_t *cmd)
 			if ((rc = varint(r, kw, &n)) < 0)
 				return rc;
 			if (n > META_MAX_DASH)
-				return meta_rd_fail(r, META_ELIMIT, r->opos[i], "expected at most %d dash lengths, found %u",
+				return meta_rd_fail(r, META_ELIMIT, r->opos[i], "expected at most %d dash lengths, found %u lengths",
 				                    META_MAX_DASH, n);
 			for (j = 0; j < n && rc == 0; j++) {
 				uint64_t at = AT();
+				char vb[32];
 				if ((rc = number(r, kw, &r->list[j])) == 0 && r->list[j] <= 0)
-					return meta_rd_fail(r, META_ESYNTAX, at, "expected dash lengths > 0, found %d thousandths",
-					                    (int)r->list[j]);
+					return meta_rd_fail(r, META_ESYNTAX, at, "expected dash lengths > 0, found '%s'",
+					                    fix64(r->list[j], vb));
 			}
 			cmd->list = r->list;
 			cmd->nlist = n;

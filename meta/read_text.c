@@ -34,8 +34,10 @@ static int get_line(meta_reader_t *r, const char **ls, const char **le)
 			r->line++;
 			if (r->pos == r->end)
 				return 0;
-			return meta_rd_fail(r, META_ESYNTAX, r->end - r->pos + 1,
-			                    "expected a newline at the end of the line, found end of file (truncated?)");
+			/* at the end of the input, LINE+1:1 as every end-of-input error (§6) */
+			r->line++;
+			return meta_rd_fail(r, META_ESYNTAX, 1, "expected a newline at the end of line %llu, found end of "
+			                    "file (truncated?)", (unsigned long long)(r->line - 1));
 		}
 		rel = r->end - r->pos;
 		if (meta_rd_fill(r) < 0)
@@ -217,6 +219,8 @@ static int string(meta_reader_t *r, const char *ls, const char *p, const char *l
 			} else if (p + 3 < le && p[1] == 'x' && hexval((unsigned char)p[2]) >= 0 &&
 			           hexval((unsigned char)p[3]) >= 0) {
 				c = (unsigned char)(hexval((unsigned char)p[2]) << 4 | hexval((unsigned char)p[3]));
+				if (c == 0)   /* reported at the escape, as every error at its own place (§6) */
+					return meta_rd_fail(r, META_ESYNTAX, COL(p), "expected no NUL byte in a string, found '\\x%.2s'", p + 2);
 				p += 3;
 			} else {
 				return meta_rd_fail(r, META_ESYNTAX, COL(p), "expected an escape \\\\, \\\" or \\xHH, found %s",
@@ -247,6 +251,9 @@ static int runs(meta_reader_t *r, const char *ls, const char *p, const char *le,
 	uint64_t sum = 0;
 	uint32_t width = r->chk.rows_left ? r->chk.image_w : 0;
 	size_t n = 0;
+	const char *p0 = p;
+	while (p0 < le && BLANK(*p0))
+		p0++;
 	for (;;) {
 		const char *q;
 		uint32_t count;
@@ -275,8 +282,8 @@ static int runs(meta_reader_t *r, const char *ls, const char *p, const char *le,
 		r->runs[n++].rgb = rgb;
 		p = q;
 	}
-	if (width && sum != width)
-		return meta_rd_fail(r, META_ESYNTAX, COL(p), "expected runs adding up to the image width %u, found %llu",
+	if (width && sum != width)   /* a short row: at its run list, as in the binary form */
+		return meta_rd_fail(r, META_ESYNTAX, COL(p0), "expected runs adding up to the image width %u, found %llu",
 		                    width, (unsigned long long)sum);
 	cmd->runs = r->runs;
 	cmd->nruns = n;
@@ -358,7 +365,7 @@ int meta_read_text(meta_reader_t *r, meta_cmd_t *cmd)
 			p++;
 		len = (size_t)(le - p);
 		if (len > META_MAX_STRING)
-			return meta_rd_fail(r, META_ELIMIT, COL(p), "expected a comment of at most %d bytes, found %zu",
+			return meta_rd_fail(r, META_ELIMIT, COL(p), "expected a comment of at most %d bytes, found %zu bytes",
 			                    META_MAX_STRING, len);
 		memcpy(r->str, p, len);
 		r->str[len] = 0;

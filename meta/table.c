@@ -148,25 +148,38 @@ int meta_fix_parse(const char *p, const char *e, meta_fix_t *out, int *why)
 	return 0;
 }
 
+size_t meta_utf8_next(const void *buf, size_t n, uint32_t *cp)
+{
+	const unsigned char *s = buf;
+	unsigned c = s[0], len, i;
+	unsigned char lo = 0x80, hi = 0xbf;   /* the second byte's range (Unicode table 3-7) */
+	uint32_t v;
+	*cp = 0xfffd;
+	if (c < 0x80) {
+		*cp = c;
+		return 1;
+	}
+	if (c >= 0xc2 && c <= 0xdf)
+		len = 2, v = c & 0x1f;
+	else if (c >= 0xe0 && c <= 0xef)
+		len = 3, v = c & 0x0f, lo = c == 0xe0 ? 0xa0 : 0x80, hi = c == 0xed ? 0x9f : 0xbf;
+	else if (c >= 0xf0 && c <= 0xf4)
+		len = 4, v = c & 0x07, lo = c == 0xf0 ? 0x90 : 0x80, hi = c == 0xf4 ? 0x8f : 0xbf;
+	else
+		return 1;   /* a continuation byte, C0, C1 or F5-FF on its own */
+	for (i = 1; i < len; i++) {
+		if (i >= n || s[i] < (i == 1 ? lo : 0x80) || s[i] > (i == 1 ? hi : 0xbf))
+			return i;   /* the maximal subpart so far is one ill-formed character */
+		v = v << 6 | (s[i] & 0x3f);
+	}
+	*cp = v;
+	return len;
+}
+
 int meta_utf8_len(const unsigned char *s, size_t n)
 {
-	unsigned c = s[0], len, min, cp, i;
-	if (c >= 0xc2 && c <= 0xdf)
-		len = 2, cp = c & 0x1f, min = 0x80;
-	else if (c >= 0xe0 && c <= 0xef)
-		len = 3, cp = c & 0x0f, min = 0x800;
-	else if (c >= 0xf0 && c <= 0xf4)
-		len = 4, cp = c & 0x07, min = 0x10000;
-	else
-		return 0;
-	if (n < len)
-		return 0;
-	for (i = 1; i < len; i++) {
-		if ((s[i] & 0xc0) != 0x80)
-			return 0;
-		cp = cp << 6 | (s[i] & 0x3f);
-	}
-	if (cp < min || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff))
-		return 0;
-	return (int)len;
+	uint32_t cp;
+	size_t k = meta_utf8_next(s, n, &cp);
+	/* a well-formed sequence of 2 to 4 bytes (an encoded U+FFFD is one too: EF BF BD) */
+	return k > 1 && (cp != 0xfffd || (s[0] == 0xef && s[1] == 0xbf && s[2] == 0xbd)) ? (int)k : 0;
 }

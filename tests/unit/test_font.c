@@ -87,7 +87,9 @@ int main(int argc, char **argv)
 	scan_glyph_source(0x01, &rep);
 	CHECK(scan_text_advance("\xc3\xa9", 2) == rep, "a 2-byte UTF-8 character draws one replacement glyph");
 	CHECK(scan_text_advance("\xff\xfe", 2) == 2 * rep, "invalid bytes draw one replacement each");
-	CHECK(scan_text_advance("\xe2\x82", 2) == 2 * rep, "a truncated sequence: one per byte");
+	/* spec §5.5 counts as a standard decoder: a truncated sequence is one maximal subpart */
+	CHECK(scan_text_advance("\xe2\x82", 2) == rep, "a truncated sequence: one replacement glyph");
+	CHECK(scan_text_advance("\xed\xa0\x80", 3) == 3 * rep, "a surrogate: three (ED then two stray bytes)");
 
 	/* transform: size 12 doubles the 6-unit grid; angle 90 rotates about the origin */
 	scan_path_t p = { 0 };

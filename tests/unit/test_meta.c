@@ -219,7 +219,7 @@ static void test_writer_errors(void)
 	meta_writer_t *w = meta_writer_new(sink_write, &s, META_ENC_BINARY);
 	meta_cmd_t c;
 	CHECK(meta_page(w, 0, 10) == META_ELIMIT, "page width 0 refused");
-	CHECK(strstr(meta_writer_error(w), "page width from 1 to 32768, found 0") != NULL, "message: %s", meta_writer_error(w));
+	CHECK(strstr(meta_writer_error(w), "page width from 1 to 32768, found '0'") != NULL, "message: %s", meta_writer_error(w));
 	CHECK(meta_move(w, NAN, 0) == META_EARG, "NaN coordinate refused");
 	CHECK(meta_page(w, 10, 10) == 0, "page accepted after refusals");
 	CHECK(meta_comment(w, "two\nlines") == META_ESYNTAX, "line break in a comment refused");
