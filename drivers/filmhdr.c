@@ -307,13 +307,14 @@ void film_pack_row(const film_frame_t *f, const film_lut_t *lut, const uint8_t *
 			put32(out, (uint32_t)r[rgb[0]] << 22 | (uint32_t)g[rgb[1]] << 12 | (uint32_t)b[rgb[2]] << 2, le);
 		return;
 	}
-	/* one channel: three samples to a word, the first in the top bits */
+	/* one channel: three samples to a word, the first in bits 11-2, the next in 21-12, 31-22; a row
+	 * ends on a word boundary (ImageMagick 6.9 and OpenImageIO read a last part-filled word as 0) */
 	const uint16_t *t = lut->code[ch];
 	for (unsigned x = 0; x < w; x += 3, out += 4) {
 		uint32_t word = 0;
 		for (unsigned j = 0; j < 3; j++)
 			if (x + j < w)
-				word |= (uint32_t)t[rgb[3 * (size_t)(x + j) + (size_t)ch]] << (22 - 10 * j);
+				word |= (uint32_t)t[rgb[3 * (size_t)(x + j) + (size_t)ch]] << (2 + 10 * j);
 		put32(out, word, le);
 	}
 }
