@@ -29,8 +29,7 @@ static const dev_option_t film_options[] = {
 	{ "preset", "slide4k (4096x2730, default), slide8k, 2k, 4k, 6x7" },
 	{ "size", "WxH: a custom frame size in pixels (instead of a preset)" },
 	{ "endian", "big (default) or little: byte order of a DPX file" },
-	{ "fit", "aspect (default: whole page, bars around), fill (crop), stretch" },
-	{ "letterbox", "#rrggbb: colour of the bars with fit=aspect (default #000000)" },
+	DEV_FIT_OPTIONS,
 	{ "white", "reference white code value (685)" },
 	{ "black", "reference black code value (95)" },
 	{ "density", "printing density per code value (0.002)" },
@@ -91,23 +90,6 @@ static int real_option(dev_device_t *d, const char *key, double *v)
 	return 0;
 }
 
-static int parse_colour(const char *s, meta_rgb_t *c)
-{
-	unsigned v = 0;
-	if (s[0] != '#' || strlen(s) != 7)
-		return -1;
-	for (int k = 1; k < 7; k++) {
-		int ch = s[k];
-		int x = ch >= '0' && ch <= '9' ? ch - '0' : ch >= 'a' && ch <= 'f' ? ch - 'a' + 10 :
-			ch >= 'A' && ch <= 'F' ? ch - 'A' + 10 : -1;
-		if (x < 0)
-			return -1;
-		v = v * 16 + (unsigned)x;
-	}
-	*c = v;
-	return 0;
-}
-
 int film_source_time(int64_t *t, char *err, size_t errlen)
 {
 	const char *s = getenv("SOURCE_DATE_EPOCH");
@@ -156,22 +138,15 @@ static int f_open(dev_device_t *d)
 	d->raster_width = w;
 	d->raster_height = h;
 	d->pixel_aspect = 0;
-	d->fit = DEV_FIT_ASPECT;
-	if (dev_option(d, "fit", buf, sizeof buf)) {
-		if (!strcmp(buf, "aspect")) d->fit = DEV_FIT_ASPECT;
-		else if (!strcmp(buf, "fill")) d->fit = DEV_FIT_FILL;
-		else if (!strcmp(buf, "stretch")) d->fit = DEV_FIT_STRETCH;
-		else return dev_fail(d, DEV_EUSAGE, "unknown fit '%s' (aspect, fill or stretch)", buf);
-	}
-	d->letterbox = 0;
-	if (dev_option(d, "letterbox", buf, sizeof buf) && parse_colour(buf, &d->letterbox))
-		return dev_fail(d, DEV_EUSAGE, "letterbox colour '%s' is not #rrggbb", buf);
+	int rc = dev_fit_options(d);
+	if (rc)
+		return rc;
 	if (dev_option(d, "endian", buf, sizeof buf)) {
 		if (strcmp(buf, "big") && strcmp(buf, "little"))
 			return dev_fail(d, DEV_EUSAGE, "endian must be big or little, not '%s'", buf);
 		f->little_endian = buf[0] == 'l';
 	}
-	int rc = real_option(d, "white", &f->log.white);
+	rc = real_option(d, "white", &f->log.white);
 	if (!rc) rc = real_option(d, "black", &f->log.black);
 	if (!rc) rc = real_option(d, "density", &f->log.density);
 	if (!rc) rc = real_option(d, "film-gamma", &f->log.film_gamma);

@@ -11,8 +11,8 @@
 
 struct film_cal {
 	size_t n;                   /* points */
-	double *in;                 /* n wanted values, 0 first, 1 last, increasing */
-	double *out[3];             /* n exposure values per channel */
+	double *in[3];              /* per channel n wanted values, increasing */
+	double *out[3];             /* per channel n values to expose */
 };
 
 static const char *const chan_name[3] = { "red", "green", "blue" };
@@ -84,52 +84,36 @@ static int add_point(film_cal_t *c, const double v[4])
 {
 	if (c->n % 64 == 0) {
 		size_t m = c->n + 64;
-		double *a[4];
-		a[0] = realloc(c->in, m * sizeof(double));
-		if (a[0])
-			c->in = a[0];
-		for (int ch = 0; ch < 3 && a[0]; ch++) {
-			a[ch + 1] = realloc(c->out[ch], m * sizeof(double));
-			if (!a[ch + 1])
+		for (int ch = 0; ch < 3; ch++) {
+			double *a = realloc(c->in[ch], m * sizeof(double));
+			if (!a)
 				return -1;
-			c->out[ch] = a[ch + 1];
+			c->in[ch] = a;
+			a = realloc(c->out[ch], m * sizeof(double));
+			if (!a)
+				return -1;
+			c->out[ch] = a;
 		}
-		if (!a[0])
-			return -1;
 	}
-	c->in[c->n] = v[0];
-	for (int ch = 0; ch < 3; ch++)
+	for (int ch = 0; ch < 3; ch++) {
+		c->in[ch][c->n] = v[0];
 		c->out[ch][c->n] = v[ch + 1];
+	}
 	c->n++;
 	return 0;
 }
 
 /* a response curve (what the recorder gave for what it was sent) becomes the correction
- * (what to send for what is wanted) by swapping axes per channel, on the same sample points */
-static int invert(film_cal_t *c)
+ * (what to send for what is wanted) by swapping the axes of each channel: the response
+ * increases strictly, so its inverse is a curve too; wanted values beyond what the recorder
+ * reaches are clamped to its ends */
+static void invert(film_cal_t *c)
 {
-	size_t n = c->n;
-	double *r = malloc(n * sizeof *r);
-	if (!r)
-		return -1;
 	for (int ch = 0; ch < 3; ch++) {
-		for (size_t k = 0; k < n; k++) {
-			double y = c->in[k], *o = c->out[ch];
-			if (y <= o[0])
-				r[k] = c->in[0];
-			else if (y >= o[n - 1])
-				r[k] = c->in[n - 1];
-			else {
-				size_t j = 1;
-				while (o[j] < y)
-					j++;
-				r[k] = c->in[j - 1] + (c->in[j] - c->in[j - 1]) * (y - o[j - 1]) / (o[j] - o[j - 1]);
-			}
-		}
-		memcpy(c->out[ch], r, n * sizeof *r);
+		double *t = c->in[ch];
+		c->in[ch] = c->out[ch];
+		c->out[ch] = t;
 	}
-	free(r);
-	return 0;
 }
 
 int film_cal_parse(const char *text, size_t n, const char *name, film_cal_t **cal, char *err,
@@ -209,7 +193,7 @@ int film_cal_parse(const char *text, size_t n, const char *name, film_cal_t **ca
 			rc = fail(&cp, q, "%s", "the first point must have input 0");
 			break;
 		}
-		if (c->n && v[0] <= c->in[c->n - 1]) {
+		if (c->n && v[0] <= c->in[0][c->n - 1]) {
 			rc = fail(&cp, q, "%s", "inputs must increase from point to point");
 			break;
 		}
@@ -235,15 +219,13 @@ int film_cal_parse(const char *text, size_t n, const char *name, film_cal_t **ca
 	if (rc == 0 && !seen_magic) {
 		snprintf(err, errlen, "%s:1:1: expected '" CAL_MAGIC " 1', found an empty file", name);
 		rc = -65;
-	} else if (rc == 0 && (c->n < 2 || c->in[c->n - 1] != 1)) {
+	} else if (rc == 0 && (c->n < 2 || c->in[0][c->n - 1] != 1)) {
 		snprintf(err, errlen, "%s:%u:1: the curve must end with a point at input 1 (it has %zu point%s)",
 			name, cp.line ? cp.line : 1, c->n, c->n == 1 ? "" : "s");
 		rc = -65;
 	}
-	if (rc == 0 && response && invert(c)) {
-		snprintf(err, errlen, "%s: out of memory", name);
-		rc = -70;
-	}
+	if (rc == 0 && response)
+		invert(c);
 	if (rc) {
 		film_cal_free(c);
 		return rc;
@@ -295,10 +277,10 @@ int film_cal_load(const char *path, film_cal_t **cal, char *err, size_t errlen)
 
 double film_cal_apply(const film_cal_t *c, int ch, double x)
 {
-	const double *in = c->in, *o = c->out[ch];
-	if (x <= 0)
+	const double *in = c->in[ch], *o = c->out[ch];
+	if (x <= in[0])
 		return o[0];
-	if (x >= 1)
+	if (x >= in[c->n - 1])
 		return o[c->n - 1];
 	size_t lo = 0, hi = c->n - 1;      /* in[lo] <= x < in[hi] */
 	while (hi - lo > 1) {
@@ -315,8 +297,9 @@ void film_cal_free(film_cal_t *c)
 {
 	if (!c)
 		return;
-	free(c->in);
-	for (int ch = 0; ch < 3; ch++)
+	for (int ch = 0; ch < 3; ch++) {
+		free(c->in[ch]);
 		free(c->out[ch]);
+	}
 	free(c);
 }
