@@ -196,6 +196,8 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 		f->rle = dev_imgw_new(DEV_FMT_RLE, d->out, pg->width, pg->height, err, sizeof err);
 		return f->rle ? 0 : dev_fail(d, META_EIO, "%s", err);
 	}
+	if (f->kind == FILM_CINEON && f->little_endian)
+		return dev_fail(d, DEV_EUSAGE, "Cineon files are big-endian only (endian=little is for DPX)");
 	film_frame_t *fr = &f->fr;
 	memset(fr, 0, sizeof *fr);
 	fr->kind = f->kind;

@@ -27,7 +27,7 @@ static const char usage_text[] =
 	"  --separations[=files|planar]  red, green and blue exposures: three single-channel files\n"
 	"                        OUT-r, OUT-g, OUT-b (default), or one planar file\n"
 	"  -O KEY=VALUE[,...]    device options (the long options above, as locus-play -d film takes)\n"
-	"  --band-rows N, --mem-budget MIB   banding of the frame (default: within 64 MiB)\n"
+	"  --band-rows N, --mem-budget MIB   banding of the frame (default: a 32 MiB page buffer)\n"
 	"  --help, --version\n"
 	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
 
@@ -51,6 +51,10 @@ static const struct option film_long[] = {
 	{ "separations", optional_argument, NULL, O_SEP },
 	{ NULL, 0, NULL, 0 }
 };
+
+/* The page buffer budget unless --mem-budget says otherwise: half the framework's 64 MiB, so
+ * that the whole process (buffer, spool reader, libraries) stays under 64 MiB at 8192x5460. */
+#define FILM_BUDGET_MIB 32
 
 typedef struct {
 	const char *cal;
@@ -139,6 +143,8 @@ int main(int argc, char **argv)
 		return st;
 	const char *out = c.out ? c.out : "-";
 	char err[700];
+	if (!c.budget)
+		c.budget = (size_t)FILM_BUDGET_MIB << 20;
 	if (a.cal) {   /* checked here first so that a bad file is 65 (66: missing) naming only itself */
 		film_cal_t *cal = NULL;
 		int rc = film_cal_load(a.cal, &cal, err, sizeof err);
