@@ -59,8 +59,12 @@ typedef struct {
 	uint16_t code[3][256];
 } film_lut_t;
 
+/* The linear light of an 8-bit picture value: the sRGB decoding (IEC 61966-2-1) of v / 255, as
+ * the framework treats pixel values (docs/drivers.md); 0 .. 1. */
+double film_srgb_decode(unsigned v);
 /* Fill lut for kind: DPX10 and Cineon get log codes 0..1023 (film_log_encode of the calibrated
- * v / 255), DPX16 linear codes 0..65535 (round(65535 x calibrated v / 255)). cal may be NULL. */
+ * linear light of v), DPX16 linear codes 0..65535 (round(65535 x the calibrated linear light)).
+ * cal may be NULL. */
 void film_lut_build(film_lut_t *lut, int kind, const film_log_t *log, const film_cal_t *cal);
 
 /* What one file holds. */

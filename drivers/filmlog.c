@@ -82,11 +82,17 @@ double film_log_decode(const film_log_t *p, unsigned code)
 	return (pow(10.0, ((double)code - p->white) * k) - off) / (1 - off);
 }
 
+double film_srgb_decode(unsigned v)
+{
+	double c = v / 255.0;
+	return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
 void film_lut_build(film_lut_t *lut, int kind, const film_log_t *log, const film_cal_t *cal)
 {
 	for (int ch = 0; ch < 3; ch++)
 		for (int v = 0; v < 256; v++) {
-			double x = v / 255.0;
+			double x = film_srgb_decode((unsigned)v);
 			if (cal)
 				x = film_cal_apply(cal, ch, x);
 			if (kind == FILM_DPX16)

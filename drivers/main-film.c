@@ -27,7 +27,7 @@ static const char usage_text[] =
 	"  --separations[=files|planar]  red, green and blue exposures: three single-channel files\n"
 	"                        OUT-r, OUT-g, OUT-b (default), or one planar file\n"
 	"  -O KEY=VALUE[,...]    device options (the long options above, as locus-play -d film takes)\n"
-	"  --band-rows N, --mem-budget MIB   banding of the frame (default: a 32 MiB page buffer)\n"
+	"  --band-rows N, --mem-budget MIB   banding of the frame (default: an 8 MiB page buffer)\n"
 	"  --help, --version\n"
 	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
 
@@ -52,9 +52,10 @@ static const struct option film_long[] = {
 	{ NULL, 0, NULL, 0 }
 };
 
-/* The page buffer budget unless --mem-budget says otherwise: half the framework's 64 MiB, so
- * that the whole process (buffer, spool reader, libraries) stays under 64 MiB at 8192x5460. */
-#define FILM_BUDGET_MIB 32
+/* The page buffer budget unless --mem-budget says otherwise: a frame is written in bands of
+ * about 8 MiB (340 rows of 8192 pixels), so a whole process stays near 11 MiB at any preset;
+ * measured no slower than one 64 MiB buffer (docs/film.md). */
+#define FILM_BUDGET_MIB 8
 
 typedef struct {
 	const char *cal;

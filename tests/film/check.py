@@ -7,8 +7,9 @@ usage: check.py REF.ppm FILE KIND READER [CHANNELS]
   READER   oiio (oiiotool -a --dumpdata) or im (ImageMagick convert to a 16-bit PPM)
   CHANNELS the channels the file holds, in order: rgb (default), r, g, b, or planar (r, g, b
            as three image elements)
-Checks that every code value is exactly the documented encoding of the reference's 8-bit value,
-and that decoding it back to linear lands within one 8-bit code value. Prints one line; exits
+Checks that every code value is exactly the documented encoding of the reference's 8-bit value
+(sRGB-decoded to linear light, then log-encoded or scaled to 16 bits), and that decoding it back
+(to linear light, then sRGB-encoded) lands within one 8-bit code value. Prints one line; exits
 0 when both hold, 1 otherwise, 2 on a reader failure.
 """
 import math
@@ -21,8 +22,18 @@ K = DENSITY / FILM_GAMMA * (DISPLAY_GAMMA / 1.7)
 OFF = 10 ** ((BLACK - WHITE) * K)
 
 
+def srgb_decode(v):
+    c = v / 255.0
+    return c / 12.92 if c <= 0.04045 else ((c + 0.055) / 1.055) ** 2.4
+
+
+def srgb_encode(x):
+    x = max(0.0, x)
+    return 12.92 * x if x <= 0.0031308 else 1.055 * x ** (1 / 2.4) - 0.055
+
+
 def encode(v, kind):
-    lin = v / 255.0
+    lin = srgb_decode(v)
     if kind == "lin16":
         return int(math.floor(lin * 65535 + 0.5))
     c = WHITE + math.log10(lin * (1 - OFF) + OFF) / K
@@ -30,9 +41,10 @@ def encode(v, kind):
 
 
 def decode(code, kind):
+    """the code back to the picture's 8-bit scale: log (or linear) to linear light to sRGB"""
     if kind == "lin16":
-        return code / 65535.0 * 255
-    return (10 ** ((code - WHITE) * K) - OFF) / (1 - OFF) * 255
+        return srgb_encode(code / 65535.0) * 255
+    return srgb_encode((10 ** ((code - WHITE) * K) - OFF) / (1 - OFF)) * 255
 
 
 def read_ppm(data):

@@ -11,6 +11,11 @@ static uint32_t le32(const uint8_t *b, size_t o) { return (uint32_t)b[o + 3] << 
 static unsigned be16(const uint8_t *b, size_t o) { return (unsigned)b[o] << 8 | b[o + 1]; }
 static float bef(const uint8_t *b, size_t o) { uint32_t u = be32(b, o); float f; memcpy(&f, &u, 4); return f; }
 
+static double srgb_encode(double x)
+{
+	return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055;
+}
+
 static void test_log(void)
 {
 	film_log_t p;
@@ -25,12 +30,15 @@ static void test_log(void)
 	CHECK(half >= 594 && half <= 596, "linear 0.5 is code %u (about 685 - 90.3)", half);
 	int mono = 1, round = 1;
 	for (int v = 1; v < 256; v++) {
-		unsigned a = film_log_encode(&p, (v - 1) / 255.0), b = film_log_encode(&p, v / 255.0);
-		mono &= a <= b;
-		round &= fabs(film_log_decode(&p, b) * 255 - v) <= 1.0;
+		unsigned a = film_log_encode(&p, film_srgb_decode((unsigned)v - 1));
+		unsigned b = film_log_encode(&p, film_srgb_decode((unsigned)v));
+		mono &= a < b;
+		round &= fabs(srgb_encode(film_log_decode(&p, b)) * 255 - v) <= 1.0;
 	}
-	CHECK(mono, "the curve never decreases");
-	CHECK(round, "every 8-bit value decodes back within one code value");
+	CHECK(mono, "the curve increases: every 8-bit value of the picture gets a code of its own");
+	CHECK(round, "every 8-bit value decodes back (log to linear to sRGB) within one code value");
+	CHECK(film_srgb_decode(0) == 0 && film_srgb_decode(255) == 1 && fabs(film_srgb_decode(128) - 0.2158605) < 1e-6,
+		"sRGB decoding of the picture's values");
 	CHECK(fabs(film_log_decode(&p, 95)) < 1e-12 && fabs(film_log_decode(&p, 685) - 1) < 1e-12,
 		"decode inverts the end points");
 	p.white = 700;
@@ -162,9 +170,9 @@ static void test_pack(void)
 	film_pack_row(&f, &lut, rgb, -1, out);
 	CHECK(be16(out, 0) == 4 && be16(out, 2) == 9 && be16(out, 22) == 1014, "16-bit big-endian samples R, G, B");
 	film_lut_build(&lut, FILM_DPX16, &p, NULL);
-	CHECK(lut.code[0][255] == 65535 && lut.code[2][128] == 32896 && lut.code[1][0] == 0, "16-bit linear table");
+	CHECK(lut.code[0][255] == 65535 && lut.code[2][128] == 14146 && lut.code[1][0] == 0, "16-bit linear table (%u)", lut.code[2][128]);
 	film_lut_build(&lut, FILM_DPX10, &p, NULL);
-	CHECK(lut.code[0][0] == 95 && lut.code[1][255] == 685, "10-bit log table");
+	CHECK(lut.code[0][0] == 95 && lut.code[1][255] == 685 && lut.code[2][128] == 490, "10-bit log table (%u)", lut.code[2][128]);
 }
 
 static const char *cal_err(const char *text)
