@@ -174,6 +174,13 @@ static int f_open(dev_device_t *d)
 		if (rc)
 			return dev_fail(d, rc == -70 ? META_ENOMEM : META_ESYNTAX, "%s", err);
 	}
+	if (f->kind >= 0 && f->kind != FILM_RLE) {   /* an impossible frame is refused before any page */
+		film_frame_t fr = { .kind = f->kind, .width = w, .height = h, .channel = f->channel,
+			.planar = f->planar };
+		if (!film_file_size(&fr))
+			return dev_fail(d, DEV_EUSAGE, "a %ux%u frame does not fit the 4 GiB a %s file can hold",
+				w, h, f->kind == FILM_CINEON ? "Cineon" : "DPX");
+	}
 	if (film_source_time(&f->time, err, sizeof err))
 		return dev_fail(d, DEV_EUSAGE, "%s", err);
 	return 0;

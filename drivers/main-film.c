@@ -146,6 +146,13 @@ int main(int argc, char **argv)
 	char err[700];
 	if (!c.budget)
 		c.budget = (size_t)FILM_BUDGET_MIB << 20;
+	int has_format = !strncmp(c.options, "format=", 7) || strstr(c.options, ",format=");
+	if (!has_format && strcmp(out, "-")) {   /* the suffix's format, known to the device from open() */
+		static const char *const names[] = { "dpx", "dpx16", "cineon", "rle" };
+		int k = film_kind_by_suffix(out);
+		if (k >= 0 && cli_set_option(&c, "format", names[k]))
+			return 64;
+	}
 	if (a.cal) {   /* checked here first so that a bad file is 65 (66: missing) naming only itself */
 		film_cal_t *cal = NULL;
 		int rc = film_cal_load(a.cal, &cal, err, sizeof err);

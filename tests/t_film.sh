@@ -52,6 +52,8 @@ gold multipage.film.dpx fixtures/meta/multipage.meta
 same_file "locus-play -d film -O format=cineon: the Cineon golden" "$T/p.cin" $FD/f-test.film.cin
 "$F" $S -f dpx16 < fixtures/meta/f-test.meta > "$T/s.dpx" 2>/dev/null
 same_file "stdin to stdout, -f dpx16" "$T/s.dpx" $FD/f-test.film.dpx16.dpx
+"$F" $S -O format=dpx16 fixtures/meta/f-test.meta -o "$T/o.dpx" 2>/dev/null
+same_file "-O format=dpx16 wins over the .dpx suffix" "$T/o.dpx" $FD/f-test.film.dpx16.dpx
 "$BIN/locus-play" -d film -O size=66x44 fixtures/meta/f-test.meta -o "$T/p.cin" 2>/dev/null
 same_file "locus-play: format from the .cin suffix" "$T/p.cin" $FD/f-test.film.cin
 [ "$(u32 $FD/f-test.film.rle 5)" = 66 ] && ok "RLE frame is 66 wide (film size, not the page's 160)" ||
@@ -207,7 +209,8 @@ bad 65 "an image as calibration file" "expected 'locus-film-calibration 1'" $S -
 bad 64 "size 0x44" "--size needs WxH" --size 0x44 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 bad 64 "size 40000x10" "--size needs WxH" --size 40000x10 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 bad 64 "size 64" "--size needs WxH" --size 64 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
-bad 65 "a 16-bit frame over 4 GiB" "does not fit the 4 GiB" --size 32768x32768 -f dpx16 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
+bad 64 "a 16-bit frame over 4 GiB" "a 32768x32768 frame does not fit the 4 GiB a DPX file can hold" --size 32768x32768 -f dpx16 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
+bad 64 "a frame over 4 GiB, format from the suffix" "does not fit the 4 GiB a Cineon file" --size 32768x32768 fixtures/meta/f-test.meta -o "$T/b/x.cin"
 bad 64 "unknown format" "unknown format 'tiff'" -f tiff fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 bad 64 "unknown preset" "unknown preset 'imax'" --preset imax fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 bad 64 "bad endian" "endian must be big or little" $S --endian middle fixtures/meta/f-test.meta -o "$T/b/x.dpx"
