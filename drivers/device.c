@@ -5,6 +5,7 @@
 #include <string.h>
 #include "device.h"
 #include "devres.h"
+#include "scan_int.h"
 #include "render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)
@@ -342,6 +343,8 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		for (int rep = 0; rep < (c->nlist % 2 ? 2 : 1); rep++)
 			for (size_t k = 0; k < c->nlist; k++)
 				s->dash[s->ndash++] = c->list[k];
+		if (scan_dash_period(s->dash, s->ndash) < SCAN_DASH_MIN_PERIOD)
+			s->ndash = 0;   /* finer than a pixel: solid (§5.3), for every device */
 		return 0;
 	case META_CAP: s->cap = c->k; return 0;
 	case META_JOIN: s->join = c->k; return 0;
