@@ -65,6 +65,7 @@ typedef struct {
 	dev_map_t map;                   /* raster devices: the page on the device's raster */
 	int mapped;                      /* 1: a raster of its own, not the identity */
 	devres_img_t *img;               /* mapped: the image being resampled */
+	scan_path_t pieces;              /* dash pieces, stroke outlines, hatching */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -210,10 +211,20 @@ static int paint_path(play_t *p, int kind, int text)
 	if (is_raster(d)) {
 		scan_style_t st;
 		style_of(p, &st, text);
+		scan_path_t *path = &p->path;
+		if (p->mapped && kind != META_FILL && st.ndash) {
+			/* dashes are measured along the model path: dash there, then map the pieces */
+			scan_path_reset(&p->pieces);
+			if (scan_dash_path(&p->path, st.dash, st.ndash, &p->pieces))
+				return nomem(p);
+			path = &p->pieces;
+			st.dash = NULL;
+			st.ndash = 0;
+		}
 		if (p->mapped)
-			devres_path(&p->map, &p->path);
-		rc = kind == META_FILL ? dev_render_fill(p->rr, &p->path, p->st.rule, p->st.colour)
-			: dev_render_stroke(p->rr, &p->path, &st, p->st.colour);
+			devres_path(&p->map, path);
+		rc = kind == META_FILL ? dev_render_fill(p->rr, path, p->st.rule, p->st.colour)
+			: dev_render_stroke(p->rr, path, &st, p->st.colour);
 		return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
 	}
 	dev_path_t dp = { &p->path, p->elems, p->nelems };
@@ -421,6 +432,7 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	dev_render_free(p.rr);
 	devres_image_free(p.img);
 	scan_path_free(&p.path);
+	scan_path_free(&p.pieces);
 	free(p.elems);
 	return rc;
 }
