@@ -177,6 +177,27 @@ static void test_thin_lines(void)
 	free(d.pix);
 }
 
+static void test_dash_scaled(void)
+{
+	/* dashes are measured along the model path: at 2x, dash 10 10 is 20 device pixels on */
+	set(200, 200, 0, DEV_FIT_ASPECT);
+	int rc;
+	cap_t c = play("LOCUS-META 1\npage 100 100\nwidth 2\ndash 10 10\nstroke\nmove 0 50\ndraw 100 50\nend\nend-page\n", 0, &rc);
+	int runs = 0, ok = 1, len = 0;
+	for (unsigned u = 0; u < 200; u++) {
+		int black = px(&c, u, 99) == 0;
+		if (black)
+			len++;
+		if ((!black || u == 199) && len) {
+			runs++;
+			ok &= len == 20;
+			len = 0;
+		}
+	}
+	CHECK(rc == 0 && runs == 5 && ok, "dash 10 10 at 2x: five dashes of 20 device pixels (%d runs)", runs);
+	free(c.pix);
+}
+
 static const char *bars_page =
 	"LOCUS-META 1\npage 100 100\nclear #00ff00\ncolour #ff0000\nwidth 4\n"
 	"stroke\nmove -50 50\ndraw 150 50\nend\nstroke\nmove 50 -50\ndraw 50 150\nend\nend-page\n";
@@ -338,6 +359,7 @@ int main(void)
 {
 	test_options();
 	test_aspect_circle();
+	test_dash_scaled();
 	test_thin_lines();
 	test_bars();
 	test_images();
