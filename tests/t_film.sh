@@ -169,12 +169,21 @@ printf 'locus-film-calibration 1\n0 0 0 0\n1 1 1 1\n' > "$T/id.cal"
 "$F" $Q --calibration "$T/id.cal" -o "$T/qi.dpx"
 same_file "an identity calibration curve changes nothing" "$T/qi.dpx" "$T/q.dpx"
 
-# ---- thin lines at film size: a 1-pixel model line stays sharp, not an upscaled raster
+# ---- thin lines at film size: a 1-pixel model line is drawn at the frame's scale
 printf 'LOCUS-META 1\npage 100 75\nclear #ffffff\ncolour #000000\nwidth 1\nstroke\nmove 0 37.5\ndraw 100 37.5\nend\nend-page\n' > "$T/thin.meta"
-"$BIN/locus-film" --size 800x600 -f dpx16 "$T/thin.meta" -o "$T/thin.dpx"
-dark=$(oiiotool --dumpdata "$T/thin.dpx" | awk '/Pixel \(400, / { if ($4 + 0 < 30000) n++ } END { print n + 0 }')
-[ "$dark" -ge 7 ] && [ "$dark" -le 9 ] && ok "a 1-pixel model line at 8x is $dark device rows thick (mapped, not a 1-row line)" ||
-	notok "thin line: $dark dark rows in column 400"
+"$BIN/locus-film" --size 400x300 -f dpx16 "$T/thin.meta" -o "$T/thin.dpx"
+dark=$(oiiotool --dumpdata "$T/thin.dpx" | awk '/Pixel \(200, / { if ($4 + 0 < 30000) n++ } END { print n + 0 }')
+[ "$dark" -ge 3 ] && [ "$dark" -le 5 ] && ok "a 1-pixel model line at 4x is $dark device rows thick (mapped, not a 1-row line)" ||
+	notok "thin line: $dark dark rows in column 200"
+# a diagonal at 4x: its top edge climbs one device row per column (scan-converted at the frame's
+# pixels), where an upscaled model raster would climb 4 rows every 4 columns
+printf 'LOCUS-META 1\npage 100 75\nclear #ffffff\ncolour #000000\nwidth 1\nstroke\nmove 10 10\ndraw 60 60\nend\nend-page\n' > "$T/diag.meta"
+"$BIN/locus-film" --size 400x300 -f dpx16 "$T/diag.meta" -o "$T/diag.dpx"
+steps=$(oiiotool --dumpdata "$T/diag.dpx" | awk -F'[(), :]+' '/Pixel/ && $5 + 0 < 30000 { if (!($3 in top)) top[$3] = $4 }
+	END { for (x = 60; x < 220; x++) { d = top[x] - top[x + 1]; if (d == 1) one++; else if (d > 1) big++ } print one + 0, big + 0 }')
+set -- $steps
+[ "$1" -ge 150 ] && [ "$2" = 0 ] && ok "a diagonal at 4x climbs one device row per column ($1 of 160 columns)" ||
+	notok "diagonal at 4x: $1 one-row steps, $2 bigger ones in 160 columns"
 
 # ---- memory: an 8192x5460 frame in bands, peak RSS under 64 MiB
 if [ "${SANITIZE:-}" != 1 ] && [ -x /usr/bin/time ]; then
