@@ -171,8 +171,11 @@ static int f_open(dev_device_t *d)
 		return dev_fail(d, DEV_EUSAGE, "separations=planar and channel= exclude each other");
 	if (dev_option(d, "calibration", buf, sizeof buf)) {
 		rc = film_cal_load(buf, &f->cal, err, sizeof err);
-		if (rc)
-			return dev_fail(d, rc == -70 ? META_ENOMEM : META_ESYNTAX, "%s", err);
+		if (rc) {
+			rc = dev_fail(d, rc == -70 ? META_ENOMEM : META_ESYNTAX, "%s", err);
+			d->reader_error = 1;    /* the message names its file: not to be prefixed with the input's */
+			return rc;
+		}
 	}
 	if (f->kind >= 0 && f->kind != FILM_RLE) {   /* an impossible frame is refused before any page */
 		film_frame_t fr = { .kind = f->kind, .width = w, .height = h, .channel = f->channel,

@@ -231,6 +231,10 @@ bad 64 "bad log parameters" "reference black must" $S --black 700 fixtures/meta/
 bad 64 "separations to stdout" "needs -o OUT" $S --separations fixtures/meta/f-test.meta
 bad 64 "RLE separations" "not separations" $S -f rle --separations=planar fixtures/meta/f-test.meta -o "$T/b/x.rle"
 SOURCE_DATE_EPOCH=yesterday bad 64 "bad SOURCE_DATE_EPOCH" "SOURCE_DATE_EPOCH must be" $S fixtures/meta/f-test.meta -o "$T/b/x.dpx"
+"$BIN/locus-play" -d film -O calibration="$T/bad.cal" fixtures/meta/f-test.meta -o "$T/b/x.dpx" 2> "$T/b.err"
+rc=$?
+[ $rc = 65 ] && [ "$(cat "$T/b.err")" = "$T/bad.cal:3:13: expected a number for blue, found 'x'" ] && [ ! -f "$T/b/x.dpx" ] &&
+	ok "locus-play -d film -O calibration=BAD: exit 65, the file's own message" || notok "locus-play bad calibration: exit $rc, $(cat "$T/b.err")"
 expect_exit 64 "locus-play -d film -O size=1x" "$BIN/locus-play" -d film -O size=1x fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 expect_exit 64 "locus-play -d film -O colour=red (unknown key)" "$BIN/locus-play" -d film -O colour=red fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 done_tests
