@@ -208,6 +208,9 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 	}
 	if (f->kind == FILM_CINEON && f->little_endian)
 		return dev_fail(d, DEV_EUSAGE, "Cineon files are big-endian only (endian=little is for DPX)");
+	if (f->kind == FILM_CINEON && f->planar)
+		return dev_fail(d, DEV_EUSAGE, "planar separations are written as DPX only (for Cineon, "
+			"--separations writes three files)");
 	film_frame_t *fr = &f->fr;
 	memset(fr, 0, sizeof *fr);
 	fr->kind = f->kind;

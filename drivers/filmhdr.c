@@ -185,7 +185,7 @@ static int cineon_header(const film_frame_t *f, uint8_t *buf)
 {
 	hdr_t h = { buf, 0 };                             /* Cineon is big-endian */
 	static const unsigned desig[3] = { 1, 2, 3 };     /* red, green, blue */
-	int nch = channels(f) * (int)elements(f);
+	int nch = channels(f);
 	char t[32];
 	memset(buf, 0xFF, FILM_HEADER_SIZE);
 	/* file information */
@@ -210,7 +210,7 @@ static int cineon_header(const film_frame_t *f, uint8_t *buf)
 		size_t off = 196 + 28 * (size_t)c;
 		if (c >= nch)
 			continue;
-		int ch = f->planar ? c : f->channel >= 0 ? f->channel : c;
+		int ch = f->channel >= 0 ? f->channel : c;
 		u8(&h, off, 0);                               /* designator: universal metric */
 		u8(&h, off + 1, desig[ch]);
 		u8(&h, off + 2, 10);                          /* bits per sample */
@@ -225,7 +225,7 @@ static int cineon_header(const film_frame_t *f, uint8_t *buf)
 	str(&h, 452, 200, f->creator);                    /* label */
 	memset(buf + 652, 0, 28);
 	/* image data format */
-	u8(&h, 680, f->planar ? 2 : 0);                   /* interleave: by pixel, or by channel */
+	u8(&h, 680, 0);                                   /* interleave: by pixel */
 	u8(&h, 681, 5);                                   /* packing: 32-bit words, left justified */
 	u8(&h, 682, 0);                                   /* unsigned */
 	u8(&h, 683, 0);                                   /* positive image */
@@ -266,6 +266,10 @@ int film_header(const film_frame_t *f, uint8_t *buf, char *err, size_t errlen)
 	}
 	if (f->kind == FILM_CINEON && f->little_endian) {
 		snprintf(err, errlen, "Cineon files are big-endian only");
+		return -1;
+	}
+	if (f->kind == FILM_CINEON && f->planar) {
+		snprintf(err, errlen, "planar separations are written as DPX only");
 		return -1;
 	}
 	if (f->planar && f->channel >= 0) {

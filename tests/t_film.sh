@@ -229,6 +229,7 @@ bad 64 "bad endian" "endian must be big or little" $S --endian middle fixtures/m
 bad 64 "little-endian Cineon" "Cineon files are big-endian only" $S --endian little fixtures/meta/f-test.meta -o "$T/b/x.cin"
 bad 64 "bad log parameters" "reference black must" $S --black 700 fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 bad 64 "separations to stdout" "needs -o OUT" $S --separations fixtures/meta/f-test.meta
+bad 64 "planar Cineon" "planar separations are written as DPX only" $S --separations=planar fixtures/meta/f-test.meta -o "$T/b/x.cin"
 bad 64 "RLE separations" "not separations" $S -f rle --separations=planar fixtures/meta/f-test.meta -o "$T/b/x.rle"
 SOURCE_DATE_EPOCH=yesterday bad 64 "bad SOURCE_DATE_EPOCH" "SOURCE_DATE_EPOCH must be" $S fixtures/meta/f-test.meta -o "$T/b/x.dpx"
 "$BIN/locus-play" -d film -O calibration="$T/bad.cal" fixtures/meta/f-test.meta -o "$T/b/x.dpx" 2> "$T/b.err"

@@ -140,6 +140,13 @@ static void test_cineon_header(void)
 	CHECK(be32(h, 1068) == 7, "1068: frame position");
 	f.little_endian = 1;
 	CHECK(film_header(&f, h, err, sizeof err) < 0, "little-endian Cineon refused: %s", err);
+	f.little_endian = 0;
+	f.channel = 2;
+	film_header(&f, h, err, sizeof err);
+	CHECK(h[193] == 1 && h[197] == 3 && be32(h, 20) == 2048 + 22 * 4 * 43, "a blue separation: one channel, designator 3");
+	f.channel = -1;
+	f.planar = 1;
+	CHECK(film_header(&f, h, err, sizeof err) < 0, "planar Cineon refused: %s", err);
 }
 
 static void test_pack(void)
