@@ -15,6 +15,7 @@ typedef struct {
 	film_log_t log;
 	film_cal_t *cal;
 	film_lut_t lut;
+	int lut_ready;              /* lut built (on the first page, when the format is known) */
 	int64_t time;
 	double width_mm, height_mm;
 	film_frame_t fr;            /* the page being written */
@@ -230,8 +231,9 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 	uint8_t hdr[FILM_HEADER_SIZE];
 	if (film_header(fr, hdr, err, sizeof err))
 		return dev_fail(d, META_ELIMIT, "%s", err);
-	if (pg->index == 0 || f->kind != fr->kind)
+	if (!f->lut_ready)
 		film_lut_build(&f->lut, f->kind, &f->log, f->cal);
+	f->lut_ready = 1;
 	free(f->row);
 	f->row = malloc(film_row_bytes(fr));
 	if (!f->row)
