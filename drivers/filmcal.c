@@ -59,14 +59,19 @@ static int number(cal_parse_t *cp, const char **pp, const char *what, double *v)
 	const char *p = skip_blanks(*pp, cp->end);
 	char buf[40], word[32];
 	size_t k = 0;
-	while (p + k < cp->end && p[k] != ' ' && p[k] != '\t' && p[k] != '\r' && k + 1 < sizeof buf)
-		buf[k] = p[k], k++;
-	buf[k] = 0;
+	while (p + k < cp->end && p[k] != ' ' && p[k] != '\t' && p[k] != '\r' && p[k] != '#')
+		k++;
 	char *e = NULL;
-	errno = 0;
-	double x = k ? strtod(buf, &e) : 0;
+	double x = 0;
+	if (k && k < sizeof buf) {
+		memcpy(buf, p, k);
+		buf[k] = 0;
+		errno = 0;
+		x = strtod(buf, &e);
+	} else
+		buf[0] = 0;
 	char msg[120];
-	if (!k || *e || errno || !isfinite(x)) {
+	if (!k || k >= sizeof buf || *e || errno || !isfinite(x)) {
 		snprintf(msg, sizeof msg, "expected a number for %s, found '%s'", what,
 			word_at(p, cp->end, word, sizeof word));
 		return fail(cp, p, "%s", msg);

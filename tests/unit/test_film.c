@@ -227,6 +227,11 @@ static void test_cal(void)
 		"cal.txt:3:12: expected a number for blue, found 'end of line'", "three numbers");
 	CHECK_STR(cal_err("locus-film-calibration 1\n0 0 0 0\n0.5 0.5 0.5 0.5 0.5\n1 1 1 1\n"),
 		"cal.txt:3:17: expected the end of the line after four numbers, found '0.5'", "five numbers");
+	CHECK_STR(cal_err("locus-film-calibration 1\n0 0 0 0.0000000000000000000000000000000000000000000001\n1 1 1 1\n"),
+		"cal.txt:2:7: expected a number for blue, found '0.00000000000000000000000000000'", "a number too long to be read");
+	CHECK_STR(cal_err("locus-film-calibration 1\n0 0 0 0# comment\n1 1 1 1 # end\n"), "accepted", "comments after numbers");
+	CHECK_STR(cal_err("locus-film-calibration 1\n0 0 0 nan\n1 1 1 1\n"),
+		"cal.txt:2:7: expected a number for blue, found 'nan'", "nan");
 	CHECK_STR(cal_err("locus-film-calibration 1\n0.1 0 0 0\n1 1 1 1\n"),
 		"cal.txt:2:1: the first point must have input 0", "first input");
 	CHECK_STR(cal_err("locus-film-calibration 1\n0 0 0 0\n0.5 0.5 0.5 0.5\n0.5 0.6 0.6 0.6\n1 1 1 1\n"),
