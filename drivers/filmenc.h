@@ -82,7 +82,8 @@ typedef struct {
 } film_frame_t;
 
 /* Bytes of one packed row of one image element (or of the RGB element): 10-bit rows are whole
- * 32-bit words, 16-bit rows whole 16-bit samples padded to a 32-bit boundary. */
+ * 32-bit words, 16-bit rows their samples with no padding (as ImageMagick and OpenImageIO read
+ * them when the width is odd). */
 size_t film_row_bytes(const film_frame_t *f);
 /* Total file size, or 0 when the frame does not fit the 32-bit size fields (over 4 GiB). */
 uint64_t film_file_size(const film_frame_t *f);

@@ -54,7 +54,7 @@ size_t film_row_bytes(const film_frame_t *f)
 {
 	size_t n = (size_t)f->width * (size_t)channels(f);
 	if (f->kind == FILM_DPX16)
-		return (n * 2 + 3) / 4 * 4;
+		return n * 2;                       /* no padding: ImageMagick and OpenImageIO read none */
 	return (n + 2) / 3 * 4;                 /* three 10-bit samples per 32-bit word */
 }
 
@@ -301,8 +301,6 @@ void film_pack_row(const film_frame_t *f, const film_lut_t *lut, const uint8_t *
 				out[k + (le ? 1 : 0)] = (uint8_t)(v >> 8);
 				k += 2;
 			}
-		while (k % 4)
-			out[k++] = 0;
 		return;
 	}
 	if (ch < 0) {
