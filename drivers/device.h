@@ -163,7 +163,10 @@ typedef struct dev_ops {
 	const char *description;    /* one line for `locus-play -l` */
 	const char *extension;      /* default output suffix, e.g. ".png" */
 	unsigned caps;              /* DEV_CAP_* */
-	unsigned colours;           /* distinct colours the device shows; 0 = 24-bit */
+	/* Informational: how many colours the device shows at once (0 = 24-bit). The framework
+	 * hands every device 24-bit colour and reduces nothing: a palette device quantises in
+	 * write_band, a pen plotter maps colours to pens in its own ops. */
+	unsigned colours;
 	size_t priv_size;           /* bytes of zeroed private state allocated for dev->priv */
 	const dev_option_t *option_list; /* the -O keys it accepts, {NULL} terminated; NULL: none */
 	int (*open)(dev_device_t *d);
