@@ -416,6 +416,41 @@ static int statement(play_t *p, const meta_cmd_t *c)
 	}
 }
 
+/* Take the framework's own -O keys (raster devices: antialias=K) out of d->options into the
+ * device's fields; the rest stays for the device (copied into buf). Returns 0 or DEV_EUSAGE. */
+static int framework_options(dev_device_t *d, char *buf, size_t n)
+{
+	if (!d->options || !is_raster(d))
+		return 0;
+	size_t used = 0;
+	buf[0] = 0;
+	for (const char *q = d->options; *q;) {
+		const char *end = strchr(q, ',');
+		size_t len = end ? (size_t)(end - q) : strlen(q);
+		if (len > 10 && !strncmp(q, "antialias=", 10)) {
+			char v[8] = "";
+			char *e;
+			if (len - 10 < sizeof v)
+				memcpy(v, q + 10, len - 10);
+			unsigned long k = strtoul(v, &e, 10);
+			if (!v[0] || *e || v[0] < '0' || v[0] > '9' || k > DEV_AA_MAX)
+				return dev_fail(d, DEV_EUSAGE, "antialias must be 0 (exact), or 2 to %d samples a side, not '%.*s'",
+					DEV_AA_MAX, (int)(len - 10), q + 10);
+			d->antialias = (unsigned)k;
+		} else if (used + len + 2 > n) {
+			return dev_fail(d, DEV_EUSAGE, "device options longer than %zu bytes", n - 2);
+		} else {
+			if (used)
+				buf[used++] = ',';
+			memcpy(buf + used, q, len);
+			used += len;
+			buf[used] = 0;
+		}
+		q += len + (end != NULL);
+	}
+	return 0;
+}
+
 int dev_play(meta_reader_t *r, dev_device_t *d)
 {
 	play_t p;
@@ -424,7 +459,13 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	p.d = d;
 	d->err[0] = 0;
 	d->reader_error = 0;
-	int rc = dev_check_options(d);
+	const char *given = d->options;
+	char rest[1024];
+	int rc = framework_options(d, rest, sizeof rest);
+	if (rc == 0 && d->options)
+		d->options = rest;
+	if (rc == 0)
+		rc = dev_check_options(d);
 	if (rc == 0 && d->ops->open)
 		rc = d->ops->open(d);
 	meta_cmd_t c;
@@ -460,6 +501,7 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	scan_path_free(&p.pieces);
 	devvec_free(&p.vec);
 	devaa_free(p.aa);
+	d->options = given;
 	d->page = NULL;
 	free(p.elems);
 	return rc;

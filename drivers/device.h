@@ -206,7 +206,8 @@ struct dev {
 	/* Raster, set by the program (--antialias): 0 or 1 = exact, the reference (default);
 	 * k = 2 .. DEV_AA_MAX: anti-aliased, each device pixel the mean in linear light of a k x k
 	 * grid of exact samples (the page rendered by §5 at k times the resolution, as a device
-	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". */
+	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". dev_play() also
+	 * takes it from the framework's own device option antialias=K in d->options. */
 	unsigned antialias;
 	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
 	void *user;                 /* free for the program */
