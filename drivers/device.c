@@ -417,12 +417,13 @@ static int statement(play_t *p, const meta_cmd_t *c)
 }
 
 /* Take the framework's own -O keys (raster devices: antialias=K) out of d->options into the
- * device's fields; the rest stays for the device (copied into buf). Returns 0 or DEV_EUSAGE. */
+ * device's fields; the rest is copied into buf for the device. Returns 1 when buf holds the
+ * options to use, 0 when d->options is left as it is, or DEV_EUSAGE. */
 static int framework_options(dev_device_t *d, char *buf, size_t n)
 {
-	if (!d->options || !is_raster(d))
-		return 0;
 	size_t used = 0;
+	if (!d->options || !is_raster(d))
+		return 0;   /* nothing taken: d->options stays as it is */
 	buf[0] = 0;
 	for (const char *q = d->options; *q;) {
 		const char *end = strchr(q, ',');
@@ -448,7 +449,7 @@ static int framework_options(dev_device_t *d, char *buf, size_t n)
 		}
 		q += len + (end != NULL);
 	}
-	return 0;
+	return 1;
 }
 
 int dev_play(meta_reader_t *r, dev_device_t *d)
@@ -462,9 +463,9 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	const char *given = d->options;
 	char rest[1024];
 	int rc = framework_options(d, rest, sizeof rest);
-	if (rc == 0 && d->options)
+	if (rc == 1)
 		d->options = rest;
-	if (rc == 0)
+	if (rc >= 0)
 		rc = dev_check_options(d);
 	if (rc == 0 && d->ops->open)
 		rc = d->ops->open(d);
