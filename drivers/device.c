@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "device.h"
+#include "devaa.h"
 #include "devres.h"
 #include "devvec.h"
 #include "scan_int.h"
@@ -68,6 +69,7 @@ typedef struct {
 	devres_img_t *img;               /* mapped: the image being resampled */
 	scan_path_t pieces;              /* raster, mapped: dash pieces */
 	devvec_t vec;                    /* vector devices: scratch for what the framework supplies */
+	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -98,12 +100,19 @@ static int is_raster(const dev_device_t *d)
 	return (d->ops->caps & DEV_CAP_RASTER) != 0;
 }
 
-static int emit_band(void *user, const dev_band_t *b)
+static int write_band(void *user, const dev_band_t *b)
 {
 	dev_device_t *d = user;
 	if (!d->ops->write_band)
 		return 0;
 	return d->ops->write_band(d, b);
+}
+
+/* A band from the renderer: to the device, or through the anti-aliasing downsampler. */
+static int emit_band(void *user, const dev_band_t *b)
+{
+	play_t *p = user;
+	return p->aa ? devaa_band(p->aa, b, write_band, p->d) : write_band(p->d, b);
 }
 
 static int nomem(play_t *p)
@@ -270,14 +279,25 @@ static int begin_page(play_t *p, const meta_cmd_t *c)
 	p->mapped = 0;
 	if (is_raster(d)) {
 		char err[256];
-		if (dev_fit_map(&p->map, p->page.width, p->page.height, d->raster_width, d->raster_height,
-				d->pixel_aspect, d->fit))
+		/* anti-aliased: render k x k samples per device pixel, then average them */
+		unsigned k = d->antialias > 1 ? d->antialias : 1;
+		unsigned dw = d->raster_width && d->raster_height ? d->raster_width : p->page.width;
+		unsigned dh = d->raster_width && d->raster_height ? d->raster_height : p->page.height;
+		if (k > DEV_AA_MAX || (uint64_t)dw * k > 1u << 20 || (uint64_t)dh * k > 1u << 20)
+			return dev_fail(d, DEV_EUSAGE, "%s: anti-aliasing factor %u too large for %ux%u (at most %d)",
+				d->ops->name, k, dw, dh, DEV_AA_MAX);
+		if (dev_fit_map(&p->map, p->page.width, p->page.height, k > 1 ? dw * k : d->raster_width,
+				k > 1 ? dh * k : d->raster_height, d->pixel_aspect, d->fit))
 			return dev_fail(d, DEV_EUSAGE, "%s: bad device raster (fit %d, pixel aspect %g)",
 				d->ops->name, d->fit, d->pixel_aspect);
 		p->mapped = !p->map.identity;
-		p->page.width = p->map.width;
-		p->page.height = p->map.height;
-		p->rr = dev_render_new(p->page.width, p->page.height, d->band_rows, d->mem_budget, err, sizeof err);
+		p->page.width = k > 1 ? dw : p->map.width;
+		p->page.height = k > 1 ? dh : p->map.height;
+		devaa_free(p->aa);
+		p->aa = NULL;
+		if (k > 1 && !(p->aa = devaa_new(k, dw, dh)))
+			return nomem(p);
+		p->rr = dev_render_new(p->map.width, p->map.height, d->band_rows, d->mem_budget, err, sizeof err);
 		if (!p->rr)
 			return dev_fail(d, META_ENOMEM, "%s", err);
 		d->bands = dev_render_bands(p->rr);
@@ -309,7 +329,7 @@ static int end_page(play_t *p)
 	if (!rc && p->mapped && (rc = devres_bars(&p->map, p->rr, d->letterbox)) != 0)
 		dev_fail(d, rc, "out of memory or spool failure while rendering");
 	if (!rc && is_raster(d)) {
-		rc = dev_render_finish(p->rr, emit_band, d);
+		rc = dev_render_finish(p->rr, emit_band, p);
 		if (rc && !d->err[0])
 			dev_fail(d, rc, "rendering failed (spool I/O)");
 		dev_render_free(p->rr);
@@ -396,6 +416,42 @@ static int statement(play_t *p, const meta_cmd_t *c)
 	}
 }
 
+/* Take the framework's own -O keys (raster devices: antialias=K) out of d->options into the
+ * device's fields; the rest is copied into buf for the device. Returns 1 when buf holds the
+ * options to use, 0 when d->options is left as it is, or DEV_EUSAGE. */
+static int framework_options(dev_device_t *d, char *buf, size_t n)
+{
+	size_t used = 0;
+	if (!d->options || !is_raster(d))
+		return 0;   /* nothing taken: d->options stays as it is */
+	buf[0] = 0;
+	for (const char *q = d->options; *q;) {
+		const char *end = strchr(q, ',');
+		size_t len = end ? (size_t)(end - q) : strlen(q);
+		if (len > 10 && !strncmp(q, "antialias=", 10)) {
+			char v[8] = "";
+			char *e;
+			if (len - 10 < sizeof v)
+				memcpy(v, q + 10, len - 10);
+			unsigned long k = strtoul(v, &e, 10);
+			if (!v[0] || *e || v[0] < '0' || v[0] > '9' || k > DEV_AA_MAX)
+				return dev_fail(d, DEV_EUSAGE, "antialias must be 0 (exact), or 2 to %d samples a side, not '%.*s'",
+					DEV_AA_MAX, (int)(len - 10), q + 10);
+			d->antialias = (unsigned)k;
+		} else if (used + len + 2 > n) {
+			return dev_fail(d, DEV_EUSAGE, "device options longer than %zu bytes", n - 2);
+		} else {
+			if (used)
+				buf[used++] = ',';
+			memcpy(buf + used, q, len);
+			used += len;
+			buf[used] = 0;
+		}
+		q += len + (end != NULL);
+	}
+	return 1;
+}
+
 int dev_play(meta_reader_t *r, dev_device_t *d)
 {
 	play_t p;
@@ -404,7 +460,13 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	p.d = d;
 	d->err[0] = 0;
 	d->reader_error = 0;
-	int rc = dev_check_options(d);
+	const char *given = d->options;
+	char rest[1024];
+	int rc = framework_options(d, rest, sizeof rest);
+	if (rc == 1)
+		d->options = rest;
+	if (rc >= 0)
+		rc = dev_check_options(d);
 	if (rc == 0 && d->ops->open)
 		rc = d->ops->open(d);
 	meta_cmd_t c;
@@ -439,6 +501,8 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	scan_path_free(&p.path);
 	scan_path_free(&p.pieces);
 	devvec_free(&p.vec);
+	devaa_free(p.aa);
+	d->options = given;
 	d->page = NULL;
 	free(p.elems);
 	return rc;
