@@ -20,6 +20,7 @@ static const char usage_text[] =
 	"  --endian big|little   byte order of a DPX file (default big)\n"
 	"  --fit aspect|fill|stretch   how the page meets the frame (default aspect)\n"
 	"  --letterbox #RRGGBB   colour of the bars around a fitted page (default #000000)\n"
+	"  --antialias K         K x K samples per film pixel, averaged (default: exact, 1 sample)\n"
 	"  --white N, --black N  reference white and black code values (685, 95)\n"
 	"  --density D           printing density per code value (0.002)\n"
 	"  --film-gamma G, --display-gamma G   (0.6, 1.7)\n"
@@ -32,7 +33,7 @@ static const char usage_text[] =
 	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
 
 enum { O_PRESET = 0x2000, O_LIST, O_SIZE, O_ENDIAN, O_FIT, O_LETTERBOX, O_WHITE, O_BLACK, O_DENSITY,
-	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP };
+	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA };
 
 static const struct option film_long[] = {
 	{ "format", required_argument, NULL, 'f' },
@@ -49,6 +50,7 @@ static const struct option film_long[] = {
 	{ "display-gamma", required_argument, NULL, O_DGAMMA },
 	{ "calibration", required_argument, NULL, O_CAL },
 	{ "separations", optional_argument, NULL, O_SEP },
+	{ "antialias", required_argument, NULL, O_AA },
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -85,6 +87,8 @@ static int on_option(cli_t *c, int key, const char *arg)
 			return cli_fail(c, 64, "--size needs WxH with each side 1 to %d pixels, not '%s'",
 				META_MAX_DIM, arg);
 		return cli_set_option(c, "size", arg) ? 64 : CLI_RUN;
+	case O_AA:   /* the framework's option (docs/drivers.md, "Anti-aliasing"); it checks K */
+		return cli_set_option(c, "antialias", arg) ? 64 : CLI_RUN;
 	case O_CAL:
 		a->cal = arg;
 		return cli_set_option(c, "calibration", arg) ? 64 : CLI_RUN;

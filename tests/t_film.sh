@@ -191,6 +191,13 @@ set -- $steps
 [ "$1" -ge 150 ] && [ "$2" = 0 ] && ok "a diagonal at 4x climbs one device row per column ($1 of 160 columns)" ||
 	notok "diagonal at 4x: $1 one-row steps, $2 bigger ones in 160 columns"
 
+# anti-aliasing is the framework's: --antialias 4 gives edge pixels of partial coverage
+grey() { oiiotool --dumpdata "$1" | awk '/Pixel/ { v = $4 + 0; if (v > 3000 && v < 62000) n++ } END { print n + 0 }'; }
+"$BIN/locus-film" --size 400x300 -f dpx16 --antialias 4 "$T/diag.meta" -o "$T/diag-aa.dpx"
+ge=$(grey "$T/diag.dpx") ga=$(grey "$T/diag-aa.dpx")
+[ "$ge" = 0 ] && [ "$ga" -gt 300 ] && ok "--antialias 4: $ga edge pixels of partial coverage (exact: $ge)" ||
+	notok "--antialias 4: $ga grey pixels, exact $ge"
+
 # ---- memory: an 8192x5460 frame in bands, peak RSS under 64 MiB
 if [ "${SANITIZE:-}" != 1 ] && [ -x /usr/bin/time ]; then
 	/usr/bin/time -f %M -o "$T/rss" "$F" --preset slide8k fixtures/meta/f-test.meta -o "$T/big.dpx" 2> "$T/err"
