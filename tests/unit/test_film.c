@@ -247,6 +247,55 @@ static void test_cal(void)
 	CHECK(film_cal_load("/nonexistent/cal.txt", &c, err, sizeof err) == -66, "missing file: %s", err);
 }
 
+/* random mutations of a good file: every result is a curve or one message naming a place */
+static void test_cal_fuzz(void)
+{
+	const char *good = "locus-film-calibration 1\nkind response\n0 0 0 0\n0.25 0.2 0.3 0.25\n"
+		"0.5 0.45 0.55 0.5 # mid\n1 1 1 1\n";
+	size_t n = strlen(good);
+	char buf[128], err[300];
+	unsigned seed = 12345, bad_msgs = 0, accepted = 0, refused = 0;
+	const char alphabet[] = "0123456789. \n#-ekx\t\r";
+	for (int it = 0; it < 3000; it++) {
+		memcpy(buf, good, n);
+		size_t len = n;
+		for (int m = 0; m < 1 + it % 4; m++) {
+			seed = seed * 1103515245u + 12345u;
+			size_t at = (seed >> 8) % len;
+			seed = seed * 1103515245u + 12345u;
+			int op = (int)((seed >> 8) % 3);
+			char ch = alphabet[(seed >> 12) % (sizeof alphabet - 1)];
+			if (op == 0)
+				buf[at] = ch;
+			else if (op == 1 && len > 1) {
+				memmove(buf + at, buf + at + 1, len - at - 1);
+				len--;
+			} else if (len + 1 < sizeof buf) {
+				memmove(buf + at + 1, buf + at, len - at);
+				buf[at] = ch;
+				len++;
+			}
+		}
+		film_cal_t *c = NULL;
+		if (film_cal_parse(buf, len, "f.cal", &c, err, sizeof err) == 0) {
+			accepted++;
+			for (int ch = 0; ch < 3; ch++)
+				for (int v = 0; v <= 16; v++) {
+					double y = film_cal_apply(c, ch, v / 16.0);
+					if (!(y >= 0 && y <= 1))
+						bad_msgs++;
+				}
+			film_cal_free(c);
+		} else {
+			refused++;
+			if (strncmp(err, "f.cal:", 6) || strchr(err, '\n'))
+				bad_msgs++;
+		}
+	}
+	CHECK(bad_msgs == 0 && accepted > 0 && refused > 0, "3000 mutated files: %u curves in [0, 1], %u refused "
+		"with one 'f.cal:LINE:COL:' line each", accepted, refused);
+}
+
 static void test_presets(void)
 {
 	const film_preset_t *p = film_preset_find("slide4k");
@@ -271,6 +320,7 @@ int main(void)
 	test_cineon_header();
 	test_pack();
 	test_cal();
+	test_cal_fuzz();
 	test_presets();
 	return UNIT_DONE();
 }
