@@ -31,9 +31,10 @@ bench_film() {
 	if ! have_bin locus-film || ! have_bin locus-raster || ! have_bin locus-render; then
 		skip film-plate "$BIN/locus-film, locus-raster or locus-render not built yet"; return
 	fi
-	# the real ImageMagick, not a wrapper script on the PATH in front of it
-	FILM_IM=/usr/bin/convert
-	[ -x "$FILM_IM" ] || FILM_IM=$(command -v convert) || { fail film-plate "ImageMagick convert missing (Debian imagemagick)"; return; }
+	# ImageMagick's own binary (Debian's convert-im6.q16), not a wrapper script that may stand
+	# in front of `convert` on the PATH and add its start-up to the anchor's time
+	FILM_IM=$(command -v convert-im6.q16 || command -v convert) ||
+		{ fail film-plate "ImageMagick convert missing (Debian imagemagick)"; return; }
 	# the ray-traced gallery plate (docs/gallery/default.png) and workload a of the plot group
 	if ! "$BIN/locus-render" fixtures/scenes/default.scene -o "$W/film-plate.meta" 2> "$W/film.log"; then
 		fail film-plate "locus-render: $(tail -1 "$W/film.log")"; return
