@@ -70,6 +70,8 @@ typedef struct {
 	scan_path_t pieces;              /* raster, mapped: dash pieces */
 	devvec_t vec;                    /* vector devices: scratch for what the framework supplies */
 	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
+	scan_ctx_t *sctx;                /* mapped, non-square pixels: stroke pieces */
+	scan_path_t iso, outline;        /* and their scratch paths */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -230,6 +232,15 @@ static int paint_path(play_t *p, int kind, int text)
 			path = &p->pieces;
 			st.dash = NULL;
 			st.ndash = 0;
+		}
+		if (p->mapped && kind != META_FILL && p->map.sx != p->map.sy && st.width > 1000) {
+			/* wide lines on non-square pixels: pieces built where the model is isotropic */
+			if (!p->sctx && !(p->sctx = scan_ctx_new()))
+				return nomem(p);
+			scan_style_t ms = st;
+			ms.width = p->st.width;   /* the model width: the pieces are scaled by sy */
+			rc = devres_stroke_aniso(&p->map, p->rr, p->sctx, path, &ms, p->st.colour, &p->iso, &p->outline);
+			return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
 		}
 		if (p->mapped)
 			devres_path(&p->map, path);
@@ -502,6 +513,9 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	scan_path_free(&p.pieces);
 	devvec_free(&p.vec);
 	devaa_free(p.aa);
+	scan_ctx_free(p.sctx);
+	scan_path_free(&p.iso);
+	scan_path_free(&p.outline);
 	d->options = given;
 	d->page = NULL;
 	free(p.elems);

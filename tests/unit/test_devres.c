@@ -179,6 +179,24 @@ static void test_thin_lines(void)
 	free(d.pix);
 }
 
+static void test_wide_aspect(void)
+{
+	/* 13h: a 10-pixel model line is 10 * sy = 6.7 rows thick lying down and 10 * sx = 8 columns
+	 * standing up, both 6.7 device pixel heights on the screen */
+	set(320, 200, 5.0 / 6.0, DEV_FIT_ASPECT);
+	int rc, x0, x1, y0, y1;
+	cap_t c = play("LOCUS-META 1\npage 400 300\nwidth 10\ncolour #ff0000\nstroke\nmove 20 150\ndraw 180 150\nend\n"
+		"colour #0000ff\nstroke\nmove 300 20\ndraw 300 280\nend\nend-page\n", 0, &rc);
+	dump(&c, "wide");
+	extents(&c, 0xff0000, &x0, &x1, &y0, &y1);
+	int rows = y1 - y0 + 1;
+	extents(&c, 0x0000ff, &x0, &x1, &y0, &y1);
+	int cols = x1 - x0 + 1;
+	CHECK(rc == 0 && rows >= 6 && rows <= 7 && cols == 8, "13h: a wide line is %d rows lying down and %d columns standing up "
+		"(6.7 and 8: as thick on the screen)", rows, cols);
+	free(c.pix);
+}
+
 static void test_dash_scaled(void)
 {
 	/* dashes are measured along the model path: at 2x, dash 10 10 is 20 device pixels on */
@@ -247,7 +265,7 @@ static void test_bars(void)
 	extents(&c, cfg_box, &x0, &x1, &y0, &y1);
 	CHECK(rc == 0 && x1 < 0, "stretch: no letterbox pixel");
 	CHECK(px(&c, 97, 10) == 0xff0000 && px(&c, 102, 10) == 0xff0000 && px(&c, 95, 10) == 0x00ff00,
-		"stretch: the vertical line is wider than the horizontal one is tall (width by the geometric mean)");
+		"stretch: the vertical line is 8 columns, the horizontal 4 rows (lines stretch with the page)");
 	free(c.pix);
 }
 
@@ -468,6 +486,7 @@ int main(void)
 	test_options();
 	test_aspect_circle();
 	test_dash_scaled();
+	test_wide_aspect();
 	test_thin_lines();
 	test_bars();
 	test_images();
