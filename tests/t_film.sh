@@ -52,6 +52,8 @@ gold multipage.film.dpx fixtures/meta/multipage.meta
 same_file "locus-play -d film -O format=cineon: the Cineon golden" "$T/p.cin" $FD/f-test.film.cin
 "$F" $S -f dpx16 < fixtures/meta/f-test.meta > "$T/s.dpx" 2>/dev/null
 same_file "stdin to stdout, -f dpx16" "$T/s.dpx" $FD/f-test.film.dpx16.dpx
+"$BIN/locus-meta" convert fixtures/meta/f-test.meta -o "$T/f.lmb" && "$F" $S "$T/f.lmb" -o "$T/b.dpx" 2>/dev/null
+same_file "binary meta input: the same frame" "$T/b.dpx" $FD/f-test.film.dpx
 "$F" $S -O format=dpx16 fixtures/meta/f-test.meta -o "$T/o.dpx" 2>/dev/null
 same_file "-O format=dpx16 wins over the .dpx suffix" "$T/o.dpx" $FD/f-test.film.dpx16.dpx
 "$BIN/locus-play" -d film -O size=66x44 fixtures/meta/f-test.meta -o "$T/p.cin" 2>/dev/null
