@@ -9,7 +9,7 @@
 #include "hatch.h"
 #include "hpgl.h"
 
-enum { FILL_HATCH, FILL_NATIVE, FILL_NONE };
+enum { FILL_HATCH, FILL_NATIVE, FILL_NONE, FILL_OUTLINE };
 
 /* A label kept for the end of the page (text=label). */
 typedef struct {
@@ -33,7 +33,7 @@ typedef struct {
 	hpgl_place_t place;
 	int optimise;
 	popt_opts_t popt;
-	int fill, outline, text_label, raster_skip, passes, dash_split;
+	int fill, outline, text_label, raster_skip, passes, dash_split, background;
 	double hatch_mm, hatch_angle;
 	double knife, overcut;
 	hpgl_emit_t *em;
@@ -52,7 +52,7 @@ typedef struct {
 	popt_pt_t *ipts;
 	size_t capipts;
 	size_t cur_pen;             /* the pen the current primitive goes to */
-	int warned;
+	int warned, warned_bg;
 	unsigned page_w, page_h;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
@@ -101,12 +101,13 @@ static const dev_option_t hpgl_options[] = {
 	{ "merge", "tolerance in mm for joining path ends, 0 = off (default 0.05)" },
 	{ "simplify", "tolerance in mm, 0 = only repeated points (default 0)" },
 	{ "budget", "2-opt time budget in seconds (default 0.2)" },
-	{ "fill", "hatch|native|none (native: HP-GL/2 FP; default hatch)" },
+	{ "fill", "hatch|native|none|outline (native: HP-GL/2 FP; default hatch, outline on cutters)" },
 	{ "hatch", "hatch spacing in mm (default: the pen width)" },
 	{ "hatch-angle", "degrees (default 45)" },
 	{ "outline", "yes|no: draw the outline of hatched fills (default yes)" },
 	{ "text", "strokes|label (default strokes)" },
 	{ "raster", "hatch|skip (default hatch)" },
+	{ "background", "skip|hatch: a non-white clear (page background) (default skip, with a warning)" },
 	{ "wide", "passes|single: lines wider than the pen as parallel passes (default passes)" },
 	{ "dash", "split|solid (default split)" },
 	{ "knife", "cutter blade offset in mm (default: the profile's)" },
@@ -162,17 +163,19 @@ static int h_open(dev_device_t *d)
 	static const char *const mirrors[] = { "none", "x", "y", NULL };
 	static const char *const fits[] = { "no", "auto", "yes", NULL };
 	static const char *const yesno[] = { "no", "yes", NULL };
-	static const char *const fills[] = { "hatch", "native", "none", NULL };
+	static const char *const fills[] = { "hatch", "native", "none", "outline", NULL };
 	static const char *const texts[] = { "strokes", "label", NULL };
 	static const char *const rasters[] = { "hatch", "skip", NULL };
 	static const char *const wides[] = { "single", "passes", NULL };
 	static const char *const dashes[] = { "solid", "split", NULL };
+	static const char *const bgs[] = { "skip", "hatch", NULL };
 	int rot = 0, opt = 1;
 	double merge = 0.05, simp = 0, budget = 0.2;
 	h->outline = 1;
-	h->passes = 1;
+	h->passes = !h->prof.cutter;   /* a knife cuts the centre line of a wide line */
 	h->dash_split = 1;
 	h->hatch_angle = 45;
+	h->fill = h->prof.cutter ? FILL_OUTLINE : FILL_HATCH;   /* a knife cuts outlines, never hatches */
 	h->knife = h->prof.knife_offset;
 	h->overcut = h->prof.overcut;
 	int rc = 0;
@@ -186,7 +189,7 @@ static int h_open(dev_device_t *d)
 			(rc = opt_word(d, "outline", yesno, &h->outline)) || (rc = opt_word(d, "text", texts, &h->text_label)) ||
 			(rc = opt_word(d, "raster", rasters, &h->raster_skip)) || (rc = opt_word(d, "wide", wides, &h->passes)) ||
 			(rc = opt_word(d, "dash", dashes, &h->dash_split)) || (rc = opt_num(d, "knife", 0, 10, &h->knife)) ||
-			(rc = opt_num(d, "overcut", 0, 100, &h->overcut)))
+			(rc = opt_num(d, "overcut", 0, 100, &h->overcut)) || (rc = opt_word(d, "background", bgs, &h->background)))
 		return rc;
 	if (!h->prof.has_paper[h->place.paper])
 		return dev_fail(d, DEV_EUSAGE, "profile %s has no paper %s", h->prof.name, hpgl_paper_name(h->place.paper));
@@ -254,14 +257,14 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	int k = (int)ceil(line_width_pu / pen);
 	if (k > 64)
 		k = 64;
-	hpgl_dpt_t *off = malloc(n * sizeof *off);
+	hpgl_dpt_t *off = malloc(2 * n * sizeof *off);
 	if (!off)
 		return -1;
 	int rc = 0;
 	for (int i = 0; i < k && !rc; i++) {
 		double dist = (line_width_pu - pen) * (i / (double)(k - 1) - 0.5);
-		hpgl_offset_poly(pts, n, closed, dist, off);
-		rc = hpgl_clip_poly(off, n, closed, h->map.clip, add_piece, d);
+		size_t m = hpgl_offset_poly(pts, n, closed, dist, off);
+		rc = hpgl_clip_poly(off, m, closed, h->map.clip, add_piece, d);
 	}
 	free(off);
 	return rc;
@@ -282,15 +285,10 @@ static int add_model(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	return rc;
 }
 
-/* The carousel pen for a colour, or -1 when the paper is nearer than any pen (white). */
+/* The carousel pen for a colour, or -1 for paper (hpgl_pens_pick). */
 static long pen_for(hp_t *h, meta_rgb_t rgb)
 {
-	size_t k = hpgl_pens_nearest(&h->pens, rgb);
-	double lab[3], *q = h->pens.pen[k].lab;
-	hpgl_rgb_to_lab(rgb, lab);
-	double dp = (lab[0] - q[0]) * (lab[0] - q[0]) + (lab[1] - q[1]) * (lab[1] - q[1]) + (lab[2] - q[2]) * (lab[2] - q[2]);
-	double dw = (lab[0] - 100) * (lab[0] - 100) + lab[1] * lab[1] + lab[2] * lab[2];
-	return dw < dp ? -1 : (long)k;
+	return hpgl_pens_pick(&h->pens, rgb);
 }
 
 static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t *st, int solid)
@@ -300,7 +298,8 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 	if (pen < 0)
 		return 0;
 	h->cur_pen = (size_t)pen;
-	line_width_pu = (st->width < 1000 ? 1000 : st->width) / 1000.0 * h->map.pu_per_px;
+	/* width 1 (the default, and the minimum of spec 4) is a hairline: one pass of the pen */
+	line_width_pu = st->width <= 1000 ? 0 : st->width / 1000.0 * h->map.pu_per_px;
 	double pat[2 * META_MAX_DASH];
 	size_t npat = solid || !h->dash_split ? 0 : st->ndash;
 	for (size_t k = 0; k < npat; k++)
@@ -380,9 +379,17 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 				h->fpts[h->nfpts++] = (popt_pt_t){ (int32_t)lround(xy[2 * i]), (int32_t)lround(xy[2 * i + 1]) };
 		}
 	} else if (nc) {
-		double sp = (h->hatch_mm > 0 ? h->hatch_mm : h->pens.pen[pen].width_mm) * HPGL_PU_PER_MM;
-		rc = hatch_polygon(xy, starts, nc, rule == META_RULE_EVEN_ODD, h->hatch_angle, sp, 0, hatch_seg, d);
-		for (size_t k = 0; k < nc && !rc && h->outline; k++) {
+		/* spacing: the pen width, opened up for colours lighter than the pen's ink */
+		double lab[3], sp = h->hatch_mm * HPGL_PU_PER_MM;
+		if (!(sp > 0)) {
+			hpgl_rgb_to_lab(rgb, lab);
+			double lp = h->pens.pen[pen].lab[0], dk = lp < 99 ? (100 - lab[0]) / (100 - lp) : 1;
+			dk = dk > 1 ? 1 : dk < 0.1 ? 0.1 : dk;
+			sp = h->pens.pen[pen].width_mm * HPGL_PU_PER_MM / dk;
+		}
+		if (h->fill == FILL_HATCH)
+			rc = hatch_polygon(xy, starts, nc, rule == META_RULE_EVEN_ODD, h->hatch_angle, sp, 0, hatch_seg, d);
+		for (size_t k = 0; k < nc && !rc && (h->outline || h->fill == FILL_OUTLINE); k++) {
 			size_t m = starts[k + 1] - starts[k];
 			if (need_tmp(h, m)) {
 				rc = -1;
@@ -437,6 +444,21 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	return 0;
 }
 
+/* One warning of a kind per run, through the reporter. */
+static void warn(hp_t *h, int *flag, const char *msg)
+{
+	(void)h;
+	if (!*flag && reporter) {
+		hpgl_report_t *r = calloc(1, sizeof *r);
+		if (r) {
+			r->warning = msg;
+			reporter(reporter_user, r);
+			free(r);
+		}
+	}
+	*flag = 1;
+}
+
 static int raster_seg(void *user, double x0, double y0, double x1, double y1)
 {
 	hpgl_dpt_t s[2];
@@ -451,22 +473,17 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 {
 	hp_t *h = d->priv;
 	if (h->raster_skip) {
-		if (!h->warned && reporter) {
-			hpgl_report_t r;
-			memset(&r, 0, sizeof r);
-			r.warning = "raster content (spans, images) skipped (raster=skip)";
-			reporter(reporter_user, &r);
-		}
-		h->warned = 1;
+		warn(h, &h->warned, "raster content (spans, images) skipped (raster=skip)");
 		return 0;
 	}
-	long pen = pen_for(h, rgb);
-	if (pen < 0)
-		return 0;
-	h->cur_pen = (size_t)pen;
+	/* the nearest pen, with ink in proportion to the darkness (nearly white: none) */
+	size_t pen = hpgl_pens_nearest(&h->pens, rgb);
 	double lab[3];
 	hpgl_rgb_to_lab(rgb, lab);
 	double dark = 1 - lab[0] / 100;
+	if (dark < 1.0 / 16)
+		return 0;
+	h->cur_pen = pen;
 	double px = h->map.pu_per_px, pw = h->pens.pen[pen].width_mm * HPGL_PU_PER_MM;
 	unsigned lines = (unsigned)lround(px / pw), step = 1;
 	if (lines == 0) {
@@ -491,6 +508,10 @@ static int h_clear(dev_device_t *d, meta_rgb_t rgb)
 	hp_t *h = d->priv;
 	if (pen_for(h, rgb) < 0)
 		return 0;
+	if (!h->background) {
+		warn(h, &h->warned_bg, "a non-white page background (clear) is not drawn (background=hatch draws it)");
+		return 0;
+	}
 	scan_path_t r = { 0 };
 	int64_t W = (int64_t)h->page_w * 1000, H = (int64_t)h->page_h * 1000;
 	int rc = scan_path_move(&r, 0, 0) || scan_path_draw(&r, W, 0) || scan_path_draw(&r, W, H) ||
@@ -641,6 +662,7 @@ static int h_end(dev_device_t *d, const dev_page_t *pg)
 	r->page = pg->index;
 	r->profile = h->prof.name;
 	r->optimised = h->optimise;
+	memcpy(r->box, h->map.clip, sizeof r->box);
 	/* the pen starts at the lower-left corner of the hard-clip limits (after IN) */
 	popt_pt_t at = { h->prof.clip[h->place.paper][0], h->prof.clip[h->place.paper][1] };
 	int rc = 0;

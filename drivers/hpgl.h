@@ -83,6 +83,9 @@ int hpgl_pens_parse(const char *spec, double default_width_mm, hpgl_pens_t *pens
 		char *err, size_t errlen);
 /* The carousel index (into pens->pen) nearest to rgb in CIELAB (CIE76 distance). */
 size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb);
+/* The pen a colour is drawn with: the nearest pen, or -1 when the colour is paper (light,
+ * L* >= 80, and nearer to white than to any pen). */
+long hpgl_pens_pick(const hpgl_pens_t *pens, uint32_t rgb);
 /* CIELAB (D65, sRGB) of a colour. */
 void hpgl_rgb_to_lab(uint32_t rgb, double lab[3]);
 
@@ -130,9 +133,9 @@ int hpgl_clip_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double r[4
  * boundary at a vertex starts the next segment), pattern in the same units as the points. */
 int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pat, size_t npat,
 		hpgl_poly_fn fn, void *user);
-/* Offset a polyline sideways by dist (left positive), mitred joins capped at 4 x dist. Writes
- * n points to out. */
-void hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out);
+/* Offset a polyline sideways by dist (left positive): mitred joins (at most 4 x dist), bevelled
+ * on the outer side of turns sharper than 120 degrees. Writes up to 2n points to out and returns the count. */
+size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out);
 /* Drag-knife compensation: the tool path that makes a blade trailing offset behind the tool
  * cut the polyline: each segment is shifted forward along its direction by offset, and each
  * corner is swung as an arc of radius offset about the corner; a closed path is cut on for
@@ -210,6 +213,7 @@ typedef struct {
 	double plot_s;                  /* estimated plot time, pen changes included */
 	uint64_t bytes;                 /* HP-GL bytes of the page */
 	int optimised;
+	double box[4];                  /* the page's image on the paper x0 y0 x1 y1, plotter units */
 	const char *profile;
 	const char *warning;            /* NULL, or one line (e.g. raster content skipped) */
 } hpgl_report_t;

@@ -147,13 +147,13 @@ int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pa
 	return rc;
 }
 
-void hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out)
+size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out)
 {
+	size_t m = 0;
 	for (size_t i = 0; i < n; i++) {
-		/* normals of the segment before and after vertex i */
-		int has_in = closed || i > 0, has_out = closed || i + 1 < n;
-		double nx = 0, ny = 0, ax = 0, ay = 0, bx = 0, by = 0;
-		if (has_in) {
+		/* unit left normals of the segments before (a) and after (b) vertex i */
+		double ax = 0, ay = 0, bx = 0, by = 0;
+		if (closed || i > 0) {
 			hpgl_dpt_t p = pts[(i + n - 1) % n], q = pts[i];
 			double L = hypot(q.x - p.x, q.y - p.y);
 			if (L > 0) {
@@ -161,7 +161,7 @@ void hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, 
 				ay = (q.x - p.x) / L;
 			}
 		}
-		if (has_out) {
+		if (closed || i + 1 < n) {
 			hpgl_dpt_t p = pts[i], q = pts[(i + 1) % n];
 			double L = hypot(q.x - p.x, q.y - p.y);
 			if (L > 0) {
@@ -169,18 +169,20 @@ void hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, 
 				by = (q.x - p.x) / L;
 			}
 		}
-		if ((ax || ay) && (bx || by)) {
-			double c = ax * bx + ay * by, s = 1 + c;
-			if (s < 0.125)
-				s = 0.125;   /* miter at most 4 x dist */
-			nx = (ax + bx) / s;
-			ny = (ay + by) / s;
+		int both = (ax || ay) && (bx || by);
+		double c = ax * bx + ay * by;
+		double z = ax * by - ay * bx;   /* > 0: a left turn, whose outer side is the right */
+		if (both && c < -0.5 && z * dist <= 0) {   /* sharp, outer side (or a reversal): bevel */
+			out[m++] = (hpgl_dpt_t){ pts[i].x + dist * ax, pts[i].y + dist * ay };
+			out[m++] = (hpgl_dpt_t){ pts[i].x + dist * bx, pts[i].y + dist * by };
+		} else if (both) {   /* the offset lines' intersection, at most 4 x dist away */
+			double k = 1 + c < 0.125 ? 0.125 : 1 + c;
+			out[m++] = (hpgl_dpt_t){ pts[i].x + dist * (ax + bx) / k, pts[i].y + dist * (ay + by) / k };
 		} else {
-			nx = ax + bx;
-			ny = ay + by;
+			out[m++] = (hpgl_dpt_t){ pts[i].x + dist * (ax + bx), pts[i].y + dist * (ay + by) };
 		}
-		out[i] = (hpgl_dpt_t){ pts[i].x + dist * nx, pts[i].y + dist * ny };
 	}
+	return m;
 }
 
 /* Append an arc about c of radius r from direction a0 to a1 (radians), the shorter way. */

@@ -330,7 +330,8 @@ int hpgl_profile_load(const char *path, hpgl_profile_t *p, char *err, size_t err
 /* ---- pens and colour ---- */
 
 static const struct { const char *name; uint32_t rgb; } colour_names[] = {
-	{ "black", 0x000000 }, { "red", 0xff0000 }, { "green", 0x00a000 }, { "blue", 0x0000ff },
+	/* pen inks rather than screen primaries, so that ordinary colours find the pen a user expects */
+	{ "black", 0x000000 }, { "red", 0xd02020 }, { "green", 0x20a040 }, { "blue", 0x2050c0 },
 	{ "cyan", 0x00ffff }, { "magenta", 0xff00ff }, { "yellow", 0xffff00 }, { "brown", 0x8b4513 },
 	{ "orange", 0xff8000 }, { "violet", 0x8000ff }, { "purple", 0x800080 }, { "grey", 0x808080 },
 	{ "gray", 0x808080 }, { "white", 0xffffff },
@@ -466,6 +467,17 @@ size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb)
 		}
 	}
 	return bi;
+}
+
+long hpgl_pens_pick(const hpgl_pens_t *pens, uint32_t rgb)
+{
+	size_t k = hpgl_pens_nearest(pens, rgb);
+	double lab[3];
+	const double *q = pens->pen[k].lab;
+	hpgl_rgb_to_lab(rgb, lab);
+	double dp = (lab[0] - q[0]) * (lab[0] - q[0]) + (lab[1] - q[1]) * (lab[1] - q[1]) + (lab[2] - q[2]) * (lab[2] - q[2]);
+	double dw = (lab[0] - 100) * (lab[0] - 100) + lab[1] * lab[1] + lab[2] * lab[2];
+	return lab[0] >= 80 && dw < dp ? -1 : (long)k;
 }
 
 /* ---- page mapping ---- */

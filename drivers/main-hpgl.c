@@ -22,7 +22,7 @@ static const char usage[] =
 	"  --scale F            factor on the page's physical size (default 1)\n"
 	"  --pens SPEC|FILE     carousel, e.g. 1=black,2=red:0.3mm,3=#008000 (or a file of such lines)\n"
 	"  --no-optimize        keep the file's order (no merging, reordering or 2-opt)\n"
-	"  --fill hatch|native|none   --text strokes|label   --raster hatch|skip\n"
+	"  --fill hatch|native|outline|none  --text strokes|label   --raster hatch|skip\n"
 	"  --estimate           print the expected plot time per pen and in total (no OUT: no HP-GL)\n"
 	"  --stats, -v          print pen-up travel before/after, pen lifts and pen changes to stderr\n"
 	"  -O KEY=VALUE,...     device options (locus-play -d hpgl -O ...): profile paper rotate mirror\n"
@@ -158,11 +158,11 @@ static void report(void *user, const hpgl_report_t *r)
 	}
 	if (p->stats) {
 		fprintf(stderr, "locus-hpgl: page %u (%s): pen-up travel %.1f mm -> %.1f mm (greedy %.1f mm, "
-			"%.1fx less), %llu pen lifts, %llu pen changes, optimiser %.3f s, %llu bytes\n",
+			"%.1fx less), %llu pen lifts, %llu pen changes, optimiser %.3f s, %llu bytes, box %.0f,%.0f,%.0f,%.0f\n",
 			r->page + 1, r->profile, r->travel_before_mm, r->travel_after_mm, r->travel_greedy_mm,
 			r->travel_after_mm > 0 ? r->travel_before_mm / r->travel_after_mm : 1.0,
 			(unsigned long long)r->pen_lifts, (unsigned long long)r->pen_changes, r->optimise_s,
-			(unsigned long long)r->bytes);
+			(unsigned long long)r->bytes, r->box[0], r->box[1], r->box[2], r->box[3]);
 		for (size_t k = 0; k < r->npens; k++)
 			fprintf(stderr, "locus-hpgl:   pen %d: %zu paths -> %zu, travel %.1f mm -> %.1f mm\n",
 				r->pen[k].slot, r->pen[k].paths_in, r->pen[k].paths_out, r->pen[k].travel_before_mm,

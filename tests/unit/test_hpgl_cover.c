@@ -104,12 +104,7 @@ static int rec_begin(dev_device_t *d, const dev_page_t *pg)
 static int rec_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
 	rec_t *r = d->user;
-	/* white (nearer to the paper than to any pen) is not drawn */
-	double lab[3];
-	hpgl_rgb_to_lab(st->colour, lab);
-	const double *q = r->pens.pen[hpgl_pens_nearest(&r->pens, st->colour)].lab;
-	double dp = pow(lab[0] - q[0], 2) + pow(lab[1] - q[1], 2) + pow(lab[2] - q[2], 2);
-	if (pow(lab[0] - 100, 2) + lab[1] * lab[1] + lab[2] * lab[2] < dp)
+	if (hpgl_pens_pick(&r->pens, st->colour) < 0)   /* paper: not drawn */
 		return 0;
 	double pat[2 * META_MAX_DASH];
 	for (size_t k = 0; k < st->ndash; k++)
