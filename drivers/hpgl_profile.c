@@ -154,6 +154,17 @@ static int set_key(hpgl_profile_t *p, const char *k, const char *v, const where_
 		if (q < 0)
 			return perr(w, "unknown paper '%s' (a4, a3, letter, b)", v);
 		p->paper = q;
+	} else if (!strcmp(k, "papers")) {   /* the papers it takes, e.g. "a4 a3" */
+		int has[HPGL_NPAPER] = { 0 };
+		char list[256];
+		snprintf(list, sizeof list, "%s", v);
+		for (char *t = strtok(list, " \t,"); t; t = strtok(NULL, " \t,")) {
+			int q = hpgl_paper_find(t);
+			if (q < 0)
+				return perr(w, "unknown paper '%s' (a4, a3, letter, b)", t);
+			has[q] = 1;
+		}
+		memcpy(p->has_paper, has, sizeof has);
 	} else if (!strncmp(k, "clip.", 5)) {
 		int q = hpgl_paper_find(k + 5);
 		long c[4];
@@ -212,7 +223,7 @@ static int set_key(hpgl_profile_t *p, const char *k, const char *v, const where_
 			return 0;
 		}
 		return perr(w, "unknown key '%s' (base, name, description, dialect, cutter, newline, paper, "
-			"clip.PAPER, pens, pen-count, max-pairs, buffer, speed-down, speed-up, accel, lift-time, "
+			"papers, clip.PAPER, pens, pen-count, max-pairs, buffer, speed-down, speed-up, accel, lift-time, "
 			"change-time, knife-offset, overcut)", k);
 	}
 	return 0;
