@@ -161,6 +161,8 @@ static int grid_build(grid_t *g, const popt_set_t *s, const size_t *ids, size_t 
 		if (q.x > x1) x1 = q.x;
 		if (q.y > y1) y1 = q.y;
 	}
+	if (n == 0)
+		x0 = y0 = x1 = y1 = 0;
 	double w = (double)(x1 - x0) + 1, h = (double)(y1 - y0) + 1;
 	double cells = n / per + 1;
 	g->cell = sqrt(w * h / cells);
