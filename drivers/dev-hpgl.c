@@ -52,6 +52,7 @@ typedef struct {
 	popt_pt_t *ipts;
 	size_t capipts;
 	size_t cur_pen;             /* the pen the current primitive goes to */
+	size_t total_paths;         /* paths of the page, all pens */
 	int warned, warned_bg;
 	unsigned page_w, page_h;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
@@ -601,7 +602,10 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 	}
 	popt_stats_t st;
 	if (h->optimise) {
-		if (popt_optimise(s, *at, &h->popt, &st))
+		/* the 2-opt budget is the page's: each pen gets its share by its number of paths */
+		popt_opts_t o = h->popt;
+		o.budget_s = h->total_paths ? h->popt.budget_s * (double)s->npaths / (double)h->total_paths : 0;
+		if (popt_optimise(s, *at, &o, &st))
 			return nomem(d);
 	} else {
 		if (popt_keep_order(s))
@@ -666,6 +670,9 @@ static int h_end(dev_device_t *d, const dev_page_t *pg)
 	/* the pen starts at the lower-left corner of the hard-clip limits (after IN) */
 	popt_pt_t at = { h->prof.clip[h->place.paper][0], h->prof.clip[h->place.paper][1] };
 	int rc = 0;
+	h->total_paths = 0;
+	for (size_t k = 0; k < h->pens.n; k++)
+		h->total_paths += h->sets[k].npaths;
 	if (h->prof.v_down > 0 && !h->prof.cutter)
 		rc = hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down) ? emit_fail(d) : 0;
 	for (size_t k = 0; k < h->pens.n && !rc; k++)

@@ -138,9 +138,21 @@ static size_t list_len(const popt_pt_t *pts, size_t a, size_t b, int rel, popt_p
 	return len;
 }
 
+/* Decimal digits of v (no sprintf: it was a third of the run time on large pages). */
 static int put_num(char *s, int64_t v)
 {
-	return sprintf(s, "%lld", (long long)v);
+	char t[24];
+	int n = 0, k = 0;
+	uint64_t u = v < 0 ? (uint64_t)0 - (uint64_t)v : (uint64_t)v;
+	do {
+		t[n++] = (char)('0' + u % 10);
+		u /= 10;
+	} while (u);
+	if (v < 0)
+		s[k++] = '-';
+	while (n)
+		s[k++] = t[--n];
+	return k;
 }
 
 /* PU to pts[0], then PD along the rest; HP-GL. */
@@ -181,7 +193,9 @@ static int poly_hpgl(hpgl_emit_t *e, const popt_pt_t *pts, size_t n)
 			return -1;
 		e->mode = best_m ? MODE_REL : MODE_ABS;
 	}
-	k = sprintf(s, "PU");
+	s[0] = 'P';
+	s[1] = 'U';
+	k = 2;
 	k += put_num(s + k, best_m ? (int64_t)pts[0].x - here.x : pts[0].x);
 	s[k++] = ',';
 	k += put_num(s + k, best_m ? (int64_t)pts[0].y - here.y : pts[0].y);
@@ -196,9 +210,11 @@ static int poly_hpgl(hpgl_emit_t *e, const popt_pt_t *pts, size_t n)
 	unsigned pairs = 0;
 	for (size_t i = 1; i < n; i++) {
 		k = 0;
-		if (pairs == 0)
-			k = sprintf(s, "PD");
-		else
+		if (pairs == 0) {
+			s[0] = 'P';
+			s[1] = 'D';
+			k = 2;
+		} else
 			s[k++] = ',';
 		k += put_num(s + k, best_d ? (int64_t)pts[i].x - at.x : pts[i].x);
 		s[k++] = ',';

@@ -312,7 +312,8 @@ static int coords(rd_t *r, const char *mn, int pen, int mode)
 	int nv, more;
 	size_t st = r->i;
 	if (pen >= 0) {
-		end_stroke(r);
+		if (!(pen && r->down))   /* PD after PD goes on drawing: the pen stays down */
+			end_stroke(r);
 		r->down = pen;
 	}
 	if (mode >= 0)

@@ -24,20 +24,30 @@ void hpgl_time_add(hpgl_time_t *t, const hpgl_profile_t *prof, double travel_pu,
 	/* pen down: runs between corners sharper than 30 degrees are moved in one go */
 	double run = 0;
 	const double cos30 = cos(M_PI / 6);
+	double dx = 0, dy = 0, l1 = 0;
+	if (n > 1) {
+		dx = (double)pts[1].x - pts[0].x;
+		dy = (double)pts[1].y - pts[0].y;
+		l1 = sqrt(dx * dx + dy * dy);
+	}
 	for (size_t i = 1; i < n; i++) {
-		double dx = (double)pts[i].x - pts[i - 1].x, dy = (double)pts[i].y - pts[i - 1].y;
-		double L = sqrt(dx * dx + dy * dy) / HPGL_PU_PER_MM;
+		double L = l1 / HPGL_PU_PER_MM;
 		run += L;
 		t->down_mm += L;
 		int stop = i + 1 == n;
+		double ex = 0, ey = 0, l2 = 0;
 		if (!stop) {
-			double ex = (double)pts[i + 1].x - pts[i].x, ey = (double)pts[i + 1].y - pts[i].y;
-			double l1 = sqrt(dx * dx + dy * dy), l2 = sqrt(ex * ex + ey * ey);
-			stop = l1 > 0 && l2 > 0 && (dx * ex + dy * ey) / (l1 * l2) < cos30;
+			ex = (double)pts[i + 1].x - pts[i].x;
+			ey = (double)pts[i + 1].y - pts[i].y;
+			l2 = sqrt(ex * ex + ey * ey);
+			stop = l1 > 0 && l2 > 0 && dx * ex + dy * ey < cos30 * l1 * l2;
 		}
 		if (stop) {
 			t->down_s += hpgl_move_time(run, prof->v_down, prof->accel);
 			run = 0;
 		}
+		dx = ex;
+		dy = ey;
+		l1 = l2;
 	}
 }

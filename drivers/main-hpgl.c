@@ -1,10 +1,12 @@
 /* main-hpgl.c: locus-hpgl, a meta file to HP-GL or HP-GL/2 for pen plotters and cutters. */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
 #include "hpgl.h"
+#include "hpgl_read.h"
 #include "run.h"
 
 extern const dev_ops_t dev_hpgl_ops;
@@ -25,13 +27,16 @@ static const char usage[] =
 	"  --fill hatch|native|outline|none  --text strokes|label   --raster hatch|skip\n"
 	"  --estimate           print the expected plot time per pen and in total (no OUT: no HP-GL)\n"
 	"  --stats, -v          print pen-up travel before/after, pen lifts and pen changes to stderr\n"
+	"  --analyse            IN is HP-GL: print its pen-down length, pen-up travel, lifts, pen changes\n"
+	"                       and the profile's plot-time estimate (hpgl_read); --length MM first scales\n"
+	"                       it to that pen-down length (to compare files of other programs)\n"
 	"  -O KEY=VALUE,...     device options (locus-play -d hpgl -O ...): profile paper rotate mirror\n"
 	"                       fit scale pens optimize merge simplify budget fill hatch hatch-angle\n"
 	"                       outline text raster wide dash knife overcut (docs/hpgl.md)\n"
 	"  --help, --version\n";
 
 enum { O_PROFILE = 0x2000, O_LIST, O_PAPER, O_ROTATE, O_MIRROR, O_FIT, O_SCALE, O_PENS, O_NOOPT,
-	O_FILL, O_TEXT, O_RASTER, O_ESTIMATE, O_STATS };
+	O_FILL, O_TEXT, O_RASTER, O_ESTIMATE, O_STATS, O_ANALYSE, O_LENGTH };
 
 static const struct option longopts[] = {
 	{ "profile", required_argument, NULL, O_PROFILE },
@@ -48,11 +53,15 @@ static const struct option longopts[] = {
 	{ "raster", required_argument, NULL, O_RASTER },
 	{ "estimate", no_argument, NULL, O_ESTIMATE },
 	{ "stats", no_argument, NULL, O_STATS },
+	{ "analyse", no_argument, NULL, O_ANALYSE },
+	{ "length", required_argument, NULL, O_LENGTH },
 	{ 0, 0, 0, 0 }
 };
 
 typedef struct {
-	int estimate, stats;
+	int estimate, stats, analyse;
+	double length;              /* --length MM, 0 = as is */
+	char profile[1024];
 	FILE *est;                  /* where the estimate goes */
 } prog_t;
 
@@ -116,7 +125,17 @@ static int on_option(cli_t *c, int key, const char *arg)
 	prog_t *p = c->user;
 	static char pens[1024];
 	switch (key) {
-	case O_PROFILE: return cli_set_option(c, "profile", arg) ? 64 : CLI_RUN;
+	case O_PROFILE:
+		snprintf(p->profile, sizeof p->profile, "%s", arg);
+		return cli_set_option(c, "profile", arg) ? 64 : CLI_RUN;
+	case O_ANALYSE: p->analyse = 1; return CLI_RUN;
+	case O_LENGTH: {
+		char *e;
+		p->length = strtod(arg, &e);
+		if (e == arg || *e || !(p->length > 0))
+			return cli_fail(c, 64, "--length needs a pen-down length in mm, not '%s'", arg);
+		return CLI_RUN;
+	}
 	case O_LIST: list_profiles(); return 0;
 	case O_PAPER: return cli_set_option(c, "paper", arg) ? 64 : CLI_RUN;
 	case O_ROTATE: return cli_set_option(c, "rotate", arg) ? 64 : CLI_RUN;
@@ -183,9 +202,73 @@ static void report(void *user, const hpgl_report_t *r)
 	}
 }
 
+/* --analyse: what a plotter would do with an HP-GL file, by the reader and the time model. */
+static int analyse(const cli_t *c, const prog_t *p)
+{
+	hpgl_profile_t prof;
+	char err[512];
+	const char *name = p->profile[0] ? p->profile : "7475a";
+	const hpgl_profile_t *bp = hpgl_profile_find(name);
+	if (bp)
+		prof = *bp;
+	else if (hpgl_profile_load(name, &prof, err, sizeof err))
+		return cli_fail(c, 64, "%s", err);
+	const char *in = c->in[0];
+	FILE *f = strcmp(in, "-") ? fopen(in, "rb") : stdin;
+	if (!f)
+		return cli_fail(c, 66, "%s: %s", in, strerror(errno));
+	hpgl_doc_t doc;
+	int rc = hpgl_read_stream(f, strcmp(in, "-") ? in : "<stdin>", &doc, err, sizeof err);
+	if (f != stdin)
+		fclose(f);
+	if (rc) {
+		hpgl_doc_free(&doc);
+		fprintf(stderr, "%s\n", err);
+		return 65;
+	}
+	double k = 1, down = hpgl_doc_length(&doc, -1);
+	if (p->length > 0 && down > 0)
+		k = p->length * HPGL_PU_PER_MM / down;
+	hpgl_time_t t;
+	memset(&t, 0, sizeof t);
+	popt_pt_t *q = NULL, at = { prof.clip[prof.paper][0], prof.clip[prof.paper][1] };
+	size_t cap = 0;
+	unsigned changes = 0;
+	int pen = -1;
+	for (size_t s = 0; s < doc.nstrokes; s++) {
+		const hpgl_rstroke_t *st = &doc.strokes[s];
+		if (st->n > cap) {
+			cap = st->n * 2;
+			popt_pt_t *nq = realloc(q, cap * sizeof *q);
+			if (!nq) {
+				free(q);
+				hpgl_doc_free(&doc);
+				return cli_fail(c, 70, "out of memory");
+			}
+			q = nq;
+		}
+		for (size_t i = 0; i < st->n; i++)
+			q[i] = (popt_pt_t){ (int32_t)lround(doc.pts[st->start + i].x * k), (int32_t)lround(doc.pts[st->start + i].y * k) };
+		double dx = (double)q[0].x - at.x, dy = (double)q[0].y - at.y;
+		hpgl_time_add(&t, &prof, sqrt(dx * dx + dy * dy), q, st->n);
+		at = q[st->n - 1];
+		changes += st->pen != pen;
+		pen = st->pen;
+	}
+	double total = t.down_s + t.up_s + t.lift_s + changes * prof.t_change;
+	printf("analyse %s: %zu commands, %zu strokes, pen-down %.1f mm, pen-up %.1f mm, %llu lifts, %u pen changes, "
+		"estimate %.1f s (%s, scale %.4f)\n", in, doc.ncmds, doc.nstrokes, t.down_mm, t.up_mm,
+		(unsigned long long)t.lifts, changes, total, prof.name, k);
+	free(q);
+	hpgl_doc_free(&doc);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
-	prog_t p = { 0, 0, stderr };
+	prog_t p;
+	memset(&p, 0, sizeof p);
+	p.est = stderr;
 	cli_t c;
 	memset(&c, 0, sizeof c);
 	c.prog = "locus-hpgl";
@@ -197,6 +280,8 @@ int main(int argc, char **argv)
 	int st = cli_parse(&c, argc, argv);
 	if (st != CLI_RUN)
 		return st;
+	if (p.analyse)
+		return analyse(&c, &p);
 	const char *out = c.out;
 	if (!out)
 		out = p.estimate ? NULL : "-";

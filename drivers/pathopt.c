@@ -199,7 +199,7 @@ static int grid_build(grid_t *g, const popt_set_t *s, const size_t *ids, size_t 
 /* The nearest live endpoint to q (used[path] == 0), or SIZE_MAX. Dead entries found on the way
  * are dropped from their cells. */
 static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *used, popt_pt_t q,
-		double *best_d)
+		double maxd, double *best_d)
 {
 	int64_t cx, cy;
 	cell_of(g, q, &cx, &cy);
@@ -207,7 +207,7 @@ static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *
 	double bd = INFINITY;
 	int64_t rmax = g->nx > g->ny ? g->nx : g->ny;
 	for (int64_t r = 0; r <= rmax; r++) {
-		if (best != SIZE_MAX && bd <= (r - 1) * g->cell)
+		if ((best != SIZE_MAX && bd <= (r - 1) * g->cell) || (r - 1) * g->cell > maxd)
 			break;
 		for (int64_t y = cy - r; y <= cy + r; y++) {
 			if (y < 0 || y >= g->ny)
@@ -290,7 +290,7 @@ static int merge_paths(popt_set_t *s, double tol)
 		popt_pt_t head = s->pts[p->start], tail = s->pts[p->start + p->n - 1];
 		for (;;) {
 			double d;
-			size_t e = grid_nearest(&g, s, used, head, &d);
+			size_t e = grid_nearest(&g, s, used, head, tol, &d);
 			if (e == SIZE_MAX || d > tol)
 				break;
 			used[e >> 1] = 1;
@@ -309,7 +309,7 @@ static int merge_paths(popt_set_t *s, double tol)
 			goto done;
 		for (;;) {
 			double d;
-			size_t e = grid_nearest(&g, s, used, tail, &d);
+			size_t e = grid_nearest(&g, s, used, tail, tol, &d);
 			if (e == SIZE_MAX || d > tol)
 				break;
 			used[e >> 1] = 1;
@@ -440,7 +440,7 @@ static int greedy_order(popt_set_t *s, popt_pt_t start)
 	size_t left = n, rebuild_at = n / 4;
 	for (size_t k = 0; k < n; k++) {
 		double d;
-		size_t e = grid_nearest(&g, s, used, at, &d);
+		size_t e = grid_nearest(&g, s, used, at, INFINITY, &d);
 		if (e == SIZE_MAX)
 			goto done;   /* cannot happen: left > 0 */
 		used[e >> 1] = 1;
