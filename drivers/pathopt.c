@@ -118,7 +118,7 @@ typedef struct {
 	double cell;
 	int64_t nx, ny;
 	size_t *head;               /* per cell: first entry index in ent, entries sorted by cell */
-	size_t *ent;                /* endpoint ids: 2 * path + end (0 first, 1 last) */
+	struct ent { popt_pt_t p; size_t id; } *ent;   /* endpoints: id 2 * path + end (0 first, 1 last) */
 	size_t *live;               /* per cell: live entries at the front of its block */
 	size_t nent;
 } grid_t;
@@ -189,8 +189,10 @@ static int grid_build(grid_t *g, const popt_set_t *s, const size_t *ids, size_t 
 	if (!fill)
 		return -1;
 	memcpy(fill, g->head, nc * sizeof *fill);
-	for (size_t k = 0; k < n; k++)
-		g->ent[fill[cell_of(g, end_pt(s, ids[k]), &cx, &cy)]++] = ids[k];
+	for (size_t k = 0; k < n; k++) {
+		popt_pt_t q = end_pt(s, ids[k]);
+		g->ent[fill[cell_of(g, q, &cx, &cy)]++] = (struct ent){ q, ids[k] };
+	}
 	free(fill);
 	g->nent = n;
 	return 0;
@@ -198,7 +200,7 @@ static int grid_build(grid_t *g, const popt_set_t *s, const size_t *ids, size_t 
 
 /* The nearest live endpoint to q (used[path] == 0), or SIZE_MAX. Dead entries found on the way
  * are dropped from their cells. */
-static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *used, popt_pt_t q,
+static size_t grid_nearest(grid_t *g, const unsigned char *used, popt_pt_t q,
 		double maxd, double *best_d)
 {
 	int64_t cx, cy;
@@ -207,7 +209,8 @@ static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *
 	double bd = INFINITY;
 	int64_t rmax = g->nx > g->ny ? g->nx : g->ny;
 	for (int64_t r = 0; r <= rmax; r++) {
-		if ((best != SIZE_MAX && bd <= (r - 1) * g->cell) || (r - 1) * g->cell > maxd)
+		double reach = (r - 1) * g->cell;   /* every point in ring r or beyond is at least this far */
+		if ((best != SIZE_MAX && reach >= 0 && bd <= reach * reach) || reach > maxd)
 			break;
 		for (int64_t y = cy - r; y <= cy + r; y++) {
 			if (y < 0 || y >= g->ny)
@@ -215,16 +218,17 @@ static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *
 			int edge = y == cy - r || y == cy + r;
 			for (int64_t x = cx - r; x <= cx + r; x += edge ? 1 : 2 * r) {
 				if (x >= 0 && x < g->nx) {
-					size_t c = (size_t)(y * g->nx + x), *e = g->ent + g->head[c];
+					size_t c = (size_t)(y * g->nx + x);
+					struct ent *e = g->ent + g->head[c];
 					for (size_t i = 0; i < g->live[c];) {
-						if (used[e[i] >> 1]) {
+						if (used[e[i].id >> 1]) {
 							e[i] = e[--g->live[c]];
 							continue;
 						}
-						double d = dist(q, end_pt(s, e[i]));
-						if (d < bd || (d == bd && e[i] < best)) {
+						double dx = (double)q.x - e[i].p.x, dy = (double)q.y - e[i].p.y, d = dx * dx + dy * dy;
+						if (d < bd || (d == bd && e[i].id < best)) {
 							bd = d;
-							best = e[i];
+							best = e[i].id;
 						}
 						i++;
 					}
@@ -234,7 +238,7 @@ static size_t grid_nearest(grid_t *g, const popt_set_t *s, const unsigned char *
 			}
 		}
 	}
-	*best_d = bd;
+	*best_d = sqrt(bd);
 	return best;
 }
 
@@ -290,7 +294,7 @@ static int merge_paths(popt_set_t *s, double tol)
 		popt_pt_t head = s->pts[p->start], tail = s->pts[p->start + p->n - 1];
 		for (;;) {
 			double d;
-			size_t e = grid_nearest(&g, s, used, head, tol, &d);
+			size_t e = grid_nearest(&g, used, head, tol, &d);
 			if (e == SIZE_MAX || d > tol)
 				break;
 			used[e >> 1] = 1;
@@ -309,7 +313,7 @@ static int merge_paths(popt_set_t *s, double tol)
 			goto done;
 		for (;;) {
 			double d;
-			size_t e = grid_nearest(&g, s, used, tail, tol, &d);
+			size_t e = grid_nearest(&g, used, tail, tol, &d);
 			if (e == SIZE_MAX || d > tol)
 				break;
 			used[e >> 1] = 1;
@@ -440,7 +444,7 @@ static int greedy_order(popt_set_t *s, popt_pt_t start)
 	size_t left = n, rebuild_at = n / 4;
 	for (size_t k = 0; k < n; k++) {
 		double d;
-		size_t e = grid_nearest(&g, s, used, at, INFINITY, &d);
+		size_t e = grid_nearest(&g, used, at, INFINITY, &d);
 		if (e == SIZE_MAX)
 			goto done;   /* cannot happen: left > 0 */
 		used[e >> 1] = 1;
@@ -515,9 +519,11 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 	}
 	for (size_t k = 0; k < n; k++)
 		popt_ends(s, k, &F[k], &L[k]);
-	int improved = 1;
-	while (improved && now_s() - t0 < budget) {
-		improved = 0;
+	double travel = popt_travel(s, start), gain = travel;
+	/* passes until one gains less than 0.05 % of the travel, or the budget is spent */
+	while (gain > 5e-4 * travel && now_s() - t0 < budget) {
+		travel -= gain == travel ? 0 : gain;
+		gain = 0;
 		passes++;
 		for (size_t i = 0; i < n; i++) {
 			if ((i & 255) == 0 && now_s() - t0 >= budget)
@@ -540,7 +546,7 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 						popt_pt_t t = F[a]; F[a] = L[a]; L[a] = t;
 					}
 					dprev = dist(prev, F[i]);
-					improved = 1;
+					gain += old - nw;
 				}
 			}
 		}
