@@ -167,6 +167,12 @@ static void geometry_profiles(void)
 		pens.pen[1].width_mm == 0.5 && pens.pen[2].rgb == 0x00ff00, "pens parse");
 	CHECK(hpgl_pens_nearest(&pens, 0xd02020) == 1 && hpgl_pens_nearest(&pens, 0x303030) == 0 &&
 		hpgl_pens_nearest(&pens, 0x40c040) == 2, "nearest pen in CIELAB");
+	CHECK(hpgl_pens_pick(&pens, 0xffffff) < 0 && hpgl_pens_pick(&pens, 0xe8c6c6) < 0 && hpgl_pens_pick(&pens, 0xd0d0d0) < 0,
+		"white, a pastel pink and a light grey are the paper");
+	hpgl_pens_t mono;
+	hpgl_pens_parse("1=black", 0.3, &mono, err, sizeof err);
+	CHECK(hpgl_pens_pick(&mono, 0xff0000) == 0 && hpgl_pens_pick(&mono, 0x808080) == 0 && hpgl_pens_pick(&mono, 0xffff00) < 0,
+		"one black pen: red and mid grey are drawn with it, yellow (L* 97) is the paper");
 	CHECK(hpgl_pens_parse("1=black,0=red", 0.3, &pens, err, sizeof err) < 0 && strstr(err, "'0=red'"), "bad slot: %s", err);
 	CHECK(hpgl_pens_parse("1=blak", 0.3, &pens, err, sizeof err) < 0 && strstr(err, "unknown colour"), "bad colour: %s", err);
 	CHECK(hpgl_pens_parse("1=red,1=blue", 0.3, &pens, err, sizeof err) < 0 && strstr(err, "twice"), "pen twice: %s", err);
