@@ -2,6 +2,7 @@
  * optimiser did: the HP-GL read back (hpgl_read) holds exactly the meta file's segments, each
  * end rounded to the nearest plotter unit (so within half a unit), plus only the short bridges
  * the merge tolerance allows. */
+#include <dirent.h>
 #include <math.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -202,26 +203,45 @@ static void check(const char *meta, const char *profile, const char *extra)
 		got.s[0] = keep;
 		CHECK(m2 == 1 && (e2 + b2) == 1, "%s %s%s: a segment drawn twice and one left out are both noticed", meta, profile, extra);
 	}
-	CHECK(integral && missing == 0 && extra_n == 0 && want.n > 0,
-		"%s %s%s: %zu meta segments drawn exactly once (%zu drawn, %zu missing, %zu extra, %zu short bridges)",
-		meta, profile, extra, want.n, got.n, missing, extra_n, bridges);
+	CHECK(integral && missing == 0 && extra_n == 0 && (want.n > 0 || got.n == 0),
+		"%s %s%s: %zu meta segments drawn exactly once (%zu drawn, %zu missing, %zu extra, %zu short bridges)%s",
+		meta, profile, extra, want.n, got.n, missing, extra_n, bridges, want.n ? "" : ": no strokes, nothing drawn");
 	hpgl_doc_free(&doc);
 	free(want.s);
 	free(got.s);
 }
 
+static int name_cmp(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
 int main(void)
 {
-	static const char *const metas[] = {
-		"fixtures/meta/strokes.meta", "fixtures/meta/text.meta", "fixtures/meta/f-test.meta",
-		"fixtures/meta/multipage.meta", "fixtures/contour/trifocal.meta",
-		"fixtures/render/trifocal-wireframe.meta", "fixtures/render/sum-contour.meta",
-		"fixtures/render/voronoi-mixed.meta",
-	};
-	for (size_t k = 0; k < sizeof metas / sizeof metas[0]; k++) {
-		check(metas[k], "7475a", "");
-		check(metas[k], "hpgl2", "");
-		check(metas[k], "7550a", ",optimize=no");
+	/* every meta fixture of the project */
+	static const char *const dirs[] = { "fixtures/meta", "fixtures/contour", "fixtures/render", "fixtures/voronoi" };
+	char *names[256];
+	size_t n = 0;
+	for (size_t k = 0; k < sizeof dirs / sizeof dirs[0]; k++) {
+		DIR *d = opendir(dirs[k]);
+		struct dirent *e;
+		while (d && (e = readdir(d)) && n < 256) {
+			size_t len = strlen(e->d_name);
+			if (len > 5 && !strcmp(e->d_name + len - 5, ".meta")) {
+				names[n] = malloc(strlen(dirs[k]) + len + 2);
+				sprintf(names[n++], "%s/%s", dirs[k], e->d_name);
+			}
+		}
+		if (d)
+			closedir(d);
+	}
+	qsort(names, n, sizeof *names, name_cmp);
+	CHECK(n >= 15, "%zu meta fixtures found", n);
+	for (size_t k = 0; k < n; k++) {
+		check(names[k], "7475a", "");
+		check(names[k], "hpgl2", "");
+		check(names[k], "7550a", ",optimize=no");
+		free(names[k]);
 	}
 	return UNIT_DONE();
 }
