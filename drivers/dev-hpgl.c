@@ -47,12 +47,13 @@ typedef struct {
 	size_t nfpts, capfpts;
 	size_t *fstarts;
 	size_t nfstarts, capfstarts;
-	hpgl_dpt_t *tmp, *tmp2;
+	hpgl_dpt_t *tmp;
 	size_t captmp;
 	popt_pt_t *ipts;
 	size_t capipts;
 	size_t cur_pen;             /* the pen the current primitive goes to */
 	size_t total_paths;         /* paths of the page, all pens */
+	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
 	int warned, warned_bg;
 	unsigned page_w, page_h;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
@@ -218,14 +219,7 @@ static int need_tmp(hp_t *h, size_t n)
 {
 	if (n <= h->captmp)
 		return 0;
-	size_t c = h->captmp;
-	if (grow((void **)&h->tmp, &c, n, sizeof *h->tmp))
-		return -1;
-	c = h->captmp;
-	if (grow((void **)&h->tmp2, &c, n, sizeof *h->tmp2))
-		return -1;
-	h->captmp = c;
-	return 0;
+	return grow((void **)&h->tmp, &h->captmp, n, sizeof *h->tmp);
 }
 
 /* A visible piece in plotter units: round and keep it for its pen. */
@@ -247,15 +241,14 @@ static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 }
 
 /* A piece in plotter units before clipping: as parallel passes when wider than the pen. */
-static double line_width_pu;
 static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
 	hp_t *h = d->priv;
 	double pen = h->pens.pen[h->cur_pen].width_mm * HPGL_PU_PER_MM;
-	if (!h->passes || line_width_pu <= pen * 1.5 || n < 2)
+	if (!h->passes || h->line_width_pu <= pen * 1.5 || n < 2)
 		return hpgl_clip_poly(pts, n, closed, h->map.clip, add_piece, d);
-	int k = (int)ceil(line_width_pu / pen);
+	int k = (int)ceil(h->line_width_pu / pen);
 	if (k > 64)
 		k = 64;
 	hpgl_dpt_t *off = malloc(2 * n * sizeof *off);
@@ -263,7 +256,7 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 		return -1;
 	int rc = 0;
 	for (int i = 0; i < k && !rc; i++) {
-		double dist = (line_width_pu - pen) * (i / (double)(k - 1) - 0.5);
+		double dist = (h->line_width_pu - pen) * (i / (double)(k - 1) - 0.5);
 		size_t m = hpgl_offset_poly(pts, n, closed, dist, off);
 		rc = hpgl_clip_poly(off, m, closed, h->map.clip, add_piece, d);
 	}
@@ -300,7 +293,7 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		return 0;
 	h->cur_pen = (size_t)pen;
 	/* width 1 (the default, and the minimum of spec 4) is a hairline: one pass of the pen */
-	line_width_pu = st->width <= 1000 ? 0 : st->width / 1000.0 * h->map.pu_per_px;
+	h->line_width_pu = st->width <= 1000 ? 0 : st->width / 1000.0 * h->map.pu_per_px;
 	double pat[2 * META_MAX_DASH];
 	size_t npat = solid || !h->dash_split ? 0 : st->ndash;
 	for (size_t k = 0; k < npat; k++)
@@ -715,7 +708,6 @@ static int h_close(dev_device_t *d)
 	free(h->fpts);
 	free(h->fstarts);
 	free(h->tmp);
-	free(h->tmp2);
 	free(h->ipts);
 	hpgl_emit_free(h->em);
 	memset(h, 0, sizeof *h);
