@@ -1,75 +1,14 @@
-/* dev-hpgl.c: the HP-GL / HP-GL/2 pen-plotter and cutter device: collects a page's paths per
- * pen (dashes split, wide lines as passes, fills and rasters hatched, text as strokes or LB),
- * optimises each pen's order and writes them pen by pen. */
+/* dev-hpgl.c: the HP-GL / HP-GL/2 pen-plotter and cutter device: options, and collecting a page's
+ * paths per pen (dashes split, wide lines as passes, fills and rasters hatched, text as strokes
+ * or LB); hpgl_page.c optimises and writes them at the end of the page. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "device.h"
 #include "hatch.h"
-#include "hpgl.h"
+#include "hpgl_dev.h"
 
-enum { FILL_HATCH, FILL_NATIVE, FILL_NONE, FILL_OUTLINE };
-
-/* A label kept for the end of the page (text=label). */
-typedef struct {
-	size_t pen;
-	int32_t x, y;
-	double height_mm, angle;
-	char *s;
-	size_t len;
-} label_t;
-
-/* A native fill kept for the end of the page (HP-GL/2 fill=native). */
-typedef struct {
-	size_t pen;
-	size_t first, ncont;        /* contours: starts[first .. first + ncont] into fpts */
-	int even_odd;
-} nfill_t;
-
-typedef struct {
-	hpgl_profile_t prof;
-	hpgl_pens_t pens;
-	hpgl_place_t place;
-	int optimise;
-	popt_opts_t popt;
-	int fill, outline, text_label, raster_skip, passes, dash_split, background;
-	double hatch_mm, hatch_angle;
-	double knife, overcut;
-	hpgl_emit_t *em;
-	hpgl_map_t map;
-	popt_set_t *sets;           /* one per carousel pen */
-	label_t *labels;
-	size_t nlabels, caplabels;
-	nfill_t *fills;
-	size_t nfills, capfills;
-	popt_pt_t *fpts;
-	size_t nfpts, capfpts;
-	size_t *fstarts;
-	size_t nfstarts, capfstarts;
-	hpgl_dpt_t *tmp;
-	size_t captmp;
-	popt_pt_t *ipts;
-	size_t capipts;
-	size_t cur_pen;             /* the pen the current primitive goes to */
-	size_t total_paths;         /* paths of the page, all pens */
-	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
-	int warned, warned_bg;
-	unsigned page_w, page_h;
-	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
-	hpgl_pen_report_t *k_pr;
-} hp_t;
-
-static void (*reporter)(void *, const hpgl_report_t *);
-static void *reporter_user;
-
-void hpgl_set_reporter(void (*fn)(void *user, const hpgl_report_t *r), void *user)
-{
-	reporter = fn;
-	reporter_user = user;
-}
-
-static int grow(void **p, size_t *cap, size_t need, size_t size)
+int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size)
 {
 	if (need <= *cap)
 		return 0;
@@ -84,7 +23,7 @@ static int grow(void **p, size_t *cap, size_t need, size_t size)
 	return 0;
 }
 
-static int nomem(dev_device_t *d)
+int hpgl_dev_nomem(dev_device_t *d)
 {
 	return dev_fail(d, META_ENOMEM, "hpgl: out of memory");
 }
@@ -209,17 +148,17 @@ static int h_open(dev_device_t *d)
 			h->prof.npens, h->pens.pen[h->pens.n - 1].slot);
 	h->sets = calloc(h->pens.n, sizeof *h->sets);
 	if (!h->sets)
-		return nomem(d);
+		return hpgl_dev_nomem(d);
 	return 0;
 }
 
 /* ---- collecting ---- */
 
-static int need_tmp(hp_t *h, size_t n)
+int hpgl_dev_need_tmp(hp_t *h, size_t n)
 {
 	if (n <= h->captmp)
 		return 0;
-	return grow((void **)&h->tmp, &h->captmp, n, sizeof *h->tmp);
+	return hpgl_dev_grow((void **)&h->tmp, &h->captmp, n, sizeof *h->tmp);
 }
 
 /* A visible piece in plotter units: round and keep it for its pen. */
@@ -227,7 +166,7 @@ static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
 	hp_t *h = d->priv;
-	if (grow((void **)&h->ipts, &h->capipts, n, sizeof *h->ipts))
+	if (hpgl_dev_grow((void **)&h->ipts, &h->capipts, n, sizeof *h->ipts))
 		return -1;
 	size_t m = 0;
 	for (size_t i = 0; i < n; i++) {
@@ -302,8 +241,8 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		const scan_subpath_t *sp = &f->subs[s];
 		if (sp->n == 0)
 			continue;
-		if (need_tmp(h, sp->n + 1))
-			return nomem(d);
+		if (hpgl_dev_need_tmp(h, sp->n + 1))
+			return hpgl_dev_nomem(d);
 		for (size_t i = 0; i < sp->n; i++)
 			h->tmp[i] = (hpgl_dpt_t){ (double)f->pts[sp->start + i].x, (double)f->pts[sp->start + i].y };
 		int rc;
@@ -312,7 +251,7 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		else
 			rc = hpgl_dash_poly(h->tmp, sp->n, sp->closed, pat, npat, add_model, d);
 		if (rc)
-			return nomem(d);
+			return hpgl_dev_nomem(d);
 	}
 	return 0;
 }
@@ -343,7 +282,7 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	if (!xy || !starts) {
 		free(xy);
 		free(starts);
-		return nomem(d);
+		return hpgl_dev_nomem(d);
 	}
 	int inside = 1;
 	const double *c = h->map.clip;
@@ -360,9 +299,9 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	starts[nc] = at;
 	int rc = 0;
 	if (h->fill == FILL_NATIVE && inside && nc) {
-		if (grow((void **)&h->fills, &h->capfills, h->nfills + 1, sizeof *h->fills) ||
-				grow((void **)&h->fstarts, &h->capfstarts, h->nfstarts + nc + 1, sizeof *h->fstarts) ||
-				grow((void **)&h->fpts, &h->capfpts, h->nfpts + at, sizeof *h->fpts))
+		if (hpgl_dev_grow((void **)&h->fills, &h->capfills, h->nfills + 1, sizeof *h->fills) ||
+				hpgl_dev_grow((void **)&h->fstarts, &h->capfstarts, h->nfstarts + nc + 1, sizeof *h->fstarts) ||
+				hpgl_dev_grow((void **)&h->fpts, &h->capfpts, h->nfpts + at, sizeof *h->fpts))
 			rc = -1;
 		else {
 			h->fills[h->nfills++] = (nfill_t){ (size_t)pen, h->nfstarts, nc, rule == META_RULE_EVEN_ODD };
@@ -385,7 +324,7 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 			rc = hatch_polygon(xy, starts, nc, rule == META_RULE_EVEN_ODD, h->hatch_angle, sp, 0, hatch_seg, d);
 		for (size_t k = 0; k < nc && !rc && (h->outline || h->fill == FILL_OUTLINE); k++) {
 			size_t m = starts[k + 1] - starts[k];
-			if (need_tmp(h, m)) {
+			if (hpgl_dev_need_tmp(h, m)) {
 				rc = -1;
 				break;
 			}
@@ -396,7 +335,7 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	}
 	free(xy);
 	free(starts);
-	return rc ? nomem(d) : 0;
+	return rc ? hpgl_dev_nomem(d) : 0;
 }
 
 static int h_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
@@ -409,7 +348,7 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	hp_t *h = d->priv;
 	if (!h->text_label) {
 		scan_path_t p = { 0 };
-		int rc = scan_text_path(&p, t->str, t->len, t->x, t->y, t->size, t->angle) ? nomem(d)
+		int rc = scan_text_path(&p, t->str, t->len, t->x, t->y, t->size, t->angle) ? hpgl_dev_nomem(d)
 			: stroke_flat(d, &p, st, 1);
 		scan_path_free(&p);
 		return rc;
@@ -421,12 +360,12 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	hpgl_map_point(&h->map, t->x, t->y, &X, &Y);
 	if (X < h->map.clip[0] || X > h->map.clip[2] || Y < h->map.clip[1] || Y > h->map.clip[3])
 		return 0;
-	if (grow((void **)&h->labels, &h->caplabels, h->nlabels + 1, sizeof *h->labels))
-		return nomem(d);
+	if (hpgl_dev_grow((void **)&h->labels, &h->caplabels, h->nlabels + 1, sizeof *h->labels))
+		return hpgl_dev_nomem(d);
 	label_t *l = &h->labels[h->nlabels];
 	l->s = malloc(t->len + 1);
 	if (!l->s)
-		return nomem(d);
+		return hpgl_dev_nomem(d);
 	memcpy(l->s, t->str, t->len);
 	l->len = t->len;
 	l->pen = (size_t)pen;
@@ -436,21 +375,6 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	l->angle = t->angle / 1000.0 + h->place.rotate;
 	h->nlabels++;
 	return 0;
-}
-
-/* One warning of a kind per run, through the reporter. */
-static void warn(hp_t *h, int *flag, const char *msg)
-{
-	(void)h;
-	if (!*flag && reporter) {
-		hpgl_report_t *r = calloc(1, sizeof *r);
-		if (r) {
-			r->warning = msg;
-			reporter(reporter_user, r);
-			free(r);
-		}
-	}
-	*flag = 1;
 }
 
 static int raster_seg(void *user, double x0, double y0, double x1, double y1)
@@ -467,7 +391,7 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 {
 	hp_t *h = d->priv;
 	if (h->raster_skip) {
-		warn(h, &h->warned, "raster content (spans, images) skipped (raster=skip)");
+		hpgl_dev_warn(&h->warned, "raster content (spans, images) skipped (raster=skip)");
 		return 0;
 	}
 	/* the nearest pen, with ink in proportion to the darkness (nearly white: none) */
@@ -488,13 +412,13 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 	}
 	double *dk = malloc(n * sizeof *dk);
 	if (!dk)
-		return nomem(d);
+		return hpgl_dev_nomem(d);
 	for (unsigned i = 0; i < n; i++)
 		dk[i] = dark;
 	int rc = hatch_row(dk, n, x * 1000.0, (x + n) * 1000.0, y * 1000.0, 1000.0 * step, lines, y / step,
 		raster_seg, d);
 	free(dk);
-	return rc ? nomem(d) : 0;
+	return rc ? hpgl_dev_nomem(d) : 0;
 }
 
 static int h_clear(dev_device_t *d, meta_rgb_t rgb)
@@ -503,24 +427,15 @@ static int h_clear(dev_device_t *d, meta_rgb_t rgb)
 	if (pen_for(h, rgb) < 0)
 		return 0;
 	if (!h->background) {
-		warn(h, &h->warned_bg, "a non-white page background (clear) is not drawn (background=hatch draws it)");
+		hpgl_dev_warn(&h->warned_bg, "a non-white page background (clear) is not drawn (background=hatch draws it)");
 		return 0;
 	}
 	scan_path_t r = { 0 };
 	int64_t W = (int64_t)h->page_w * 1000, H = (int64_t)h->page_h * 1000;
 	int rc = scan_path_move(&r, 0, 0) || scan_path_draw(&r, W, 0) || scan_path_draw(&r, W, H) ||
-		scan_path_draw(&r, 0, H) ? nomem(d) : fill_mapped(d, &r, META_RULE_NON_ZERO, rgb);
+		scan_path_draw(&r, 0, H) ? hpgl_dev_nomem(d) : fill_mapped(d, &r, META_RULE_NON_ZERO, rgb);
 	scan_path_free(&r);
 	return rc;
-}
-
-/* ---- pages ---- */
-
-static int emit_fail(dev_device_t *d)
-{
-	hp_t *h = d->priv;
-	const char *e = hpgl_emit_error(h->em);
-	return dev_fail(d, META_EIO, "%s", e[0] ? e : "hpgl: out of memory");
 }
 
 static int h_begin(dev_device_t *d, const dev_page_t *pg)
@@ -538,161 +453,8 @@ static int h_begin(dev_device_t *d, const dev_page_t *pg)
 	hpgl_emit_free(h->em);
 	h->em = hpgl_emit_new(d->out, &h->prof);
 	if (!h->em)
-		return nomem(d);
-	return hpgl_emit_cmd(h->em, "IN") ? emit_fail(d) : 0;
-}
-
-/* The knife's tool path: round and write it. */
-static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
-{
-	dev_device_t *d = user;
-	hp_t *h = d->priv;
-	(void)closed;
-	popt_pt_t *q = malloc(n * sizeof *q);
-	if (!q)
-		return -1;
-	size_t m = 0;
-	for (size_t i = 0; i < n; i++) {
-		popt_pt_t v = { (int32_t)lround(pts[i].x), (int32_t)lround(pts[i].y) };
-		if (!m || v.x != q[m - 1].x || v.y != q[m - 1].y)
-			q[m++] = v;
-	}
-	if (m == 1)
-		q[m++] = q[0];
-	double dx = (double)q[0].x - h->k_at->x, dy = (double)q[0].y - h->k_at->y;
-	hpgl_time_add(&h->k_pr->time, &h->prof, sqrt(dx * dx + dy * dy), q, m);
-	int rc = hpgl_emit_poly(h->em, q, m);
-	*h->k_at = q[m - 1];
-	free(q);
-	return rc;
-}
-
-/* Write one pen's share: native fills, then its paths in the optimised order, then labels. */
-static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
-{
-	hp_t *h = d->priv;
-	popt_set_t *s = &h->sets[k];
-	int has_fill = 0, has_label = 0;
-	for (size_t i = 0; i < h->nfills && !has_fill; i++)
-		has_fill = h->fills[i].pen == k;
-	for (size_t i = 0; i < h->nlabels && !has_label; i++)
-		has_label = h->labels[i].pen == k;
-	if (!s->npaths && !has_fill && !has_label)
-		return 0;
-	hpgl_pen_report_t *pr = &r->pen[r->npens++];
-	memset(pr, 0, sizeof *pr);
-	pr->slot = h->pens.pen[k].slot;
-	pr->paths_in = s->npaths;
-	if (hpgl_emit_pen(h->em, pr->slot))
-		return emit_fail(d);
-	r->pen_changes++;
-	if (h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, pr->slot))
-		return emit_fail(d);
-	for (size_t i = 0; i < h->nfills; i++) {
-		const nfill_t *f = &h->fills[i];
-		if (f->pen == k && hpgl_emit_fill(h->em, h->fpts, h->fstarts + f->first, f->ncont, 0, f->even_odd))
-			return emit_fail(d);
-	}
-	popt_stats_t st;
-	if (h->optimise) {
-		/* the 2-opt budget is the page's: each pen gets its share by its number of paths */
-		popt_opts_t o = h->popt;
-		o.budget_s = h->total_paths ? h->popt.budget_s * (double)s->npaths / (double)h->total_paths : 0;
-		if (popt_optimise(s, *at, &o, &st))
-			return nomem(d);
-	} else {
-		if (popt_keep_order(s))
-			return nomem(d);
-		memset(&st, 0, sizeof st);
-		st.travel_before = st.travel_greedy = st.travel_after = popt_travel(s, *at);
-	}
-	r->optimise_s += st.seconds;
-	pr->paths_out = s->npaths;
-	pr->travel_before_mm = st.travel_before / HPGL_PU_PER_MM;
-	pr->travel_greedy_mm = st.travel_greedy / HPGL_PU_PER_MM;
-	pr->travel_after_mm = st.travel_after / HPGL_PU_PER_MM;
-	size_t maxn = 0;
-	for (size_t i = 0; i < s->npaths; i++)
-		if (s->paths[i].n > maxn)
-			maxn = s->paths[i].n;
-	if (grow((void **)&h->ipts, &h->capipts, maxn + 2, sizeof *h->ipts))
-		return nomem(d);
-	for (size_t i = 0; i < s->npaths; i++) {
-		size_t n = popt_get(s, i, h->ipts);
-		if (n == 1)
-			h->ipts[n++] = h->ipts[0];   /* a dot: pen down where it is */
-		popt_pt_t f = h->ipts[0];
-		if (h->prof.cutter && h->knife > 0) {
-			/* the tool path of a drag knife; a closed path is cut on past its start */
-			const popt_path_t *pp = &s->paths[s->order[i]];
-			if (need_tmp(h, n))
-				return nomem(d);
-			for (size_t j = 0; j < n; j++)
-				h->tmp[j] = (hpgl_dpt_t){ h->ipts[j].x, h->ipts[j].y };
-			h->k_at = at;
-			h->k_pr = pr;
-			if (hpgl_knife_poly(h->tmp, pp->closed ? n - 1 : n, pp->closed, h->knife * HPGL_PU_PER_MM,
-					h->overcut * HPGL_PU_PER_MM, emit_knife, d))
-				return emit_fail(d);
-			continue;
-		}
-		double dx = (double)f.x - at->x, dy = (double)f.y - at->y;
-		hpgl_time_add(&pr->time, &h->prof, sqrt(dx * dx + dy * dy), h->ipts, n);
-		if (hpgl_emit_poly(h->em, h->ipts, n))
-			return emit_fail(d);
-		*at = h->ipts[n - 1];
-	}
-	for (size_t i = 0; i < h->nlabels; i++) {
-		const label_t *l = &h->labels[i];
-		if (l->pen == k && hpgl_emit_label(h->em, l->x, l->y, l->height_mm, l->angle, l->s, l->len))
-			return emit_fail(d);
-	}
-	return 0;
-}
-
-static int h_end(dev_device_t *d, const dev_page_t *pg)
-{
-	hp_t *h = d->priv;
-	hpgl_report_t *r = calloc(1, sizeof *r);
-	if (!r)
-		return nomem(d);
-	r->page = pg->index;
-	r->profile = h->prof.name;
-	r->optimised = h->optimise;
-	memcpy(r->box, h->map.clip, sizeof r->box);
-	/* the pen starts at the lower-left corner of the hard-clip limits (after IN) */
-	popt_pt_t at = { h->prof.clip[h->place.paper][0], h->prof.clip[h->place.paper][1] };
-	int rc = 0;
-	h->total_paths = 0;
-	for (size_t k = 0; k < h->pens.n; k++)
-		h->total_paths += h->sets[k].npaths;
-	if (h->prof.v_down > 0 && !h->prof.cutter)
-		rc = hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down) ? emit_fail(d) : 0;
-	for (size_t k = 0; k < h->pens.n && !rc; k++)
-		rc = emit_pen(d, k, &at, r);
-	if (!rc && (hpgl_emit_cmd(h->em, "PU") || hpgl_emit_pen(h->em, 0) || hpgl_emit_flush(h->em)))
-		rc = emit_fail(d);
-	if (!rc) {
-		for (size_t k = 0; k < r->npens; k++) {
-			const hpgl_pen_report_t *p = &r->pen[k];
-			r->travel_before_mm += p->travel_before_mm;
-			r->travel_greedy_mm += p->travel_greedy_mm;
-			r->travel_after_mm += p->travel_after_mm;
-			r->pen_lifts += p->time.lifts;
-			r->plot_s += p->time.down_s + p->time.up_s + p->time.lift_s;
-		}
-		r->plot_s += r->pen_changes * h->prof.t_change;
-		r->bytes = hpgl_emit_bytes(h->em);
-		if (reporter)
-			reporter(reporter_user, r);
-	}
-	for (size_t i = 0; i < h->nlabels; i++)
-		free(h->labels[i].s);
-	h->nlabels = 0;
-	hpgl_emit_free(h->em);
-	h->em = NULL;
-	free(r);
-	return rc;
+		return hpgl_dev_nomem(d);
+	return hpgl_emit_cmd(h->em, "IN") ? hpgl_dev_emit_fail(d) : 0;
 }
 
 static int h_close(dev_device_t *d)
@@ -719,5 +481,5 @@ const dev_ops_t dev_hpgl_ops = {
 	.extension = ".hpgl", .caps = DEV_CAP_VECTOR | DEV_CAP_TEXT | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
 	.priv_size = sizeof(hp_t), .option_list = hpgl_options,
 	.open = h_open, .begin_page = h_begin, .clear = h_clear, .stroke_path = h_stroke, .fill_path = h_fill,
-	.text = h_text, .put_span = h_span, .end_page = h_end, .close = h_close,
+	.text = h_text, .put_span = h_span, .end_page = hpgl_page_write, .close = h_close,
 };

@@ -1,0 +1,73 @@
+/* hpgl_dev.h: the HP-GL device's state, shared by its collecting side (dev-hpgl.c) and its
+ * page writer (hpgl_page.c). Internal to the driver. */
+#ifndef LOCUS_HPGL_DEV_H
+#define LOCUS_HPGL_DEV_H
+
+#include "device.h"
+#include "hpgl.h"
+
+enum { FILL_HATCH, FILL_NATIVE, FILL_NONE, FILL_OUTLINE };
+
+/* A label kept for the end of the page (text=label). */
+typedef struct {
+	size_t pen;
+	int32_t x, y;
+	double height_mm, angle;
+	char *s;
+	size_t len;
+} label_t;
+
+/* A native fill kept for the end of the page (HP-GL/2 fill=native). */
+typedef struct {
+	size_t pen;
+	size_t first, ncont;        /* contours: starts[first .. first + ncont] into fpts */
+	int even_odd;
+} nfill_t;
+
+typedef struct {
+	hpgl_profile_t prof;
+	hpgl_pens_t pens;
+	hpgl_place_t place;
+	int optimise;
+	popt_opts_t popt;
+	int fill, outline, text_label, raster_skip, passes, dash_split, background;
+	double hatch_mm, hatch_angle;
+	double knife, overcut;
+	hpgl_emit_t *em;
+	hpgl_map_t map;
+	popt_set_t *sets;           /* one per carousel pen */
+	label_t *labels;
+	size_t nlabels, caplabels;
+	nfill_t *fills;
+	size_t nfills, capfills;
+	popt_pt_t *fpts;
+	size_t nfpts, capfpts;
+	size_t *fstarts;
+	size_t nfstarts, capfstarts;
+	hpgl_dpt_t *tmp;
+	size_t captmp;
+	popt_pt_t *ipts;
+	size_t capipts;
+	size_t cur_pen;             /* the pen the current primitive goes to */
+	size_t total_paths;         /* paths of the page, all pens */
+	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
+	int warned, warned_bg;
+	unsigned page_w, page_h;
+	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
+	hpgl_pen_report_t *k_pr;
+} hp_t;
+
+/* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
+int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size);
+/* Record "hpgl: out of memory"; returns META_ENOMEM. */
+int hpgl_dev_nomem(dev_device_t *d);
+/* The scratch point buffer h->tmp with room for n points; 0 or -1. */
+int hpgl_dev_need_tmp(hp_t *h, size_t n);
+/* Record the emitter's failure (a transport error) on the device; returns META_EIO. */
+int hpgl_dev_emit_fail(dev_device_t *d);
+/* One warning of a kind per run (*flag remembers it), through the reporter. */
+void hpgl_dev_warn(int *flag, const char *msg);
+/* Write the collected page pen by pen, report it, and reset the page's labels (end_page). */
+int hpgl_page_write(dev_device_t *d, const dev_page_t *pg);
+
+#endif
