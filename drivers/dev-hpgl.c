@@ -86,7 +86,7 @@ static int opt_word(dev_device_t *d, const char *key, const char *const *words, 
 
 static int h_open(dev_device_t *d)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	char buf[1024], err[300];
 	const char *name = dev_option(d, "profile", buf, sizeof buf) ? buf : "7475a";
 	const hpgl_profile_t *p = hpgl_profile_find(name);
@@ -116,7 +116,7 @@ static int h_open(dev_device_t *d)
 	h->passes = !h->prof.cutter;   /* a knife cuts the centre line of a wide line */
 	h->dash_split = 1;
 	h->hatch_angle = 45;
-	h->fill = h->prof.cutter ? FILL_OUTLINE : FILL_HATCH;   /* a knife cuts outlines, never hatches */
+	h->fill = h->prof.cutter ? HPGL_FILL_OUTLINE : HPGL_FILL_HATCH;   /* a knife cuts outlines, never hatches */
 	h->knife = h->prof.knife_offset;
 	h->overcut = h->prof.overcut;
 	int rc = 0;
@@ -134,7 +134,7 @@ static int h_open(dev_device_t *d)
 		return rc;
 	if (!h->prof.has_paper[h->place.paper])
 		return dev_fail(d, DEV_EUSAGE, "profile %s has no paper %s", h->prof.name, hpgl_paper_name(h->place.paper));
-	if (h->fill == FILL_NATIVE && h->prof.dialect != HPGL_DIALECT_2)
+	if (h->fill == HPGL_FILL_NATIVE && h->prof.dialect != HPGL_DIALECT_2)
 		return dev_fail(d, DEV_EUSAGE, "fill=native needs an HP-GL/2 profile (FP/PM); %s speaks HP-GL: use fill=hatch",
 			h->prof.name);
 	h->place.rotate = rot * 90;
@@ -154,7 +154,7 @@ static int h_open(dev_device_t *d)
 
 /* ---- collecting ---- */
 
-int hpgl_dev_need_tmp(hp_t *h, size_t n)
+int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n)
 {
 	if (n <= h->captmp)
 		return 0;
@@ -165,7 +165,7 @@ int hpgl_dev_need_tmp(hp_t *h, size_t n)
 static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	if (hpgl_dev_grow((void **)&h->ipts, &h->capipts, n, sizeof *h->ipts))
 		return -1;
 	size_t m = 0;
@@ -183,7 +183,7 @@ static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	double pen = h->pens.pen[h->cur_pen].width_mm * HPGL_PU_PER_MM;
 	if (!h->passes || h->line_width_pu <= pen * 1.5 || n < 2)
 		return hpgl_clip_poly(pts, n, closed, h->map.clip, add_piece, d);
@@ -207,7 +207,7 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 static int add_model(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	hpgl_dpt_t *m = malloc((n ? n : 1) * sizeof *m);
 	if (!m)
 		return -1;
@@ -219,14 +219,14 @@ static int add_model(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 }
 
 /* The carousel pen for a colour, or -1 for paper (hpgl_pens_pick). */
-static long pen_for(hp_t *h, meta_rgb_t rgb)
+static long pen_for(hpgl_dev_t *h, meta_rgb_t rgb)
 {
 	return hpgl_pens_pick(&h->pens, rgb);
 }
 
 static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t *st, int solid)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	long pen = pen_for(h, st->colour);
 	if (pen < 0)
 		return 0;
@@ -265,15 +265,15 @@ static int hatch_seg(void *user, double x0, double y0, double x1, double y1)
 {
 	hpgl_dpt_t s[2] = { { x0, y0 }, { x1, y1 } };
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	return hpgl_clip_poly(s, 2, 0, h->map.clip, add_piece, d);
 }
 
 static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb_t rgb)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	long pen = pen_for(h, rgb);
-	if (pen < 0 || h->fill == FILL_NONE)
+	if (pen < 0 || h->fill == HPGL_FILL_NONE)
 		return 0;
 	h->cur_pen = (size_t)pen;
 	size_t n = f->npts;
@@ -298,13 +298,13 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	}
 	starts[nc] = at;
 	int rc = 0;
-	if (h->fill == FILL_NATIVE && inside && nc) {
+	if (h->fill == HPGL_FILL_NATIVE && inside && nc) {
 		if (hpgl_dev_grow((void **)&h->fills, &h->capfills, h->nfills + 1, sizeof *h->fills) ||
 				hpgl_dev_grow((void **)&h->fstarts, &h->capfstarts, h->nfstarts + nc + 1, sizeof *h->fstarts) ||
 				hpgl_dev_grow((void **)&h->fpts, &h->capfpts, h->nfpts + at, sizeof *h->fpts))
 			rc = -1;
 		else {
-			h->fills[h->nfills++] = (nfill_t){ (size_t)pen, h->nfstarts, nc, rule == META_RULE_EVEN_ODD };
+			h->fills[h->nfills++] = (hpgl_nfill_t){ (size_t)pen, h->nfstarts, nc, rule == META_RULE_EVEN_ODD };
 			for (size_t k = 0; k <= nc; k++)
 				h->fstarts[h->nfstarts + k] = h->nfpts + starts[k];
 			h->nfstarts += nc + 1;
@@ -320,9 +320,9 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 			dk = dk > 1 ? 1 : dk < 0.1 ? 0.1 : dk;
 			sp = h->pens.pen[pen].width_mm * HPGL_PU_PER_MM / dk;
 		}
-		if (h->fill == FILL_HATCH)
+		if (h->fill == HPGL_FILL_HATCH)
 			rc = hatch_polygon(xy, starts, nc, rule == META_RULE_EVEN_ODD, h->hatch_angle, sp, 0, hatch_seg, d);
-		for (size_t k = 0; k < nc && !rc && (h->outline || h->fill == FILL_OUTLINE); k++) {
+		for (size_t k = 0; k < nc && !rc && (h->outline || h->fill == HPGL_FILL_OUTLINE); k++) {
 			size_t m = starts[k + 1] - starts[k];
 			if (hpgl_dev_need_tmp(h, m)) {
 				rc = -1;
@@ -345,7 +345,7 @@ static int h_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 
 static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	if (!h->text_label) {
 		scan_path_t p = { 0 };
 		int rc = scan_text_path(&p, t->str, t->len, t->x, t->y, t->size, t->angle) ? hpgl_dev_nomem(d)
@@ -362,7 +362,7 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 		return 0;
 	if (hpgl_dev_grow((void **)&h->labels, &h->caplabels, h->nlabels + 1, sizeof *h->labels))
 		return hpgl_dev_nomem(d);
-	label_t *l = &h->labels[h->nlabels];
+	hpgl_label_t *l = &h->labels[h->nlabels];
 	l->s = malloc(t->len + 1);
 	if (!l->s)
 		return hpgl_dev_nomem(d);
@@ -381,7 +381,7 @@ static int raster_seg(void *user, double x0, double y0, double x1, double y1)
 {
 	hpgl_dpt_t s[2];
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	hpgl_map_point(&h->map, (int64_t)x0, (int64_t)y0, &s[0].x, &s[0].y);
 	hpgl_map_point(&h->map, (int64_t)x1, (int64_t)y1, &s[1].x, &s[1].y);
 	return hpgl_clip_poly(s, 2, 0, h->map.clip, add_piece, d);
@@ -389,7 +389,7 @@ static int raster_seg(void *user, double x0, double y0, double x1, double y1)
 
 static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	if (h->raster_skip) {
 		hpgl_dev_warn(&h->warned, "raster content (spans, images) skipped (raster=skip)");
 		return 0;
@@ -423,7 +423,7 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 
 static int h_clear(dev_device_t *d, meta_rgb_t rgb)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	if (pen_for(h, rgb) < 0)
 		return 0;
 	if (!h->background) {
@@ -440,7 +440,7 @@ static int h_clear(dev_device_t *d, meta_rgb_t rgb)
 
 static int h_begin(dev_device_t *d, const dev_page_t *pg)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	char err[256];
 	h->page_w = pg->width;
 	h->page_h = pg->height;
@@ -459,7 +459,7 @@ static int h_begin(dev_device_t *d, const dev_page_t *pg)
 
 static int h_close(dev_device_t *d)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	for (size_t k = 0; h->sets && k < h->pens.n; k++)
 		popt_free(&h->sets[k]);
 	free(h->sets);
@@ -479,7 +479,7 @@ static int h_close(dev_device_t *d)
 const dev_ops_t dev_hpgl_ops = {
 	.name = "hpgl", .description = "HP-GL and HP-GL/2 pen plotters and cutters (profiles, pens, path optimisation)",
 	.extension = ".hpgl", .caps = DEV_CAP_VECTOR | DEV_CAP_TEXT | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
-	.priv_size = sizeof(hp_t), .option_list = hpgl_options,
+	.priv_size = sizeof(hpgl_dev_t), .option_list = hpgl_options,
 	.open = h_open, .begin_page = h_begin, .clear = h_clear, .stroke_path = h_stroke, .fill_path = h_fill,
 	.text = h_text, .put_span = h_span, .end_page = hpgl_page_write, .close = h_close,
 };

@@ -6,7 +6,7 @@
 #include "device.h"
 #include "hpgl.h"
 
-enum { FILL_HATCH, FILL_NATIVE, FILL_NONE, FILL_OUTLINE };
+enum { HPGL_FILL_HATCH, HPGL_FILL_NATIVE, HPGL_FILL_NONE, HPGL_FILL_OUTLINE };
 
 /* A label kept for the end of the page (text=label). */
 typedef struct {
@@ -15,14 +15,14 @@ typedef struct {
 	double height_mm, angle;
 	char *s;
 	size_t len;
-} label_t;
+} hpgl_label_t;
 
 /* A native fill kept for the end of the page (HP-GL/2 fill=native). */
 typedef struct {
 	size_t pen;
 	size_t first, ncont;        /* contours: starts[first .. first + ncont] into fpts */
 	int even_odd;
-} nfill_t;
+} hpgl_nfill_t;
 
 typedef struct {
 	hpgl_profile_t prof;
@@ -36,9 +36,9 @@ typedef struct {
 	hpgl_emit_t *em;
 	hpgl_map_t map;
 	popt_set_t *sets;           /* one per carousel pen */
-	label_t *labels;
+	hpgl_label_t *labels;
 	size_t nlabels, caplabels;
-	nfill_t *fills;
+	hpgl_nfill_t *fills;
 	size_t nfills, capfills;
 	popt_pt_t *fpts;
 	size_t nfpts, capfpts;
@@ -55,14 +55,14 @@ typedef struct {
 	unsigned page_w, page_h;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
-} hp_t;
+} hpgl_dev_t;
 
 /* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
 int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size);
 /* Record "hpgl: out of memory"; returns META_ENOMEM. */
 int hpgl_dev_nomem(dev_device_t *d);
 /* The scratch point buffer h->tmp with room for n points; 0 or -1. */
-int hpgl_dev_need_tmp(hp_t *h, size_t n);
+int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n);
 /* Record the emitter's failure (a transport error) on the device; returns META_EIO. */
 int hpgl_dev_emit_fail(dev_device_t *d);
 /* One warning of a kind per run (*flag remembers it), through the reporter. */

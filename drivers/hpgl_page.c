@@ -30,7 +30,7 @@ void hpgl_dev_warn(int *flag, const char *msg)
 
 int hpgl_dev_emit_fail(dev_device_t *d)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	const char *e = hpgl_emit_error(h->em);
 	return dev_fail(d, META_EIO, "%s", e[0] ? e : "hpgl: out of memory");
 }
@@ -39,7 +39,7 @@ int hpgl_dev_emit_fail(dev_device_t *d)
 static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	(void)closed;
 	popt_pt_t *q = malloc(n * sizeof *q);
 	if (!q)
@@ -63,7 +63,7 @@ static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 /* Write one pen's share: native fills, then its paths in the optimised order, then labels. */
 static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	popt_set_t *s = &h->sets[k];
 	int has_fill = 0, has_label = 0;
 	for (size_t i = 0; i < h->nfills && !has_fill; i++)
@@ -82,7 +82,7 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 	if (h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, pr->slot))
 		return hpgl_dev_emit_fail(d);
 	for (size_t i = 0; i < h->nfills; i++) {
-		const nfill_t *f = &h->fills[i];
+		const hpgl_nfill_t *f = &h->fills[i];
 		if (f->pen == k && hpgl_emit_fill(h->em, h->fpts, h->fstarts + f->first, f->ncont, 0, f->even_odd))
 			return hpgl_dev_emit_fail(d);
 	}
@@ -136,7 +136,7 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 		*at = h->ipts[n - 1];
 	}
 	for (size_t i = 0; i < h->nlabels; i++) {
-		const label_t *l = &h->labels[i];
+		const hpgl_label_t *l = &h->labels[i];
 		if (l->pen == k && hpgl_emit_label(h->em, l->x, l->y, l->height_mm, l->angle, l->s, l->len))
 			return hpgl_dev_emit_fail(d);
 	}
@@ -146,7 +146,7 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 /* end_page: the pens in slot order from the lower-left corner of the clip limits, PU;SP0; last. */
 int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 {
-	hp_t *h = d->priv;
+	hpgl_dev_t *h = d->priv;
 	hpgl_report_t *r = calloc(1, sizeof *r);
 	if (!r)
 		return hpgl_dev_nomem(d);
