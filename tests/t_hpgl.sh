@@ -59,8 +59,11 @@ for f in "$T"/*.7475a.hpgl "$T"/*.cutter.hpgl "$T"/*.hpgl2.hpgl; do
 		END { print bad }')
 	[ -n "$r" ] && { lim_ok=0; echo "# $f:$r"; }
 	tail -c 8 "$f" | grep -q "SP0;" || { lim_ok=0; echo "# $f does not end with SP0"; }
+	# the 7475A's 1 KB buffer: no command longer than half of it
+	case $f in *7475a*) tr ';' '\n' < "$f" | awk 'length($0) > 512 { bad = 1 } END { exit bad }' ||
+		{ lim_ok=0; echo "# $f: a command longer than 512 bytes"; } ;; esac
 done
-[ $lim_ok = 1 ] && ok "integer plotter units, lists within 32 (7475A) / 16 (cutter) / 256 (PE) pairs, SP0 at the end" || notok "receiver limits"
+[ $lim_ok = 1 ] && ok "integer plotter units, lists within 32 (7475A, commands under 512 bytes) / 16 (cutter) / 256 (PE) pairs, SP0 at the end" || notok "receiver limits"
 awk 'END { exit !(NR > 10) } !/;$/ { bad = 1; exit 1 }' "$T/trifocal.cutter.hpgl" && ok "cutter: one command per line" || notok "cutter: commands without a newline"
 grep -q "PE7" "$T/trifocal.hpgl2.hpgl" && ! grep -q "PE" "$T/trifocal.7475a.hpgl" && ok "HP-GL/2 uses PE, HP-GL does not" || notok "PE use"
 grep -q "FP" "$T/fills.native.hpgl" && ! grep -q "FP" "$T/fills.hatch.hpgl" && ok "fill=native writes FP; hatching does not" || notok "FP use"
