@@ -188,8 +188,10 @@ static void check(const char *meta, const char *profile, const char *extra)
 			add_seg(&got, (int32_t)a.x, (int32_t)a.y, (int32_t)b.x, (int32_t)b.y);
 		}
 	}
-	qsort(want.s, want.n, sizeof *want.s, seg_cmp);
-	qsort(got.s, got.n, sizeof *got.s, seg_cmp);
+	if (want.n)
+		qsort(want.s, want.n, sizeof *want.s, seg_cmp);
+	if (got.n)
+		qsort(got.s, got.n, sizeof *got.s, seg_cmp);
 	size_t missing, extra_n, bridges, m2, e2, b2;
 	compare(&want, &got, &missing, &extra_n, &bridges);
 	/* the comparison notices one segment lost and one drawn twice */
