@@ -87,12 +87,15 @@ outside() {
 	o=$(convert "$1" \( "$T/dil.png" -negate \) -compose Multiply -composite -format "%[fx:mean]" info:)
 	awk -v a="$a" -v o="$o" 'BEGIN { printf "%.4f", (a > 0 ? o / a : 1) }'
 }
-for in in fixtures/contour/trifocal.meta fixtures/render/trifocal-wireframe.meta fixtures/render/sum-contour.meta \
-		fixtures/meta/strokes.meta; do
+for job in contour/trifocal:7475a render/trifocal-wireframe:7475a render/sum-contour:7475a meta/strokes:7475a \
+		contour/trifocal:hpgl2 render/trifocal-wireframe:cutter; do
+	in=fixtures/${job%:*}.meta prof=${job#*:}
 	b=$(basename "$in" .meta)
+	[ "$prof" = 7475a ] || b=$b-$prof
 	lines_only "$in" > "$T/$b.lines.meta"
 	"$BIN/locus-raster" "$T/$b.lines.meta" -o "$T/$b.r.png"
-	"$P" --stats "$T/$b.lines.meta" -o "$T/$b.lines.hpgl" 2> "$T/stats"
+	# (the cutter's knife paths swing 0.25 mm, under a pixel here, about the lines)
+	"$P" --stats --profile "$prof" "$T/$b.lines.meta" -o "$T/$b.lines.hpgl" 2> "$T/stats"
 	box=$(sed -n 's/.*box \([-0-9,]*\).*/\1/p' "$T/stats" | head -1)
 	set -- $(sed -n 's/^page \([0-9]*\) \([0-9]*\).*/\1 \2/p' "$in" | head -1)
 	W=$1 H=$2
