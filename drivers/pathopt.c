@@ -1,5 +1,6 @@
-/* pathopt.c: merge, simplify, nearest-end ordering on a spatial grid, and windowed 2-opt. */
+/* pathopt.c: merge, simplify, nearest-end ordering on a spatial grid, windowed 2-opt and Or-opt. */
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -505,6 +506,70 @@ static void rotate_closed(popt_set_t *s, popt_pt_t start)
 
 /* Windowed 2-opt on the open tour: reversing positions i..j (and each path's direction) when
  * that shortens the two links at its ends. */
+/* Or-opt: move path i (turned round if that is shorter) to between positions j and j + 1 within
+ * the window, when the links it leaves and makes are shorter. Returns the travel gained. */
+static double or_opt(popt_set_t *s, popt_pt_t *F, popt_pt_t *L, popt_pt_t start, int window, double t0,
+		double budget)
+{
+	ptrdiff_t n = (ptrdiff_t)s->npaths;
+	double gained = 0;
+	for (ptrdiff_t i = 0; i < n; i++) {
+		if ((i & 255) == 0 && now_s() - t0 >= budget)
+			break;
+		popt_pt_t prev = i ? L[i - 1] : start;
+		double take = dist(prev, F[i]) + (i + 1 < n ? dist(L[i], F[i + 1]) - dist(prev, F[i + 1]) : 0);
+		ptrdiff_t best = -2;
+		int flip = 0;
+		double bestc = take - 1e-9;
+		ptrdiff_t j0 = i - window < -1 ? -1 : i - window, j1 = i + window >= n ? n - 1 : i + window;
+		for (ptrdiff_t j = j0; j <= j1; j++) {
+			if (j == i || j == i - 1)
+				continue;
+			popt_pt_t a = j >= 0 ? L[j] : start;
+			int has_next = j + 1 < n;
+			popt_pt_t b = has_next ? F[j + 1] : a;
+			double base = has_next ? dist(a, b) : 0;
+			double c0 = dist(a, F[i]) + (has_next ? dist(L[i], b) : 0) - base;
+			double c1 = dist(a, L[i]) + (has_next ? dist(F[i], b) : 0) - base;
+			if (c0 < bestc) {
+				bestc = c0;
+				best = j;
+				flip = 0;
+			}
+			if (c1 < bestc) {
+				bestc = c1;
+				best = j;
+				flip = 1;
+			}
+		}
+		if (best == -2)
+			continue;
+		size_t ord = s->order[i];
+		unsigned char rv = s->rev[i] ^ (unsigned char)flip;
+		popt_pt_t f = flip ? L[i] : F[i], l = flip ? F[i] : L[i];
+		ptrdiff_t to;
+		if (best > i) {
+			memmove(s->order + i, s->order + i + 1, (size_t)(best - i) * sizeof *s->order);
+			memmove(s->rev + i, s->rev + i + 1, (size_t)(best - i));
+			memmove(F + i, F + i + 1, (size_t)(best - i) * sizeof *F);
+			memmove(L + i, L + i + 1, (size_t)(best - i) * sizeof *L);
+			to = best;
+		} else {
+			memmove(s->order + best + 2, s->order + best + 1, (size_t)(i - best - 1) * sizeof *s->order);
+			memmove(s->rev + best + 2, s->rev + best + 1, (size_t)(i - best - 1));
+			memmove(F + best + 2, F + best + 1, (size_t)(i - best - 1) * sizeof *F);
+			memmove(L + best + 2, L + best + 1, (size_t)(i - best - 1) * sizeof *L);
+			to = best + 1;
+		}
+		s->order[to] = ord;
+		s->rev[to] = rv;
+		F[to] = f;
+		L[to] = l;
+		gained += take - bestc;
+	}
+	return gained;
+}
+
 static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int window, double t0)
 {
 	size_t n = s->npaths;
@@ -550,6 +615,7 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 				}
 			}
 		}
+		gain += or_opt(s, F, L, start, window, t0, budget);
 	}
 	free(F);
 	free(L);
