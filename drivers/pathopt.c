@@ -506,16 +506,27 @@ static void rotate_closed(popt_set_t *s, popt_pt_t start)
 
 /* Windowed 2-opt on the open tour: reversing positions i..j (and each path's direction) when
  * that shortens the two links at its ends. */
+/* Positions lo - 1 .. hi + 1 changed links: look at them again ("don't look" bits). */
+static void wake(unsigned char *act2, unsigned char *acto, ptrdiff_t n, ptrdiff_t lo, ptrdiff_t hi)
+{
+	lo = lo > 0 ? lo - 1 : 0;
+	hi = hi + 1 < n ? hi + 1 : n - 1;
+	memset(act2 + lo, 1, (size_t)(hi - lo + 1));
+	memset(acto + lo, 1, (size_t)(hi - lo + 1));
+}
+
 /* Or-opt: move path i (turned round if that is shorter) to between positions j and j + 1 within
  * the window, when the links it leaves and makes are shorter. Returns the travel gained. */
 static double or_opt(popt_set_t *s, popt_pt_t *F, popt_pt_t *L, popt_pt_t start, int window, double t0,
-		double budget)
+		double budget, unsigned char *act2, unsigned char *acto)
 {
 	ptrdiff_t n = (ptrdiff_t)s->npaths;
 	double gained = 0;
 	for (ptrdiff_t i = 0; i < n; i++) {
 		if ((i & 255) == 0 && now_s() - t0 >= budget)
 			break;
+		if (!acto[i])
+			continue;
 		popt_pt_t prev = i ? L[i - 1] : start;
 		double take = dist(prev, F[i]) + (i + 1 < n ? dist(L[i], F[i + 1]) - dist(prev, F[i + 1]) : 0);
 		ptrdiff_t best = -2;
@@ -542,8 +553,10 @@ static double or_opt(popt_set_t *s, popt_pt_t *F, popt_pt_t *L, popt_pt_t start,
 				flip = 1;
 			}
 		}
-		if (best == -2)
+		if (best == -2) {
+			acto[i] = 0;   /* nothing to gain here until a neighbour changes */
 			continue;
+		}
 		size_t ord = s->order[i];
 		unsigned char rv = s->rev[i] ^ (unsigned char)flip;
 		popt_pt_t f = flip ? L[i] : F[i], l = flip ? F[i] : L[i];
@@ -566,6 +579,7 @@ static double or_opt(popt_set_t *s, popt_pt_t *F, popt_pt_t *L, popt_pt_t start,
 		F[to] = f;
 		L[to] = l;
 		gained += take - bestc;
+		wake(act2, acto, n, i < to ? i : to, i < to ? to : i);
 	}
 	return gained;
 }
@@ -582,6 +596,16 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 		free(L);
 		return 0;
 	}
+	unsigned char *act2 = malloc(n), *acto = malloc(n);
+	if (!act2 || !acto) {
+		free(F);
+		free(L);
+		free(act2);
+		free(acto);
+		return 0;
+	}
+	memset(act2, 1, n);
+	memset(acto, 1, n);
 	for (size_t k = 0; k < n; k++)
 		popt_ends(s, k, &F[k], &L[k]);
 	double travel = popt_travel(s, start), gain = travel;
@@ -593,6 +617,9 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 		for (size_t i = 0; i < n; i++) {
 			if ((i & 255) == 0 && now_s() - t0 >= budget)
 				break;
+			if (!act2[i])
+				continue;
+			int moved = 0;
 			popt_pt_t prev = i ? L[i - 1] : start;
 			double dprev = dist(prev, F[i]);
 			size_t jmax = i + (size_t)window < n ? i + (size_t)window : n - 1;
@@ -612,13 +639,19 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 					}
 					dprev = dist(prev, F[i]);
 					gain += old - nw;
+					moved = 1;
+					wake(act2, acto, (ptrdiff_t)n, (ptrdiff_t)i, (ptrdiff_t)j);
 				}
 			}
+			if (!moved)
+				act2[i] = 0;
 		}
-		gain += or_opt(s, F, L, start, window, t0, budget);
+		gain += or_opt(s, F, L, start, window, t0, budget, act2, acto);
 	}
 	free(F);
 	free(L);
+	free(act2);
+	free(acto);
 	return passes;
 }
 
