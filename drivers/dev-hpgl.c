@@ -134,9 +134,6 @@ static int h_open(dev_device_t *d)
 		return rc;
 	if (!h->prof.has_paper[h->place.paper])
 		return dev_fail(d, DEV_EUSAGE, "profile %s has no paper %s", h->prof.name, hpgl_paper_name(h->place.paper));
-	if (h->fill == HPGL_FILL_NATIVE && h->prof.dialect != HPGL_DIALECT_2)
-		return dev_fail(d, DEV_EUSAGE, "fill=native needs an HP-GL/2 profile (FP/PM); %s speaks HP-GL: use fill=hatch",
-			h->prof.name);
 	h->place.rotate = rot * 90;
 	h->optimise = opt;
 	h->popt = (popt_opts_t){ merge > 0, merge * HPGL_PU_PER_MM, simp * HPGL_PU_PER_MM, 1, budget, 0 };
@@ -298,7 +295,13 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	}
 	starts[nc] = at;
 	int rc = 0;
-	if (h->fill == HPGL_FILL_NATIVE && inside && nc) {
+	/* native: HP-GL/2 fills any polygon (PM/FP); HP-GL only an axis-aligned rectangle (RA) */
+	int rect = nc == 1 && at == 4;
+	for (size_t i = 0; rect && i < 4; i++) {
+		const double *p = xy + 2 * i, *q = xy + 2 * ((i + 1) % 4);
+		rect = lround(p[0]) == lround(q[0]) || lround(p[1]) == lround(q[1]);
+	}
+	if (h->fill == HPGL_FILL_NATIVE && inside && nc && (h->prof.dialect == HPGL_DIALECT_2 || rect)) {
 		if (hpgl_dev_grow((void **)&h->fills, &h->capfills, h->nfills + 1, sizeof *h->fills) ||
 				hpgl_dev_grow((void **)&h->fstarts, &h->capfstarts, h->nfstarts + nc + 1, sizeof *h->fstarts) ||
 				hpgl_dev_grow((void **)&h->fpts, &h->capfpts, h->nfpts + at, sizeof *h->fpts))

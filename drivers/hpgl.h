@@ -81,7 +81,7 @@ typedef struct {
  * Returns 0 or -1 with err ("pens: ..." naming the item). */
 int hpgl_pens_parse(const char *spec, double default_width_mm, hpgl_pens_t *pens,
 		char *err, size_t errlen);
-/* The carousel index (into pens->pen) nearest to rgb in CIELAB (CIE76 distance). */
+/* The carousel index (into pens->pen) nearest to rgb in CIELAB by the CIE94 difference. */
 size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb);
 /* The pen a colour is drawn with: the nearest pen, or -1 when the colour is paper (light,
  * L* >= 80, and nearer to white than to any pen). */
@@ -164,7 +164,9 @@ int hpgl_emit_poly(hpgl_emit_t *e, const popt_pt_t *pts, size_t n);
 /* A label at (x, y): DI from the angle, SI from the capital height (mm), LB text ETX. */
 int hpgl_emit_label(hpgl_emit_t *e, int32_t x, int32_t y, double height_mm, double angle_deg,
 		const char *s, size_t len);
-/* HP-GL/2 native fill of one polygon (PM0 ... PM2 FP), contours as integer polylines. */
+/* Native fill of one polygon, contours as integer polylines: HP-GL/2 PM0 ... PM2 FP (FP0
+ * even-odd, FP1 non-zero); HP-GL only one axis-aligned rectangle of 4 points (FT1, RA to its
+ * third corner). -1 for anything else or a write error. */
 int hpgl_emit_fill(hpgl_emit_t *e, const popt_pt_t *pts, const size_t *starts, size_t ncont,
 		size_t npts, int even_odd);
 /* Flush buffered bytes to the transport. */

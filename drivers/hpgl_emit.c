@@ -22,6 +22,7 @@ struct hpgl_emit {
 	int known;                  /* 1 when the pen position is known */
 	int32_t x, y;
 	unsigned pe_pairs;          /* pairs in the open PE command, 0 = none open */
+	int ft;                     /* 1 once FT1 is set for RA fills */
 	int failed;
 	char err[256];
 };
@@ -98,6 +99,7 @@ int hpgl_emit_cmd(hpgl_emit_t *e, const char *fmt, ...)
 	if (!strncmp(s, "IN", 2) || !strncmp(s, "DF", 2)) {
 		e->mode = MODE_ABS;
 		e->known = 0;
+		e->ft = 0;
 	}
 	return 0;
 }
@@ -335,8 +337,22 @@ int hpgl_emit_fill(hpgl_emit_t *e, const popt_pt_t *pts, const size_t *starts, s
 		size_t npts, int even_odd)
 {
 	(void)npts;
-	if (e->prof->dialect != HPGL_DIALECT_2)
-		return -1;
+	if (e->prof->dialect != HPGL_DIALECT_2) {
+		/* HP-GL: one axis-aligned rectangle, RA from a corner to the opposite one (FT1 solid) */
+		if (ncont != 1 || starts[1] - starts[0] != 4)
+			return -1;
+		const popt_pt_t *c = pts + starts[0];
+		if (hpgl_emit_poly(e, c, 1) || (!e->ft && hpgl_emit_cmd(e, "FT1")))
+			return -1;
+		/* RA is absolute whatever PA/PR say, but some readers (hp2xx) take it as relative under PR */
+		if (e->mode != MODE_ABS && hpgl_emit_cmd(e, "PA"))
+			return -1;
+		e->mode = MODE_ABS;
+		if (hpgl_emit_cmd(e, "RA%d,%d", c[2].x, c[2].y))
+			return -1;
+		e->ft = 1;
+		return 0;
+	}
 	for (size_t k = 0; k < ncont; k++) {
 		size_t s = starts[k], n = starts[k + 1] - s;
 		if (n < 3)

@@ -463,15 +463,26 @@ int hpgl_pens_parse(const char *spec, double default_width_mm, hpgl_pens_t *pens
 	return 0;
 }
 
+/* CIE94 colour difference (graphic arts: kL = 1, K1 = 0.045, K2 = 0.015) of sample b from
+ * reference a: unlike CIE76 it does not send pure blue to a magenta pen. */
+static double de94(const double *a, const double *b)
+{
+	double c1 = sqrt(a[1] * a[1] + a[2] * a[2]), c2 = sqrt(b[1] * b[1] + b[2] * b[2]);
+	double dl = a[0] - b[0], dc = c1 - c2, da = a[1] - b[1], db = a[2] - b[2];
+	double dh2 = da * da + db * db - dc * dc;
+	if (dh2 < 0)
+		dh2 = 0;
+	double sc = 1 + 0.045 * c1, sh = 1 + 0.015 * c1;
+	return dl * dl + dc * dc / (sc * sc) + dh2 / (sh * sh);   /* squared */
+}
+
 size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb)
 {
 	double lab[3], best = INFINITY;
 	size_t bi = 0;
 	hpgl_rgb_to_lab(rgb, lab);
 	for (size_t k = 0; k < pens->n; k++) {
-		const double *q = pens->pen[k].lab;
-		double d = (lab[0] - q[0]) * (lab[0] - q[0]) + (lab[1] - q[1]) * (lab[1] - q[1]) +
-			(lab[2] - q[2]) * (lab[2] - q[2]);
+		double d = de94(lab, pens->pen[k].lab);
 		if (d < best) {
 			best = d;
 			bi = k;
@@ -484,11 +495,9 @@ long hpgl_pens_pick(const hpgl_pens_t *pens, uint32_t rgb)
 {
 	size_t k = hpgl_pens_nearest(pens, rgb);
 	double lab[3];
-	const double *q = pens->pen[k].lab;
+	static const double white[3] = { 100, 0, 0 };
 	hpgl_rgb_to_lab(rgb, lab);
-	double dp = (lab[0] - q[0]) * (lab[0] - q[0]) + (lab[1] - q[1]) * (lab[1] - q[1]) + (lab[2] - q[2]) * (lab[2] - q[2]);
-	double dw = (lab[0] - 100) * (lab[0] - 100) + lab[1] * lab[1] + lab[2] * lab[2];
-	return lab[0] >= 80 && dw < dp ? -1 : (long)k;
+	return lab[0] >= 80 && de94(lab, white) < de94(lab, pens->pen[k].lab) ? -1 : (long)k;
 }
 
 /* ---- page mapping ---- */

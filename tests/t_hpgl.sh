@@ -67,6 +67,9 @@ done
 awk 'END { exit !(NR > 10) } !/;$/ { bad = 1; exit 1 }' "$T/trifocal.cutter.hpgl" && ok "cutter: one command per line" || notok "cutter: commands without a newline"
 grep -q "PE7" "$T/trifocal.hpgl2.hpgl" && ! grep -q "PE" "$T/trifocal.7475a.hpgl" && ok "HP-GL/2 uses PE, HP-GL does not" || notok "PE use"
 grep -q "FP" "$T/fills.native.hpgl" && ! grep -q "FP" "$T/fills.hatch.hpgl" && ok "fill=native writes FP; hatching does not" || notok "FP use"
+"$P" --fill native fixtures/meta/f-test.meta -o "$T/f.ra.hpgl" 2>/dev/null
+[ "$(grep -o 'RA[0-9]*,[0-9]*' "$T/f.ra.hpgl" | wc -l)" = 2 ] && grep -q "FT1" "$T/f.ra.hpgl" && ! grep -q "FP" "$T/f.ra.hpgl" &&
+	ok "fill=native on HP-GL: the F's two rectangles as FT1/RA, nothing as FP" || notok "RA fills: $(grep -o 'RA[^;]*' "$T/f.ra.hpgl")"
 grep -q "LB" "$T/text.label.hpgl" && grep -q "SI" "$T/text.label.hpgl" && ok "text=label writes SI and LB" || notok "labels"
 # relative coordinates where shorter: the file is shorter than with absolute coordinates alone
 abs=$(tr ';' '\n' < "$T/trifocal.7475a.hpgl" | grep -c '^PR')
@@ -173,6 +176,5 @@ bad_case 66 "nope.pens" "missing pen file" --pens "$T/nope.pens" fixtures/meta/f
 bad_case 64 "pen 9 does not fit" "more pens than slots" --pens 1=black,9=red fixtures/meta/f-test.meta
 bad_case 64 "unknown option 'colour'" "unknown -O key" -O colour=red fixtures/meta/f-test.meta
 bad_case 64 "option rotate" "bad rotation" --rotate 45 fixtures/meta/f-test.meta
-bad_case 64 "fill=native needs an HP-GL/2" "native fills on HP-GL" --fill native fixtures/meta/f-test.meta
 bad_case 64 "no paper" "paper the profile lacks" -O profile="$T/tiny.prof",paper=a3 fixtures/meta/f-test.meta
 done_tests

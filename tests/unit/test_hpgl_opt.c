@@ -167,6 +167,10 @@ static void geometry_profiles(void)
 		pens.pen[1].width_mm == 0.5 && pens.pen[2].rgb == 0x00ff00, "pens parse");
 	CHECK(hpgl_pens_nearest(&pens, 0xd02020) == 1 && hpgl_pens_nearest(&pens, 0x303030) == 0 &&
 		hpgl_pens_nearest(&pens, 0x40c040) == 2, "nearest pen in CIELAB");
+	hpgl_pens_t six;
+	hpgl_pens_parse(hpgl_profile_find("7475a")->pens, 0.3, &six, err, sizeof err);
+	CHECK(six.pen[hpgl_pens_nearest(&six, 0x0000ff)].slot == 4 && six.pen[hpgl_pens_nearest(&six, 0xe08000)].slot == 2,
+		"CIE94: pure blue takes the blue pen (CIE76 would take magenta), orange the red one");
 	CHECK(hpgl_pens_pick(&pens, 0xffffff) < 0 && hpgl_pens_pick(&pens, 0xe8c6c6) < 0 && hpgl_pens_pick(&pens, 0xd0d0d0) < 0,
 		"white, a pastel pink and a light grey are the paper");
 	hpgl_pens_t mono;
