@@ -149,6 +149,12 @@ static int h_open(dev_device_t *d)
 	return 0;
 }
 
+/* A callback failed: its own message (a write error) or out of memory. */
+static int cb_fail(dev_device_t *d)
+{
+	return d->err[0] ? META_EIO : hpgl_dev_nomem(d);
+}
+
 /* ---- collecting ---- */
 
 int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n)
@@ -173,6 +179,8 @@ static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	}
 	if (closed && m > 1 && h->ipts[0].x == h->ipts[m - 1].x && h->ipts[0].y == h->ipts[m - 1].y)
 		m--;
+	if (!h->optimise)   /* the file's order: written as it comes, nothing kept */
+		return hpgl_page_put(d, h->cur_pen, h->ipts, m, closed && m > 2);
 	return popt_add(&h->sets[h->cur_pen], h->ipts, m, closed && m > 2);
 }
 
@@ -248,7 +256,7 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		else
 			rc = hpgl_dash_poly(h->tmp, sp->n, sp->closed, pat, npat, add_model, d);
 		if (rc)
-			return hpgl_dev_nomem(d);
+			return cb_fail(d);
 	}
 	return 0;
 }
@@ -313,6 +321,12 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 			h->nfstarts += nc + 1;
 			for (size_t i = 0; i < at; i++)
 				h->fpts[h->nfpts++] = (popt_pt_t){ (int32_t)lround(xy[2 * i]), (int32_t)lround(xy[2 * i + 1]) };
+			if (!h->optimise) {   /* streaming: written now */
+				const hpgl_nfill_t *nf = &h->fills[h->nfills - 1];
+				rc = hpgl_page_pen(d, (size_t)pen) ? -1 : hpgl_emit_fill(h->em, h->fpts, h->fstarts + nf->first,
+					nf->ncont, 0, nf->even_odd) ? (hpgl_dev_emit_fail(d), -1) : 0;
+				h->nfills = h->nfstarts = h->nfpts = 0;
+			}
 		}
 	} else if (nc) {
 		/* spacing: the pen width, opened up for colours lighter than the pen's ink */
@@ -338,7 +352,7 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	}
 	free(xy);
 	free(starts);
-	return rc ? hpgl_dev_nomem(d) : 0;
+	return rc ? cb_fail(d) : 0;
 }
 
 static int h_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
@@ -363,6 +377,13 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	hpgl_map_point(&h->map, t->x, t->y, &X, &Y);
 	if (X < h->map.clip[0] || X > h->map.clip[2] || Y < h->map.clip[1] || Y > h->map.clip[3])
 		return 0;
+	double hmm = t->size / 1000.0 * h->map.pu_per_px / HPGL_PU_PER_MM, angle = t->angle / 1000.0 + h->place.rotate;
+	if (!h->optimise) {
+		if (hpgl_page_pen(d, (size_t)pen))
+			return -1;
+		return hpgl_emit_label(h->em, (int32_t)lround(X), (int32_t)lround(Y), hmm, angle, t->str, t->len)
+			? hpgl_dev_emit_fail(d) : 0;
+	}
 	if (hpgl_dev_grow((void **)&h->labels, &h->caplabels, h->nlabels + 1, sizeof *h->labels))
 		return hpgl_dev_nomem(d);
 	hpgl_label_t *l = &h->labels[h->nlabels];
@@ -374,8 +395,8 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	l->pen = (size_t)pen;
 	l->x = (int32_t)lround(X);
 	l->y = (int32_t)lround(Y);
-	l->height_mm = t->size / 1000.0 * h->map.pu_per_px / HPGL_PU_PER_MM;
-	l->angle = t->angle / 1000.0 + h->place.rotate;
+	l->height_mm = hmm;
+	l->angle = angle;
 	h->nlabels++;
 	return 0;
 }
@@ -421,7 +442,7 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 	int rc = hatch_row(dk, n, x * 1000.0, (x + n) * 1000.0, y * 1000.0, 1000.0 * step, lines, y / step,
 		raster_seg, d);
 	free(dk);
-	return rc ? hpgl_dev_nomem(d) : 0;
+	return rc ? cb_fail(d) : 0;
 }
 
 static int h_clear(dev_device_t *d, meta_rgb_t rgb)
@@ -457,7 +478,7 @@ static int h_begin(dev_device_t *d, const dev_page_t *pg)
 	h->em = hpgl_emit_new(d->out, &h->prof);
 	if (!h->em)
 		return hpgl_dev_nomem(d);
-	return hpgl_emit_cmd(h->em, "IN") ? hpgl_dev_emit_fail(d) : 0;
+	return hpgl_page_begin(d, pg);
 }
 
 static int h_close(dev_device_t *d)
@@ -473,6 +494,9 @@ static int h_close(dev_device_t *d)
 	free(h->fpts);
 	free(h->fstarts);
 	free(h->tmp);
+	free(h->kpts);
+	free(h->spts);
+	free(h->rep);
 	free(h->ipts);
 	hpgl_emit_free(h->em);
 	memset(h, 0, sizeof *h);

@@ -53,6 +53,14 @@ typedef struct {
 	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
 	int warned, warned_bg;
 	unsigned page_w, page_h;
+	popt_pt_t at;               /* the pen's position while writing */
+	hpgl_report_t *rep;         /* streaming (no optimiser): the page's report as it is written */
+	size_t stream_pen;          /* streaming: the carousel pen selected, SIZE_MAX none */
+	hpgl_pen_report_t *stream_pr;
+	popt_pt_t *spts;            /* streaming: a path with room for its closing point */
+	hpgl_dpt_t *kpts;           /* the drag knife's input path */
+	size_t capkpts;
+	size_t capspts;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
 } hpgl_dev_t;
@@ -67,6 +75,13 @@ int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n);
 int hpgl_dev_emit_fail(dev_device_t *d);
 /* One warning of a kind per run (*flag remembers it), through the reporter. */
 void hpgl_dev_warn(int *flag, const char *msg);
+/* Start a page after the emitter is made: IN, VS, the pen's position; without the optimiser
+ * the page is streamed (h->rep collects its report). */
+int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg);
+/* Streaming: select carousel pen k (SP, PW in HP-GL/2) when it is not the current one. */
+int hpgl_page_pen(dev_device_t *d, size_t k);
+/* Streaming: write one path of pen k now (closed: the segment back to the first point too). */
+int hpgl_page_put(dev_device_t *d, size_t k, const popt_pt_t *pts, size_t n, int closed);
 /* Write the collected page pen by pen, report it, and reset the page's labels (end_page). */
 int hpgl_page_write(dev_device_t *d, const dev_page_t *pg);
 

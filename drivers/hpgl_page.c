@@ -60,6 +60,35 @@ static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	return rc;
 }
 
+/* Write one path (n points, a closed one with its first point repeated at the end; room for one
+ * more in pts) from the pen position *at: a dot gets a pen-down where it is, a cutter's path
+ * becomes the drag knife's. Times it into pr. */
+static int put_path(dev_device_t *d, hpgl_pen_report_t *pr, popt_pt_t *at, popt_pt_t *pts, size_t n, int closed)
+{
+	hpgl_dev_t *h = d->priv;
+	if (n == 1)
+		pts[n++] = pts[0];
+	if (h->prof.cutter && h->knife > 0) {
+		/* a buffer of its own: h->tmp may be holding the path being collected (streaming) */
+		if (hpgl_dev_grow((void **)&h->kpts, &h->capkpts, n, sizeof *h->kpts))
+			return hpgl_dev_nomem(d);
+		for (size_t j = 0; j < n; j++)
+			h->kpts[j] = (hpgl_dpt_t){ pts[j].x, pts[j].y };
+		h->k_at = at;
+		h->k_pr = pr;
+		if (hpgl_knife_poly(h->kpts, closed ? n - 1 : n, closed, h->knife * HPGL_PU_PER_MM,
+				h->overcut * HPGL_PU_PER_MM, emit_knife, d))
+			return hpgl_dev_emit_fail(d);
+		return 0;
+	}
+	double dx = (double)pts[0].x - at->x, dy = (double)pts[0].y - at->y, t = sqrt(dx * dx + dy * dy);
+	hpgl_time_add(&pr->time, &h->prof, t, pts, n);
+	if (hpgl_emit_poly(h->em, pts, n))
+		return hpgl_dev_emit_fail(d);
+	*at = pts[n - 1];
+	return 0;
+}
+
 /* Write one pen's share: native fills, then its paths in the optimised order, then labels. */
 static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 {
@@ -112,28 +141,8 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 		return hpgl_dev_nomem(d);
 	for (size_t i = 0; i < s->npaths; i++) {
 		size_t n = popt_get(s, i, h->ipts);
-		if (n == 1)
-			h->ipts[n++] = h->ipts[0];   /* a dot: pen down where it is */
-		popt_pt_t f = h->ipts[0];
-		if (h->prof.cutter && h->knife > 0) {
-			/* the tool path of a drag knife; a closed path is cut on past its start */
-			const popt_path_t *pp = &s->paths[s->order[i]];
-			if (hpgl_dev_need_tmp(h, n))
-				return hpgl_dev_nomem(d);
-			for (size_t j = 0; j < n; j++)
-				h->tmp[j] = (hpgl_dpt_t){ h->ipts[j].x, h->ipts[j].y };
-			h->k_at = at;
-			h->k_pr = pr;
-			if (hpgl_knife_poly(h->tmp, pp->closed ? n - 1 : n, pp->closed, h->knife * HPGL_PU_PER_MM,
-					h->overcut * HPGL_PU_PER_MM, emit_knife, d))
-				return hpgl_dev_emit_fail(d);
-			continue;
-		}
-		double dx = (double)f.x - at->x, dy = (double)f.y - at->y;
-		hpgl_time_add(&pr->time, &h->prof, sqrt(dx * dx + dy * dy), h->ipts, n);
-		if (hpgl_emit_poly(h->em, h->ipts, n))
-			return hpgl_dev_emit_fail(d);
-		*at = h->ipts[n - 1];
+		if (put_path(d, pr, at, h->ipts, n, s->paths[s->order[i]].closed))
+			return -1;
 	}
 	for (size_t i = 0; i < h->nlabels; i++) {
 		const hpgl_label_t *l = &h->labels[i];
@@ -143,27 +152,96 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 	return 0;
 }
 
-/* end_page: the pens in slot order from the lower-left corner of the clip limits, PU;SP0; last. */
+static void report_init(hpgl_dev_t *h, hpgl_report_t *r, unsigned page)
+{
+	r->page = page;
+	r->profile = h->prof.name;
+	r->optimised = h->optimise;
+	memcpy(r->box, h->map.clip, sizeof r->box);
+}
+
+int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg)
+{
+	hpgl_dev_t *h = d->priv;
+	/* the pen starts at the lower-left corner of the hard-clip limits (after IN) */
+	h->at = (popt_pt_t){ h->prof.clip[h->place.paper][0], h->prof.clip[h->place.paper][1] };
+	h->stream_pen = SIZE_MAX;
+	free(h->rep);
+	h->rep = NULL;
+	if (hpgl_emit_cmd(h->em, "IN") ||
+			(h->prof.v_down > 0 && !h->prof.cutter && hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down)))
+		return hpgl_dev_emit_fail(d);
+	if (h->optimise)
+		return 0;
+	h->rep = calloc(1, sizeof *h->rep);
+	if (!h->rep)
+		return hpgl_dev_nomem(d);
+	report_init(h, h->rep, pg->index);
+	return 0;
+}
+
+int hpgl_page_pen(dev_device_t *d, size_t k)
+{
+	hpgl_dev_t *h = d->priv;
+	hpgl_report_t *r = h->rep;
+	if (k == h->stream_pen)
+		return 0;
+	h->stream_pen = k;
+	int slot = h->pens.pen[k].slot;
+	if (hpgl_emit_pen(h->em, slot) ||
+			(h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, slot)))
+		return hpgl_dev_emit_fail(d);
+	r->pen_changes++;
+	for (h->stream_pr = r->pen; h->stream_pr < r->pen + r->npens && h->stream_pr->slot != slot; h->stream_pr++)
+		;
+	if (h->stream_pr == r->pen + r->npens) {
+		memset(h->stream_pr, 0, sizeof *h->stream_pr);
+		h->stream_pr->slot = slot;
+		r->npens++;
+	}
+	return 0;
+}
+
+int hpgl_page_put(dev_device_t *d, size_t k, const popt_pt_t *pts, size_t n, int closed)
+{
+	hpgl_dev_t *h = d->priv;
+	if (hpgl_page_pen(d, k))
+		return -1;
+	if (hpgl_dev_grow((void **)&h->spts, &h->capspts, n + 2, sizeof *h->spts))
+		return hpgl_dev_nomem(d);
+	memcpy(h->spts, pts, n * sizeof *pts);
+	if (closed)
+		h->spts[n++] = pts[0];
+	h->stream_pr->paths_in++;
+	h->stream_pr->paths_out++;
+	return put_path(d, h->stream_pr, &h->at, h->spts, n, closed);
+}
+
+/* end_page: the pens in slot order from the lower-left corner of the clip limits (streamed pages
+ * are written already), PU;SP0; last. */
 int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 {
 	hpgl_dev_t *h = d->priv;
 	hpgl_report_t *r = calloc(1, sizeof *r);
 	if (!r)
 		return hpgl_dev_nomem(d);
-	r->page = pg->index;
-	r->profile = h->prof.name;
-	r->optimised = h->optimise;
-	memcpy(r->box, h->map.clip, sizeof r->box);
-	/* the pen starts at the lower-left corner of the hard-clip limits (after IN) */
-	popt_pt_t at = { h->prof.clip[h->place.paper][0], h->prof.clip[h->place.paper][1] };
+	report_init(h, r, pg->index);
+	popt_pt_t at = h->at;
 	int rc = 0;
 	h->total_paths = 0;
 	for (size_t k = 0; k < h->pens.n; k++)
 		h->total_paths += h->sets[k].npaths;
-	if (h->prof.v_down > 0 && !h->prof.cutter)
-		rc = hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down) ? hpgl_dev_emit_fail(d) : 0;
-	for (size_t k = 0; k < h->pens.n && !rc; k++)
-		rc = emit_pen(d, k, &at, r);
+	if (h->rep) {   /* streamed: everything is written already */
+		free(r);
+		r = h->rep;
+		h->rep = NULL;
+		for (size_t k = 0; k < r->npens; k++)
+			r->pen[k].travel_before_mm = r->pen[k].travel_greedy_mm = r->pen[k].travel_after_mm =
+				r->pen[k].time.up_mm;
+	} else {
+		for (size_t k = 0; k < h->pens.n && !rc; k++)
+			rc = emit_pen(d, k, &at, r);
+	}
 	if (!rc && (hpgl_emit_cmd(h->em, "PU") || hpgl_emit_pen(h->em, 0) || hpgl_emit_flush(h->em)))
 		rc = hpgl_dev_emit_fail(d);
 	if (!rc) {

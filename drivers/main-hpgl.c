@@ -23,7 +23,7 @@ static const char usage[] =
 	"  --fit auto|yes|no    shrink when too big (auto), fill the paper, or physical size\n"
 	"  --scale F            factor on the page's physical size (default 1)\n"
 	"  --pens SPEC|FILE     carousel, e.g. 1=black,2=red:0.3mm,3=#008000 (or a file of such lines)\n"
-	"  --no-optimize        keep the file's order (no merging, reordering or 2-opt)\n"
+	"  --no-optimize        keep the file's order, pens included, and stream (no page in memory)\n"
 	"  --fill hatch|native|outline|none  --text strokes|label   --raster hatch|skip\n"
 	"  --estimate           print the expected plot time per pen and in total (no OUT: no HP-GL)\n"
 	"  --stats, -v          print pen-up travel before/after, pen lifts and pen changes to stderr\n"

@@ -150,6 +150,26 @@ printf '1=black\n# the fine pen\n2=red:0.1mm\n' > "$T/pens.txt"
 "$P" --pens "$T/pens.txt" fixtures/meta/strokes.meta -o "$T/pens.hpgl" && grep -q "SP2" "$T/pens.hpgl" && ! grep -q "SP3" "$T/pens.hpgl" &&
 	ok "--pens FILE: only its pens are used" || notok "--pens FILE"
 
+# ---- memory: --no-optimize streams (RSS does not grow with the page), the optimiser holds the page
+gen_page() {   # N: a page of N random-walk strokes of 10 points in 4 colours
+	awk -v n="$1" 'BEGIN { srand(7); print "LOCUS-META 1"; print "page 1024 768"
+		for (i = 0; i < n; i++) { printf "colour #%s\nstroke\n", (i % 4 == 0 ? "000000" : i % 4 == 1 ? "d02020" : i % 4 == 2 ? "2050c0" : "20a040")
+			x = rand() * 1000; y = rand() * 700; printf "move %.3f %.3f\n", x, y
+			for (k = 0; k < 9; k++) { x += rand() * 10 - 5; y += rand() * 10 - 5; printf "draw %.3f %.3f\n", x, y }
+			print "end" }
+		print "end-page" }'
+}
+if [ -x /usr/bin/time ]; then
+	gen_page 5000 > "$T/m1.meta"
+	gen_page 40000 > "$T/m8.meta"
+	rss() { /usr/bin/time -f %M -o "$T/rss" "$P" "$@" -o /dev/null 2>/dev/null; cat "$T/rss"; }
+	s1=$(rss --no-optimize "$T/m1.meta") s8=$(rss --no-optimize "$T/m8.meta")
+	o1=$(rss "$T/m1.meta") o8=$(rss "$T/m8.meta")
+	awk -v a="$s1" -v b="$s8" -v c="$o1" -v d="$o8" 'BEGIN { exit !(b < 1.25 * a && d > b) }' &&
+		ok "--no-optimize streams: peak RSS $s1 KB at 5,000 strokes, $s8 KB at 40,000 (optimised: $o1 / $o8 KB, the page held)" ||
+		notok "memory: streaming $s1 -> $s8 KB, optimised $o1 -> $o8 KB"
+fi
+
 # ---- bad input: one line, an exit status, no output ------------------------------------
 bad_case() {   # STATUS PATTERN DESC ARGS...
 	st=$1 pat=$2 d=$3
