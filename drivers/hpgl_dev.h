@@ -17,13 +17,14 @@ typedef struct {
 	size_t len;
 } hpgl_label_t;
 
-/* A native fill kept for the end of the page (HP-GL/2 fill=native). */
+/* A native fill kept for the end of the page (fill=native: FP in HP-GL/2, RA in HP-GL). */
 typedef struct {
 	size_t pen;
 	size_t first, ncont;        /* contours: starts[first .. first + ncont] into fpts */
 	int even_odd;
 } hpgl_nfill_t;
 
+/* The device's private state (dev->priv): options, the page's mapping, the paths per pen. */
 typedef struct {
 	hpgl_profile_t prof;
 	hpgl_pens_t pens;
@@ -58,9 +59,9 @@ typedef struct {
 	size_t stream_pen;          /* streaming: the carousel pen selected, SIZE_MAX none */
 	hpgl_pen_report_t *stream_pr;
 	popt_pt_t *spts;            /* streaming: a path with room for its closing point */
+	size_t capspts;
 	hpgl_dpt_t *kpts;           /* the drag knife's input path */
 	size_t capkpts;
-	size_t capspts;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
 } hpgl_dev_t;
