@@ -18,7 +18,7 @@ hpgl_stat() {
 	esac
 }
 
-# hpgl_an FILE [LENGTH]: --analyse figures: sets AN_DOWN AN_UP AN_LIFTS AN_EST
+# hpgl_an FILE [LENGTH]: --analyse figures: sets AN_DOWN AN_UP AN_LIFTS AN_EST AN_CH
 hpgl_an() {
 	if [ -n "${2:-}" ]; then
 		a=$("$BIN/locus-hpgl" --analyse --length "$2" "$1") || return 1
@@ -29,6 +29,7 @@ hpgl_an() {
 	AN_UP=$(echo "$a" | sed 's/.*pen-up \([0-9.]*\) mm.*/\1/')
 	AN_LIFTS=$(echo "$a" | sed 's/.* \([0-9]*\) lifts.*/\1/')
 	AN_EST=$(echo "$a" | sed 's/.*estimate \([0-9.]*\) s.*/\1/')
+	AN_CH=$(echo "$a" | sed 's/.* \([0-9]*\) pen changes.*/\1/')
 }
 
 bench_hpgl() {
@@ -68,12 +69,13 @@ bench_hpgl() {
 
 	# pen-up travel and plot time: workload c against plot's order
 	if [ -f "$W/hc.l1.hpgl" ] && [ -f "$W/hc.p1.hpgl" ] && hpgl_an "$W/hc.l1.hpgl"; then
-		l_up=$AN_UP l_est=$AN_EST l_down=$AN_DOWN l_lifts=$AN_LIFTS
+		l_up=$AN_UP l_est=$AN_EST l_down=$AN_DOWN l_lifts=$AN_LIFTS l_ch=$AN_CH
 		if hpgl_an "$W/hc.p1.hpgl" "$l_down"; then
 			"$BIN/locus-hpgl" --stats "$W/hc.meta" -o /dev/null 2> "$W/hc.stats"
 			tr=$(ratio "$AN_UP" "$l_up")
 			line hpgl-travel-c "$l_est" plot-Thpgl-order "$AN_EST" 0 0 "target=5 pass=$(pass "$tr" 5)" \
 				"travel_locus_mm=$l_up travel_anchor_mm=$AN_UP travel_ratio=$tr lifts_locus=$l_lifts lifts_anchor=$AN_LIFTS" \
+				"pen_changes_locus=$l_ch pen_changes_anchor=$AN_CH" \
 				"optimiser_s=$(hpgl_stat opt "$W/hc.stats") units=estimated_plot_seconds_7475a"
 		else fail hpgl-travel-c "locus-hpgl --analyse of plot's HP-GL failed"; fi
 	fi
@@ -82,11 +84,12 @@ bench_hpgl() {
 		"$BIN/locus-hpgl" --stats "$W/plate.meta" -o "$W/plate.hpgl" 2> "$W/plate.stats"
 		"$BIN/locus-hpgl" --no-optimize "$W/plate.meta" -o "$W/plate.keep.hpgl" 2> /dev/null
 		if hpgl_an "$W/plate.hpgl"; then
-			l_up=$AN_UP l_est=$AN_EST l_lifts=$AN_LIFTS
+			l_up=$AN_UP l_est=$AN_EST l_lifts=$AN_LIFTS l_ch=$AN_CH
 			hpgl_an "$W/plate.keep.hpgl"
 			tr=$(ratio "$AN_UP" "$l_up")
 			line hpgl-travel-plate "$l_est" file-order "$AN_EST" 0 0 "target=5 pass=$(pass "$tr" 5)" \
 				"travel_locus_mm=$l_up travel_anchor_mm=$AN_UP travel_ratio=$tr lifts_locus=$l_lifts lifts_anchor=$AN_LIFTS" \
+				"pen_changes_locus=$l_ch pen_changes_anchor=$AN_CH" \
 				"optimiser_s=$(hpgl_stat opt "$W/plate.stats") units=estimated_plot_seconds_7475a"
 		else fail hpgl-travel-plate "locus-hpgl --analyse failed"; fi
 	else
