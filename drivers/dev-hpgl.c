@@ -51,6 +51,7 @@ static const dev_option_t hpgl_options[] = {
 	{ "background", "skip|hatch: a non-white clear (page background) (default skip, with a warning)" },
 	{ "wide", "passes|single: lines wider than the pen as parallel passes (default passes)" },
 	{ "dash", "split|solid (default split)" },
+	{ "pcl", "no|yes: PCL framing around HP-GL/2 for printers that start in PCL (default no)" },
 	{ "knife", "cutter blade offset in mm (default: the profile's)" },
 	{ "overcut", "cutter overcut in mm (default: the profile's)" },
 	{ NULL, NULL }
@@ -130,8 +131,11 @@ static int h_open(dev_device_t *d)
 			(rc = opt_word(d, "outline", yesno, &h->outline)) || (rc = opt_word(d, "text", texts, &h->text_label)) ||
 			(rc = opt_word(d, "raster", rasters, &h->raster_skip)) || (rc = opt_word(d, "wide", wides, &h->passes)) ||
 			(rc = opt_word(d, "dash", dashes, &h->dash_split)) || (rc = opt_num(d, "knife", 0, 10, &h->knife)) ||
-			(rc = opt_num(d, "overcut", 0, 100, &h->overcut)) || (rc = opt_word(d, "background", bgs, &h->background)))
+			(rc = opt_num(d, "overcut", 0, 100, &h->overcut)) || (rc = opt_word(d, "background", bgs, &h->background)) ||
+			(rc = opt_word(d, "pcl", yesno, &h->pcl)))
 		return rc;
+	if (h->pcl && h->prof.dialect != HPGL_DIALECT_2)
+		return dev_fail(d, DEV_EUSAGE, "pcl=yes frames HP-GL/2; profile %s speaks HP-GL", h->prof.name);
 	if (!h->prof.has_paper[h->place.paper])
 		return dev_fail(d, DEV_EUSAGE, "profile %s has no paper %s", h->prof.name, hpgl_paper_name(h->place.paper));
 	h->place.rotate = rot * 90;

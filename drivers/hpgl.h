@@ -169,6 +169,8 @@ int hpgl_emit_label(hpgl_emit_t *e, int32_t x, int32_t y, double height_mm, doub
  * third corner). -1 for anything else or a write error. */
 int hpgl_emit_fill(hpgl_emit_t *e, const popt_pt_t *pts, const size_t *starts, size_t ncont,
 		size_t npts, int even_odd);
+/* Bytes written as they are (PCL framing escapes), closing an open PE first. */
+int hpgl_emit_raw(hpgl_emit_t *e, const char *s, size_t n);
 /* Flush buffered bytes to the transport. */
 int hpgl_emit_flush(hpgl_emit_t *e);
 /* Bytes written so far. */

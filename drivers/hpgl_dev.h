@@ -32,6 +32,7 @@ typedef struct {
 	int optimise;
 	popt_opts_t popt;
 	int fill, outline, text_label, raster_skip, passes, dash_split, background;
+	int pcl;                    /* 1: PCL framing around the HP-GL/2 (ESC %-1B ... ESC %0A) */
 	double hatch_mm, hatch_angle;
 	double knife, overcut;
 	hpgl_emit_t *em;

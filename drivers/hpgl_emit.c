@@ -376,6 +376,11 @@ int hpgl_emit_fill(hpgl_emit_t *e, const popt_pt_t *pts, const size_t *starts, s
 	return 0;
 }
 
+int hpgl_emit_raw(hpgl_emit_t *e, const char *s, size_t n)
+{
+	return pe_close(e) || raw(e, s, n) ? -1 : 0;
+}
+
 uint64_t hpgl_emit_bytes(const hpgl_emit_t *e)
 {
 	return e->bytes;

@@ -168,7 +168,9 @@ int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg)
 	h->stream_pen = SIZE_MAX;
 	free(h->rep);
 	h->rep = NULL;
-	if (hpgl_emit_cmd(h->em, "IN") ||
+	/* PCL framing as AutoCAD's HP-GL/2 driver writes it (../shared/corpus/hpgl/): ESC %-1B enters
+	 * HP-GL/2; ESC %0A at the end returns to PCL. (No ESC E reset: hp2xx reads it as a command.) */
+	if ((h->pcl && hpgl_emit_raw(h->em, "\033%-1B", 5)) || hpgl_emit_cmd(h->em, "IN") ||
 			(h->prof.v_down > 0 && !h->prof.cutter && hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down)))
 		return hpgl_dev_emit_fail(d);
 	if (h->optimise)
@@ -242,7 +244,8 @@ int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 		for (size_t k = 0; k < h->pens.n && !rc; k++)
 			rc = emit_pen(d, k, &at, r);
 	}
-	if (!rc && (hpgl_emit_cmd(h->em, "PU") || hpgl_emit_pen(h->em, 0) || hpgl_emit_flush(h->em)))
+	if (!rc && (hpgl_emit_cmd(h->em, "PU") || hpgl_emit_pen(h->em, 0) ||
+			(h->pcl && hpgl_emit_raw(h->em, "\033%0A", 4)) || hpgl_emit_flush(h->em)))
 		rc = hpgl_dev_emit_fail(d);
 	if (!rc) {
 		for (size_t k = 0; k < r->npens; k++) {

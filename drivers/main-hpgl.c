@@ -32,7 +32,7 @@ static const char usage[] =
 	"                       it to that pen-down length (to compare files of other programs)\n"
 	"  -O KEY=VALUE,...     device options (locus-play -d hpgl -O ...): profile paper rotate mirror\n"
 	"                       fit scale pens optimize merge simplify budget fill hatch hatch-angle\n"
-	"                       outline text raster wide dash knife overcut (docs/hpgl.md)\n"
+	"                       outline text raster background wide dash pcl knife overcut (docs/hpgl.md)\n"
 	"  --help, --version\n";
 
 enum { O_PROFILE = 0x2000, O_LIST, O_PAPER, O_ROTATE, O_MIRROR, O_FIT, O_SCALE, O_PENS, O_NOOPT,

@@ -38,6 +38,8 @@ done
 "$P" --profile hpgl2 --fill native fixtures/meta/fills.meta -o "$T/fills.native.hpgl" 2>/dev/null
 "$P" --profile hpgl2 fixtures/meta/fills.meta -o "$T/fills.hatch.hpgl" 2>/dev/null
 "$P" --text label fixtures/meta/text.meta -o "$T/text.label.hpgl" 2>/dev/null
+"$P" --profile hpgl2 -O pcl=yes fixtures/meta/text.meta -o "$T/text.pcl.hpgl" 2>/dev/null
+"$P" --profile hpgl2 fixtures/meta/text.meta -o "$T/text.nopcl.hpgl" 2>/dev/null
 bad=""
 for f in $G/*.hpgl "$T"/*.hpgl; do
 	c=$(complaints "$f")
@@ -71,6 +73,9 @@ grep -q "FP" "$T/fills.native.hpgl" && ! grep -q "FP" "$T/fills.hatch.hpgl" && o
 [ "$(grep -o 'RA[0-9]*,[0-9]*' "$T/f.ra.hpgl" | wc -l)" = 2 ] && grep -q "FT1" "$T/f.ra.hpgl" && ! grep -q "FP" "$T/f.ra.hpgl" &&
 	ok "fill=native on HP-GL: the F's two rectangles as FT1/RA, nothing as FP" || notok "RA fills: $(grep -o 'RA[^;]*' "$T/f.ra.hpgl")"
 grep -q "LB" "$T/text.label.hpgl" && grep -q "SI" "$T/text.label.hpgl" && ok "text=label writes SI and LB" || notok "labels"
+head -c 5 "$T/text.pcl.hpgl" | od -c | grep -q '033   %   -   1   B' && tail -c 4 "$T/text.pcl.hpgl" | od -c | grep -q '033   %   0   A' &&
+	[ "$("$P" --analyse "$T/text.pcl.hpgl" | sed 's/^analyse [^:]*://')" = "$("$P" --analyse "$T/text.nopcl.hpgl" | sed 's/^analyse [^:]*://')" ] &&
+	ok "pcl=yes: ESC %-1B ... ESC %0A around the same HP-GL/2" || notok "pcl framing"
 # relative coordinates where shorter: the file is shorter than with absolute coordinates alone
 abs=$(tr ';' '\n' < "$T/trifocal.7475a.hpgl" | grep -c '^PR')
 [ "$abs" -gt 0 ] && ok "PR is used ($abs switches)" || notok "no PR"
@@ -197,5 +202,6 @@ bad_case 66 "nope.pens" "missing pen file" --pens "$T/nope.pens" fixtures/meta/f
 bad_case 64 "pen 9 does not fit" "more pens than slots" --pens 1=black,9=red fixtures/meta/f-test.meta
 bad_case 64 "unknown option 'colour'" "unknown -O key" -O colour=red fixtures/meta/f-test.meta
 bad_case 64 "option rotate" "bad rotation" --rotate 45 fixtures/meta/f-test.meta
+bad_case 64 "pcl=yes frames HP-GL/2" "PCL framing on HP-GL" -O pcl=yes fixtures/meta/f-test.meta
 bad_case 64 "no paper" "paper the profile lacks" -O profile="$T/tiny.prof",paper=a3 fixtures/meta/f-test.meta
 done_tests
