@@ -276,7 +276,7 @@ static int merge_paths(popt_set_t *s, double tol)
 			ids[m++] = 2 * k;
 			ids[m++] = 2 * k + 1;
 		}
-	if (grid_build(&g, s, ids, m, 2))
+	if (grid_build(&g, s, ids, m, 0.5))
 		goto done;
 	for (size_t k = 0; k < n; k++) {
 		const popt_path_t *p = &s->paths[k];
@@ -439,7 +439,7 @@ static int greedy_order(popt_set_t *s, popt_pt_t start)
 		if (!s->paths[k].closed)
 			ids[m++] = 2 * k + 1;
 	}
-	if (grid_build(&g, s, ids, m, 2))
+	if (grid_build(&g, s, ids, m, 0.5))
 		goto done;
 	popt_pt_t at = start;
 	size_t left = n, rebuild_at = n / 4;
@@ -462,7 +462,7 @@ static int greedy_order(popt_set_t *s, popt_pt_t start)
 					if (!s->paths[i].closed)
 						ids[m++] = 2 * i + 1;
 				}
-			if (grid_build(&g, s, ids, m, 2))
+			if (grid_build(&g, s, ids, m, 0.5))
 				goto done;
 			rebuild_at = left / 4;
 		}
