@@ -5,6 +5,7 @@
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops, dev_null_ops;
 extern const dev_ops_t dev_film_ops;
 extern const dev_ops_t dev_svg_ops;
+extern const dev_ops_t dev_hpgl_ops;
 
 const dev_ops_t *const dev_registry[] = {
 	&dev_png_ops,
@@ -13,6 +14,7 @@ const dev_ops_t *const dev_registry[] = {
 	&dev_null_ops,
 	&dev_film_ops,
 	&dev_svg_ops,
+	&dev_hpgl_ops,
 	NULL
 };
 

@@ -1,0 +1,76 @@
+/* hpgl_read_int.h: the HP-GL reader's internal state and its drawing helpers (hpgl_read_draw.c),
+ * shared by the parser (hpgl_read.c). Not a public header: use hpgl_read.h. */
+#ifndef LOCUS_HPGL_READ_INT_H
+#define LOCUS_HPGL_READ_INT_H
+
+#include <stddef.h>
+#include "hpgl_read.h"
+
+/* The parser's state: input, place, and the plotter state it tracks. */
+typedef struct {
+	const unsigned char *s;
+	size_t n, i;
+	const char *name;
+	char *err;
+	size_t errlen;
+	hpgl_doc_t *doc;
+	/* plotter state */
+	int pen, down, rel, poly;   /* poly: inside PM0 .. PM2 */
+	int newc;                   /* poly: the next pen-down point starts a contour */
+	double x, y;                /* current position, plotter units */
+	int sc;                     /* 0 none, 1 scaling on */
+	double p1x, p1y, p2x, p2y;  /* IP */
+	double sc_xmin, sc_xmax, sc_ymin, sc_ymax, sx, sy, ox, oy;
+	unsigned char term;         /* label terminator */
+	int open;                   /* 1 while a stroke is being drawn */
+	size_t cmd, cmd_off;
+	/* the polygon buffer: contours of points */
+	hpgl_rpt_t *pb;
+	size_t npb, cappb;
+	size_t *pbs;                /* contour starts */
+	size_t npbs, cappbs;
+} hpgl_rd_t;
+
+
+/* Record "NAME: byte OFF: message" in r->err; returns -1. */
+int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 3, 4)))
+#endif
+	;
+/* Out of memory at the current byte; -1. */
+int hpgl_rd_nomem(hpgl_rd_t *r);
+/* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
+int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size);
+/* End the stroke being drawn (a lone point is dropped). */
+void hpgl_rd_end_stroke(hpgl_rd_t *r);
+/* Append a point to the open stroke. */
+int hpgl_rd_add_pt(hpgl_rd_t *r, double x, double y);
+/* Begin a stroke of kind at the current position. */
+int hpgl_rd_begin_stroke(hpgl_rd_t *r, int kind);
+/* Polygon mode: start a contour at (x, y). */
+int hpgl_rd_start_contour(hpgl_rd_t *r, double x, double y);
+/* Move to (x, y) plotter units with the pen as it is (drawing, or into the polygon buffer). */
+int hpgl_rd_move_to(hpgl_rd_t *r, double x, double y);
+/* A figure of n points as a stroke of its own; the pen position is kept. */
+int hpgl_rd_figure(hpgl_rd_t *r, const hpgl_rpt_t *p, size_t n, int kind);
+/* User units to plotter units: a point, and a length (SC in force). */
+void hpgl_rd_user_to_pu(const hpgl_rd_t *r, double u, double v, double *x, double *y);
+void hpgl_rd_user_len(const hpgl_rd_t *r, double u, double v, double *x, double *y);
+/* An arc about (cx, cy) from angle a0 (radians) through sweep degrees in chord-degree steps. */
+int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0, double sweep, double chord);
+/* CI: a circle about the current position (a contour of its own in polygon mode). */
+int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind);
+/* SC with nv parameters (none: scaling off). */
+void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv);
+/* IN (in = 1) or DF defaults. */
+void hpgl_rd_defaults(hpgl_rd_t *r, int in);
+/* PM n. */
+int hpgl_rd_pm(hpgl_rd_t *r, const double *v, int nv);
+/* FP / EP: the polygon buffer's contours as strokes of kind. */
+int hpgl_rd_polygon_out(hpgl_rd_t *r, int kind);
+/* EA ER RA RR rectangles; EW WG wedges. */
+int hpgl_rd_rect(hpgl_rd_t *r, const char *mn, const double *v, int nv, int relative, int kind);
+int hpgl_rd_wedge(hpgl_rd_t *r, const char *mn, const double *v, int nv, int kind);
+
+#endif
