@@ -3,12 +3,16 @@
 #include "device.h"
 
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops, dev_null_ops;
+extern const dev_ops_t dev_eps_ops, dev_ps_ops, dev_pdf_ops;
 
 const dev_ops_t *const dev_registry[] = {
 	&dev_png_ops,
 	&dev_ppm_ops,
 	&dev_rle_ops,
 	&dev_null_ops,
+	&dev_eps_ops,
+	&dev_ps_ops,
+	&dev_pdf_ops,
 	NULL
 };
 
