@@ -178,7 +178,7 @@ static int open_stream(pdf_t *s)
 	s->stream_obj = n;
 	s->stream_start = s->p.out.pos;
 	s->col = 0;
-	return pse_deflate_begin(&s->p.out, 0, 6);
+	return pse_deflate_begin(&s->p.out, 0, 3);   /* level 3: 4x faster than 6, 3% larger */
 }
 
 static int close_stream(pdf_t *s)
@@ -227,15 +227,15 @@ static void arc(pdf_t *s, const dev_elem_t *e, int cur, int circle)
 		tok(s, "h");
 }
 
-static void write_path(pdf_t *s, const dev_path_t *dp)
+static void write_path(pdf_t *s, const dev_path_t *dp, int fill)
 {
-	if (!dp->nelems) {
+	if (!psd_native(dp)) {
 		const scan_path_t *f = dp->flat;
 		for (size_t k = 0; k < f->nsubs; k++) {
 			const scan_pt_t *q = f->pts + f->subs[k].start;
 			for (size_t i = 0; i < f->subs[k].n; i++)
 				point(s, (double)q[i].x, (double)q[i].y, i ? "l" : "m");
-			if (f->subs[k].closed && f->subs[k].n)
+			if (f->subs[k].closed && f->subs[k].n && !fill)
 				tok(s, "h");
 		}
 		return;
@@ -248,7 +248,11 @@ static void write_path(pdf_t *s, const dev_path_t *dp)
 		case META_DRAW: point(s, e->f[0], e->f[1], "l"); break;
 		case META_ARC: arc(s, e, cur, 0); cur = 1; break;
 		case META_CIRCLE: arc(s, e, 0, 1); cur = 0; break;
-		case META_CLOSE: tok(s, "h"); break;
+		case META_CLOSE:
+			/* f closes every subpath itself: h only where a draw or arc goes on from it */
+			if (!fill || (k + 1 < dp->nelems && (dp->elems[k + 1].op == META_DRAW || dp->elems[k + 1].op == META_ARC)))
+				tok(s, "h");
+			break;
 		default: break;
 		}
 	}
@@ -263,7 +267,7 @@ static int pdf_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *
 	psd_grow_path(&s->p, dp, st, 1);
 	colour(s, st->colour, 0);
 	line_state(s, st);
-	write_path(s, dp);
+	write_path(s, dp, 0);
 	tok(s, "S");
 	newline(s);
 	return failed(s);
@@ -277,7 +281,7 @@ static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st
 		return rc;
 	psd_grow_path(&s->p, dp, st, 0);
 	colour(s, st->colour, 1);
-	write_path(s, dp);
+	write_path(s, dp, 1);
 	tok(s, st->rule == META_RULE_EVEN_ODD ? "f*" : "f");
 	newline(s);
 	return failed(s);
@@ -467,7 +471,8 @@ static int pdf_begin(dev_device_t *d, const dev_page_t *pg)
 	pse_real(&s->p.out, s->p.ox, 4);
 	pse_puts(&s->p.out, " ");
 	pse_real(&s->p.out, s->p.oy, 4);
-	pse_puts(&s->p.out, " cm /G0 gs\n");
+	pse_printf(&s->p.out, " cm /G0 gs 0 0 %lld %lld re W n\n", (long long)pg->width * PSD_GRID,
+		(long long)pg->height * PSD_GRID);
 	return failed(s);
 }
 

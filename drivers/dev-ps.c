@@ -29,7 +29,8 @@ static const char prolog[] =
 	"/A /arc load def /N /arcn load def\n"
 	"/C {3 copy 3 -1 roll add exch moveto 0 360 arc closepath} bind def\n"
 	"/S /stroke load def /F /fill load def /E /eofill load def\n"
-	"/K /setrgbcolor load def /G /setgray load def /W /setlinewidth load def\n"
+	"/K {{255 div} forall setrgbcolor} bind def /G {255 div setgray} bind def\n"
+	"/W /setlinewidth load def\n"
 	"/J /setlinecap load def /j /setlinejoin load def /X /setmiterlimit load def\n"
 	"/B {newpath 4 2 roll moveto 1 index 0 rlineto 0 exch rlineto neg 0 rlineto closepath fill} bind def\n";
 
@@ -74,25 +75,19 @@ static void newline(ps_t *s)
 	}
 }
 
-/* A colour component v/255 with three decimals, shortest: 0, 1, .502 */
-static void tok_unit(ps_t *s, unsigned v)
-{
-	char b[16];
-	psd_unit(v, b, sizeof b);
-	tok(s, b);
-}
 
+/* Colours as 8-bit values, exactly: RGB as a hex string <rrggbb> K, grey as an integer G. */
 static void set_colour(ps_t *s, meta_rgb_t c)
 {
+	char b[16];
 	if (s->known && s->colour == c)
 		return;
 	if (s->p.grey) {
-		tok_unit(s, psd_luma(c));
+		tok_int(s, psd_luma(c));
 		tok(s, "G");
 	} else {
-		tok_unit(s, c >> 16 & 255);
-		tok_unit(s, c >> 8 & 255);
-		tok_unit(s, c & 255);
+		snprintf(b, sizeof b, "<%06x>", (unsigned)c & 0xffffff);
+		tok(s, b);
 		tok(s, "K");
 	}
 	s->colour = c;
@@ -216,7 +211,7 @@ static void arc_start(ps_t *s, const dev_elem_t *e)
 	tok(s, "M");
 }
 
-static int path_elems(ps_t *s, const dev_path_t *dp)
+static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
 {
 	walk_t w = { 0, 0, 0, 0, 0, 0, 0 };
 	int ps_cur = 0;     /* the interpreter has a current point */
@@ -264,7 +259,9 @@ static int path_elems(ps_t *s, const dev_path_t *dp)
 			break;
 		case META_CLOSE:
 			flush_draws(s);
-			tok(s, "Z");
+			/* fill closes every subpath itself: Z only where a draw or arc goes on from it */
+			if (!fill || (k + 1 < dp->nelems && (dp->elems[k + 1].op == META_DRAW || dp->elems[k + 1].op == META_ARC)))
+				tok(s, "Z");
 			w.on_grid = w.start_on_grid;
 			w.x = w.sx, w.y = w.sy;
 			break;
@@ -276,7 +273,7 @@ static int path_elems(ps_t *s, const dev_path_t *dp)
 	return 0;
 }
 
-static int path_flat(ps_t *s, const scan_path_t *f)
+static int path_flat(ps_t *s, const scan_path_t *f, int fill)
 {
 	walk_t w = { 0, 0, 0, 0, 0, 0, 0 };
 	for (size_t k = 0; k < f->nsubs; k++) {
@@ -289,15 +286,15 @@ static int path_flat(ps_t *s, const scan_path_t *f)
 			if (draw_to(s, &w, psd_grid(q[i].x), psd_grid(q[i].y)))
 				return META_ENOMEM;
 		flush_draws(s);
-		if (f->subs[k].closed)
+		if (f->subs[k].closed && !fill)
 			tok(s, "Z");
 	}
 	return 0;
 }
 
-static int write_path(ps_t *s, const dev_path_t *dp)
+static int write_path(ps_t *s, const dev_path_t *dp, int fill)
 {
-	return dp->nelems ? path_elems(s, dp) : path_flat(s, dp->flat);
+	return psd_native(dp) ? path_elems(s, dp, fill) : path_flat(s, dp->flat, fill);
 }
 
 static int ps_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
@@ -310,7 +307,7 @@ static int ps_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *s
 	set_colour(s, st->colour);
 	set_line(s, st);
 	s->known = 1;
-	if ((rc = write_path(s, dp)))
+	if ((rc = write_path(s, dp, 0)))
 		return rc;
 	tok(s, "S");
 	newline(s);
@@ -325,7 +322,7 @@ static int ps_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 		return rc;
 	psd_grow_path(&s->p, dp, st, 0);
 	set_colour(s, st->colour);
-	if ((rc = write_path(s, dp)))
+	if ((rc = write_path(s, dp, 1)))
 		return rc;
 	tok(s, st->rule == META_RULE_EVEN_ODD ? "E" : "F");
 	newline(s);
@@ -480,7 +477,7 @@ static void comments(ps_t *s, const double *box, int have)
 	pse_printf(o, "%%%%LanguageLevel: %d\n", p->level);
 	if (eps)
 		pse_puts(o, "%%Pages: 1\n");
-	if (!eps && p->media && p->paper_w)
+	if (!eps && p->media)
 		pse_printf(o, "%%%%DocumentMedia: Plain %.0f %.0f 0 () ()\n", p->media_w, p->media_h);
 	pse_puts(o, "%%EndComments\n");
 }
@@ -508,7 +505,13 @@ static void start_page(ps_t *s)
 		pse_puts(o, "%%PageBoundingBox: (atend)\n");
 	pse_puts(o, "%%BeginPageSetup\n");
 	if (!eps && p->media && p->level >= 2)
-		pse_printf(o, "<< /PageSize [%.0f %.0f] >> setpagedevice\n", p->media_w, p->media_h);
+	{
+		pse_puts(o, "<< /PageSize [");
+		pse_real(o, p->media_w, 4);
+		pse_puts(o, " ");
+		pse_real(o, p->media_h, 4);
+		pse_puts(o, "] >> setpagedevice\n");
+	}
 	pse_puts(o, eps ? "gsave\n" : "save LocusDict begin\n");
 	pse_real(o, p->ox, 4);
 	pse_puts(o, " ");
@@ -518,7 +521,11 @@ static void start_page(ps_t *s)
 	pse_puts(o, " ");
 	pse_real(o, p->sy / PSD_GRID, 8);
 	/* exact geometry: the meta-language's pixels, not widths snapped for thin-line looks */
-	pse_puts(o, " scale\n/setstrokeadjust where {pop false setstrokeadjust} if\n%%EndPageSetup\n");
+	pse_puts(o, " scale\n/setstrokeadjust where {pop false setstrokeadjust} if\n");
+	/* everything is clipped to the page (meta-language 1) */
+	pse_printf(o, "0 0 M %lld 0 l 0 %lld l %lld 0 l Z clip newpath\n%%%%EndPageSetup\n",
+		(long long)p->page.width * PSD_GRID, (long long)p->page.height * PSD_GRID,
+		-(long long)p->page.width * PSD_GRID);
 	s->known = 0;
 	s->col = 0;
 }

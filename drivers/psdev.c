@@ -248,6 +248,20 @@ int psd_page_box(const psd_t *p, double *x0, double *y0, double *x1, double *y1)
 	return 1;
 }
 
+int psd_native(const dev_path_t *dp)
+{
+	const int64_t lim = (int64_t)65536 * 1000;
+	if (!dp->nelems)
+		return 0;
+	for (size_t k = 0; k < dp->nelems; k++) {
+		const dev_elem_t *e = &dp->elems[k];
+		if ((e->op == META_ARC || e->op == META_CIRCLE) &&
+				(e->f[2] > lim || e->f[0] > lim || e->f[0] < -lim || e->f[1] > lim || e->f[1] < -lim))
+			return 0;
+	}
+	return 1;
+}
+
 /* ---- image blocks ---- */
 
 static int emit(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb)

@@ -92,6 +92,10 @@ void psd_grow_path(psd_t *p, const dev_path_t *dp, const dev_state_t *st, int st
 /* The page's drawn box in points, clipped to the page; 0 when nothing was drawn. */
 int psd_page_box(const psd_t *p, double *x0, double *y0, double *x1, double *y1);
 
+/* 1 when the path is written from its raw elements (native arcs), 0 when from its flattened
+ * points: text, and paths with arcs so large (radius or centre beyond 2^16 pixels) that
+ * interpreters working in fixed point overflow on them (Ghostscript's bbox device does). */
+int psd_native(const dev_path_t *dp);
 /* Merge a span (x, y, n pixels of rgb; y counted from the bottom) into the open image block,
  * emitting the block first when the span does not continue it. */
 int psd_span(psd_t *p, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
