@@ -20,7 +20,7 @@
 	{ "title", "TEXT: the document title (default none)" }
 
 const dev_option_t psd_ps_options[] = {
-	{ "level", "1 | 2 | 3: PostScript language level (default 2)" },
+	{ "level", "1 | 2 | 3: PostScript language level (default 3: compressed pages and images)" },
 	{ "media", "yes | no: ask the printer for the paper with setpagedevice (default no)" },
 	SHARED_OPTIONS,
 	{ NULL, NULL }
@@ -88,7 +88,7 @@ int psd_options(psd_t *p, dev_device_t *d)
 	char b[160];
 	int rc;
 	p->dev = d;
-	p->level = 2;
+	p->level = 3;
 	p->place = PSD_PLACE_FIT;
 	p->margin = 10 * MM_PT;
 	if (dev_option(d, "level", b, sizeof b)) {

@@ -181,6 +181,24 @@ int pse_deflate_begin(pse_out_t *o, int a85, int level)
 	return 0;
 }
 
+int pse_deflate_level(pse_out_t *o, int level)
+{
+	z_stream *z = o->z;
+	uint8_t tmp[1 << 15];
+	int rc;
+	if (!z || o->err)
+		return o->err;
+	do {
+		z->next_in = NULL;
+		z->avail_in = 0;
+		z->next_out = tmp;
+		z->avail_out = sizeof tmp;
+		rc = deflateParams(z, level, Z_DEFAULT_STRATEGY);
+		zsink(o, tmp, sizeof tmp - z->avail_out);
+	} while (rc == Z_BUF_ERROR && z->avail_out == 0);
+	return rc == Z_OK || rc == Z_BUF_ERROR ? o->err : (o->err = META_EIO);
+}
+
 int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 {
 	z_stream *z = o->z;

@@ -64,6 +64,8 @@ int pse_flush(pse_out_t *o);
 /* Compress what follows with zlib's deflate (the zlib format FlateDecode reads), written as
  * ASCII85 (ended by ~>) when a85 is 1. Returns 0 or <0 (out of memory). */
 int pse_deflate_begin(pse_out_t *o, int a85, int level);
+/* Change the compression level from here on (what is buffered is compressed at the old one). */
+int pse_deflate_level(pse_out_t *o, int level);
 /* End compression: flush the compressor (and the ASCII85 group). *zlen, if not NULL, gets the
  * number of compressed bytes (before ASCII85). */
 int pse_deflate_end(pse_out_t *o, uint64_t *zlen);
