@@ -276,4 +276,25 @@ expect_exit 64 "unknown -O key" "$P" -O colour=red fixtures/meta/f-test.meta -o 
 expect_exit 64 "paper on EPS" "$P" -f eps --paper a4 fixtures/meta/f-test.meta -o "$T/x.eps"
 expect_exit 66 "missing input" "$P" "$T/nothing.meta" -o "$T/x.ps"
 [ ! -e "$T/x.ps" ] && [ ! -e "$T/x.eps" ] && ok "no output file after a usage error" || notok "a usage error left a file"
+# ---- the benchmark's cairo anchor builds clean and draws the same picture --------------------
+if pkg-config --exists cairo 2> /dev/null; then
+	LIBDIR=$(dirname "${TESTBIN:-build/native/tests}")
+	SAN=""
+	[ "${SANITIZE:-}" = 1 ] && SAN="-fsanitize=address,undefined -fno-omit-frame-pointer"
+	# shellcheck disable=SC2046,SC2086
+	if ${CC:-cc} -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -O1 -Wall -Wextra -Werror $SAN -Imeta \
+			$(pkg-config --cflags cairo) tests/bench/cairo_anchor.c "$LIBDIR/libmeta.a" $(pkg-config --libs cairo) -lm \
+			-o "$T/cairo_anchor" 2> "$T/ca.log"; then
+		ok "cairo_anchor builds without warnings"
+		"$T/cairo_anchor" -s image fixtures/meta/f-test.meta -o "$T/ca.png"
+		v=$(psnr fixtures/raster/f-test.raster.png "$T/ca.png")
+		atleast "$v" 30 && ok "cairo_anchor image surface draws the F (PSNR $v)" || notok "cairo_anchor F: PSNR $v"
+		"$T/cairo_anchor" -s pdf fixtures/meta/f-test.meta -o "$T/ca.pdf" && "$T/cairo_anchor" -s ps fixtures/meta/f-test.meta -o "$T/ca.ps" &&
+			$GS -sDEVICE=png16m -r96 -sOutputFile="$T/ca-pdf.png" "$T/ca.pdf" &&
+			[ "$(identify -format %wx%h "$T/ca-pdf.png")" = 160x120 ] && grep -q '^%!PS' "$T/ca.ps" &&
+			ok "cairo_anchor PS and PDF surfaces" || notok "cairo_anchor PS/PDF surfaces"
+	else
+		notok "cairo_anchor builds without warnings: $(head -3 "$T/ca.log")"
+	fi
+fi
 done_tests
