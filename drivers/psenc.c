@@ -59,20 +59,29 @@ typedef struct {
 	int ntuple, col;
 	size_t count;         /* bytes produced (counting) */
 	pse_out_t *o;         /* NULL: only count */
+	int nl;               /* characters in line (a line is passed on whole) */
+	char line[96];
 } a85_t;
+
+static void a85_out(a85_t *a)
+{
+	if (a->o && a->nl)
+		raw(a->o, a->line, (size_t)a->nl);
+	a->nl = 0;
+}
 
 static void a85_emit(a85_t *a, const char *s, int n)
 {
 	if (a->col + n > A85_COLS) {
 		a->count++;
-		if (a->o)
-			raw(a->o, "\n", 1);
+		a->line[a->nl++] = '\n';
+		a85_out(a);
 		a->col = 0;
 	}
 	a->count += (size_t)n;
 	a->col += n;
-	if (a->o)
-		raw(a->o, s, (size_t)n);
+	memcpy(a->line + a->nl, s, (size_t)n);
+	a->nl += n;
 }
 
 /* Encode the open group of ntuple (1..4) bytes: 'z' for a full zero group. */
@@ -95,11 +104,23 @@ static void a85_group(a85_t *a)
 
 static void a85_bytes(a85_t *a, const uint8_t *in, size_t n)
 {
-	for (size_t k = 0; k < n; k++) {
+	size_t k = 0;
+	for (; k < n && a->ntuple; k++) {
 		a->tuple |= (uint32_t)in[k] << (24 - 8 * a->ntuple);
 		if (++a->ntuple == 4)
 			a85_group(a);
 	}
+	for (; k + 4 <= n; k += 4) {
+		a->tuple = (uint32_t)in[k] << 24 | (uint32_t)in[k + 1] << 16 | (uint32_t)in[k + 2] << 8 | in[k + 3];
+		a->ntuple = 4;
+		a85_group(a);
+	}
+	for (; k < n; k++) {
+		a->tuple |= (uint32_t)in[k] << (24 - 8 * a->ntuple);
+		if (++a->ntuple == 4)
+			a85_group(a);
+	}
+	a85_out(a);
 }
 
 static void a85_end(a85_t *a)
@@ -108,14 +129,14 @@ static void a85_end(a85_t *a)
 		a85_group(a);
 	a85_emit(a, "~>", 2);
 	a->count++;
-	if (a->o)
-		raw(a->o, "\n", 1);
+	a->line[a->nl++] = '\n';
+	a85_out(a);
 	a->col = 0;
 }
 
 size_t pse_a85_size(const uint8_t *in, size_t n)
 {
-	a85_t a = { 0, 0, 0, 0, NULL };
+	a85_t a = { 0, 0, 0, 0, NULL, 0, { 0 } };
 	a85_bytes(&a, in, n);
 	a85_end(&a);
 	return a.count;
@@ -123,7 +144,7 @@ size_t pse_a85_size(const uint8_t *in, size_t n)
 
 int pse_a85_write(pse_out_t *o, const uint8_t *in, size_t n)
 {
-	a85_t a = { 0, 0, 0, 0, o };
+	a85_t a = { 0, 0, 0, 0, o, 0, { 0 } };
 	a85_bytes(&a, in, n);
 	a85_end(&a);
 	return o->err;
@@ -139,7 +160,7 @@ static void zsink(pse_out_t *o, const uint8_t *p, size_t n)
 		raw(o, p, n);
 		return;
 	}
-	a85_t a = { o->tuple, o->ntuple, o->col, 0, o };
+	a85_t a = { o->tuple, o->ntuple, o->col, 0, o, 0, { 0 } };
 	a85_bytes(&a, p, n);
 	o->tuple = a.tuple;
 	o->ntuple = a.ntuple;
@@ -213,7 +234,7 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 	deflateEnd(z);
 	free(z);
 	if (o->a85) {
-		a85_t a = { o->tuple, o->ntuple, o->col, 0, o };
+		a85_t a = { o->tuple, o->ntuple, o->col, 0, o, 0, { 0 } };
 		a85_end(&a);
 		o->a85 = 0;
 	}

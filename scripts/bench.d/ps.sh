@@ -68,33 +68,33 @@ bench_ps() {
 			i=$((i + 1))
 		done
 		if [ -n "$ERR" ]; then fail "ps-$wl" "$ERR"; continue; fi
-		med "$W/r.lps"; lps_s=$M_S lps_mib=$M_MIB
+		med "$W/r.lps"; lps_s=$M_S lps_mib=$M_MIB lps_cpu=$M_CPU
 		[ "$wl" = a ] && lps_a_mib=$lps_mib
-		med "$W/r.lpdf"; lpdf_s=$M_S lpdf_mib=$M_MIB
-		med "$W/r.plot"; plot_s=$M_S plot_mib=$M_MIB
+		med "$W/r.lpdf"; lpdf_s=$M_S lpdf_mib=$M_MIB lpdf_cpu=$M_CPU
+		med "$W/r.plot"; plot_s=$M_S plot_mib=$M_MIB plot_cpu=$M_CPU
 		b_lps=$(wc -c < "$W/ps-$wl.ps") b_lpdf=$(wc -c < "$W/ps-$wl.pdf") b_plot=$(wc -c < "$W/ps-$wl.plot.ps")
-		ps_size_line "ps-$wl" "$lps_s" plot-Tps "$plot_s" "$lps_mib" "$plot_mib" "$b_lps" "$b_plot"
+		ps_size_line "ps-$wl" "$lps_s" plot-Tps "$plot_s" "$lps_mib" "$plot_mib" "$b_lps" "$b_plot" "$(cpu "$lps_cpu" "$plot_cpu")"
 		if [ $cai = 1 ]; then
-			med "$W/r.cps"; cps_s=$M_S cps_mib=$M_MIB
-			med "$W/r.cpdf"; cpdf_s=$M_S cpdf_mib=$M_MIB
+			med "$W/r.cps"; cps_s=$M_S cps_mib=$M_MIB cps_cpu=$M_CPU
+			med "$W/r.cpdf"; cpdf_s=$M_S cpdf_mib=$M_MIB cpdf_cpu=$M_CPU
 			b_cps=$(wc -c < "$W/ps-$wl.cairo.ps") b_cpdf=$(wc -c < "$W/ps-$wl.cairo.pdf")
-			ps_size_line "ps-$wl" "$lps_s" cairo-ps "$cps_s" "$lps_mib" "$cps_mib" "$b_lps" "$b_cps"
-			ps_size_line "pdf-$wl" "$lpdf_s" cairo-pdf "$cpdf_s" "$lpdf_mib" "$cpdf_mib" "$b_lpdf" "$b_cpdf"
+			ps_size_line "ps-$wl" "$lps_s" cairo-ps "$cps_s" "$lps_mib" "$cps_mib" "$b_lps" "$b_cps" "$(cpu "$lps_cpu" "$cps_cpu")"
+			ps_size_line "pdf-$wl" "$lpdf_s" cairo-pdf "$cpdf_s" "$lpdf_mib" "$cpdf_mib" "$b_lpdf" "$b_cpdf" "$(cpu "$lpdf_cpu" "$cpdf_cpu")"
 		else
 			skip "pdf-$wl" "no cairo anchor: $B_ERR"
 		fi
 		# Ghostscript interpreting each output (rendering at 96 dpi into nothing)
 		ps_gs "$W/ps-$wl.ps" || { fail "gs-ps-$wl" "$M_ERR"; continue; }
-		g_l=$M_S g_lm=$M_MIB
+		g_l=$M_S g_lm=$M_MIB g_lc=$M_CPU
 		ps_gs "$W/ps-$wl.plot.ps" || { fail "gs-ps-$wl" "$M_ERR"; continue; }
-		line "gs-ps-$wl" "$g_l" gs-on-plot-Tps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1)"
+		line "gs-ps-$wl" "$g_l" gs-on-plot-Tps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
 		if [ $cai = 1 ]; then
 			ps_gs "$W/ps-$wl.cairo.ps" || { fail "gs-ps-$wl" "$M_ERR"; continue; }
-			line "gs-ps-$wl" "$g_l" gs-on-cairo-ps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1)"
+			line "gs-ps-$wl" "$g_l" gs-on-cairo-ps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
 			ps_gs "$W/ps-$wl.pdf" || { fail "gs-pdf-$wl" "$M_ERR"; continue; }
-			g_l=$M_S g_lm=$M_MIB
+			g_l=$M_S g_lm=$M_MIB g_lc=$M_CPU
 			ps_gs "$W/ps-$wl.cairo.pdf" || { fail "gs-pdf-$wl" "$M_ERR"; continue; }
-			line "gs-pdf-$wl" "$g_l" gs-on-cairo-pdf "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1)"
+			line "gs-pdf-$wl" "$g_l" gs-on-cairo-pdf "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
 		fi
 	done
 	# memory with four times the input: Locus streams, plotutils holds the page
