@@ -394,7 +394,7 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 			(long long)h * PSD_GRID, p->grey ? "Gray" : "RGB", w, h, p->grey ? "" : " 0 1 0 1", w, h, h);
 		pse_deflate_level(o, 6);
 		pse_write(o, data, n);
-		pse_deflate_level(o, 1);
+		pse_deflate_level(o, PSE_HUFFMAN);
 		pse_puts(o, "\ngrestore\n");
 		s->known = 0;
 		if (o->err)
@@ -548,7 +548,7 @@ static void start_page(ps_t *s)
 	s->packed = p->level >= 3;
 	if (s->packed) {
 		pse_puts(o, "currentfile /ASCII85Decode filter /FlateDecode filter cvx exec\n");
-		pse_deflate_begin(o, 1, 1);
+		pse_deflate_begin(o, 1, PSE_HUFFMAN);
 	}
 	s->known = 0;
 	s->col = 0;

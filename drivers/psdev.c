@@ -211,10 +211,19 @@ void psd_grow_path(psd_t *p, const dev_path_t *dp, const dev_state_t *st, int st
 	double h = stroke ? (st->width > 1000 ? st->width : 1000) / 2.0 : 0;
 	double base = h * (stroke && st->cap == META_CAP_SQUARE ? sqrt(2.0) : 1);
 	double limit = st->miter_limit / 1000.0;
+	/* the farthest any point can reach; points whose reach stays inside the box so far (after
+	 * a clear, the page) cannot grow it, and cost no join geometry */
+	double far = base;
+	if (stroke && st->join == META_JOIN_MITER && h * limit > far)
+		far = h * limit;
+	int64_t fi = (int64_t)ceil(far) + slack;
 	for (size_t s = 0; s < f->nsubs; s++) {
 		const scan_pt_t *q = f->pts + f->subs[s].start;
 		size_t n = f->subs[s].n;
 		for (size_t k = 0; k < n; k++) {
+			if (p->drawn && q[k].x - fi >= p->bx0 && q[k].x + fi <= p->bx1 && q[k].y - fi >= p->by0 &&
+					q[k].y + fi <= p->by1)
+				continue;
 			double e = base;
 			if (stroke && st->join == META_JOIN_MITER && n > 2 && (f->subs[s].closed || (k > 0 && k + 1 < n))) {
 				/* neighbours, skipping repeated points */

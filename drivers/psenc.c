@@ -184,12 +184,21 @@ static int zpump(pse_out_t *o, const void *p, size_t n, int flush)
 	return o->err;
 }
 
+/* Compress what is gathered in zin. */
+static int zstage(pse_out_t *o)
+{
+	size_t n = o->nzin;
+	o->nzin = 0;
+	return n ? zpump(o, o->zin, n, Z_NO_FLUSH) : o->err;
+}
+
 int pse_deflate_begin(pse_out_t *o, int a85, int level)
 {
 	if (o->err)
 		return o->err;
 	z_stream *z = calloc(1, sizeof *z);
-	if (!z || deflateInit(z, level) != Z_OK) {
+	int huff = level == PSE_HUFFMAN;
+	if (!z || deflateInit2(z, huff ? 1 : level, Z_DEFLATED, 15, 8, huff ? Z_HUFFMAN_ONLY : Z_DEFAULT_STRATEGY) != Z_OK) {
 		free(z);
 		return o->err = META_ENOMEM;
 	}
@@ -207,14 +216,15 @@ int pse_deflate_level(pse_out_t *o, int level)
 	z_stream *z = o->z;
 	uint8_t tmp[1 << 15];
 	int rc;
-	if (!z || o->err)
+	if (!z || o->err || zstage(o))
 		return o->err;
 	do {
 		z->next_in = NULL;
 		z->avail_in = 0;
 		z->next_out = tmp;
 		z->avail_out = sizeof tmp;
-		rc = deflateParams(z, level, Z_DEFAULT_STRATEGY);
+		rc = deflateParams(z, level == PSE_HUFFMAN ? 1 : level,
+			level == PSE_HUFFMAN ? Z_HUFFMAN_ONLY : Z_DEFAULT_STRATEGY);
 		zsink(o, tmp, sizeof tmp - z->avail_out);
 	} while (rc == Z_BUF_ERROR && z->avail_out == 0);
 	return rc == Z_OK || rc == Z_BUF_ERROR ? o->err : (o->err = META_EIO);
@@ -228,9 +238,11 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 	o->z = NULL;
 	if (!o->err) {
 		o->z = z;
+		zstage(o);
 		zpump(o, NULL, 0, Z_FINISH);
 		o->z = NULL;
 	}
+	o->nzin = 0;
 	deflateEnd(z);
 	free(z);
 	if (o->a85) {
@@ -249,8 +261,15 @@ int pse_write(pse_out_t *o, const void *p, size_t n)
 {
 	if (o->err)
 		return o->err;
-	if (o->z)
-		return n ? zpump(o, p, n, Z_NO_FLUSH) : 0;
+	if (o->z) {
+		if (o->nzin + n > sizeof o->zin && zstage(o))
+			return o->err;
+		if (n > sizeof o->zin)
+			return zpump(o, p, n, Z_NO_FLUSH);
+		memcpy(o->zin + o->nzin, p, n);
+		o->nzin += n;
+		return 0;
+	}
 	return raw(o, p, n);
 }
 

@@ -26,7 +26,9 @@ typedef struct pse_out {
 	int ntuple, col;            /* ASCII85: bytes in the group, output column */
 	uint64_t zout;              /* bytes the compressor produced (before ASCII85) */
 	size_t n;                   /* bytes in buf */
+	size_t nzin;                /* bytes in zin, waiting for the compressor */
 	unsigned char buf[1 << 16];
+	unsigned char zin[1 << 16]; /* what is to be compressed, gathered for fewer deflate calls */
 } pse_out_t;
 
 /* Start a writer over t (which may be NULL until the first write: pse_set_transport). */
@@ -61,8 +63,11 @@ int pse_printf(pse_out_t *o, const char *fmt, ...)
 /* Pass everything buffered to the transport (and io_flush it). */
 int pse_flush(pse_out_t *o);
 
+/* A compression level: Huffman coding only, no string matching. On the number text of paths
+ * it is as small as level 1 (random walks: 1% smaller, contours 15% larger) at 2/3 the time. */
+#define PSE_HUFFMAN (-2)
 /* Compress what follows with zlib's deflate (the zlib format FlateDecode reads), written as
- * ASCII85 (ended by ~>) when a85 is 1. Returns 0 or <0 (out of memory). */
+ * ASCII85 (ended by ~>) when a85 is 1; level 1..9 or PSE_HUFFMAN. Returns 0 or <0. */
 int pse_deflate_begin(pse_out_t *o, int a85, int level);
 /* Change the compression level from here on (what is buffered is compressed at the old one). */
 int pse_deflate_level(pse_out_t *o, int level);
