@@ -170,6 +170,12 @@ convert fixtures/raster/image.raster.png -colorspace Gray -fx '(0.299*r.r+0.587*
 v=$(psnr "$T/gref.png" "$T/g.png")
 atleast "$v" 45 && ok "--grey: luminance picture (PSNR $v against BT.601 luma)" || notok "--grey: PSNR $v"
 grep -aq 'DeviceRGB' "$T/g.pdf" && notok "--grey PDF still uses RGB" || ok "--grey PDF has no RGB"
+for lv in 1 2 3; do
+	"$P" --grey --level $lv -f eps fixtures/meta/image.meta -o "$T/g$lv.eps"
+	$GS -sDEVICE=pnggray -r96 -dEPSCrop -sOutputFile="$T/g$lv.png" "$T/g$lv.eps"
+	v=$(psnr "$T/gref.png" "$T/g$lv.png")
+	atleast "$v" 45 && ok "--grey level $lv EPS: luminance picture (PSNR $v)" || notok "--grey level $lv: PSNR $v"
+done
 
 # ---- spans and rows merge into images, never a rectangle per pixel ---------------------------
 awk 'BEGIN { print "LOCUS-META 1"; print "page 40 30";
