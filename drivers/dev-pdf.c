@@ -305,26 +305,19 @@ static int pdf_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, me
 static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb)
 {
 	pdf_t *s = (pdf_t *)p;
-	int comps = p->grey ? 1 : 3;
-	size_t n = (size_t)w * h * comps;
-	const uint8_t *data = rgb;
-	uint8_t *grey = NULL, *rle = NULL, *z = NULL;
+	psd_samples_t sm;
+	uint8_t *rle = NULL, *z = NULL;
 	size_t nrle = 0, nz = 0;
-	int rc = 0;
-	if (p->grey) {
-		if (!(grey = malloc(n)))
-			return dev_fail(p->dev, META_ENOMEM, "out of memory");
-		for (size_t k = 0; k < n; k++)
-			grey[k] = (uint8_t)psd_luma((meta_rgb_t)rgb[3 * k] << 16 | (meta_rgb_t)rgb[3 * k + 1] << 8 | rgb[3 * k + 2]);
-		data = grey;
-	}
+	int rc = psd_samples(p, x, y, w, h, rgb, &sm);
+	if (rc)
+		return rc;
+	const uint8_t *data = sm.data, *best = sm.data;
+	size_t n = sm.n, nbest = sm.n;
 	if (!(rle = malloc(pse_rle_bound(n))) || pse_flate_encode(data, n, 6, &z, &nz)) {
 		rc = dev_fail(p->dev, META_ENOMEM, "out of memory");
 		goto done;
 	}
 	nrle = pse_rle_encode(data, n, rle);
-	const uint8_t *best = data;
-	size_t nbest = n;
 	const char *filter = "";
 	if (nrle < nbest)
 		best = rle, nbest = nrle, filter = " /Filter /RunLengthDecode";
@@ -339,7 +332,8 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 	}
 	begin_obj(s, obj);
 	pse_printf(&p->out, "<< /Type /XObject /Subtype /Image /Width %u /Height %u /ColorSpace /Device%s\n"
-		"/BitsPerComponent 8%s /Length %zu >>\nstream\n", w, h, p->grey ? "Gray" : "RGB", filter, nbest);
+		"/BitsPerComponent %d%s /Length %zu >>\nstream\n", sm.width, sm.height, sm.comps == 1 ? "Gray" : "RGB",
+		sm.bpc, filter, nbest);
 	pse_write(&p->out, best, nbest);
 	pse_puts(&p->out, "\nendstream\nendobj\n");
 	if ((rc = open_stream(s)))
@@ -348,7 +342,7 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 		(long long)h * PSD_GRID, (long long)x * PSD_GRID, (long long)y * PSD_GRID, s->images.n);
 	rc = failed(s);
 done:
-	free(grey);
+	free(sm.owned);
 	free(rle);
 	free(z);
 	return rc;

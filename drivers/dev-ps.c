@@ -350,18 +350,16 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 {
 	ps_t *s = (ps_t *)p;
 	pse_out_t *o = &p->out;
-	int comps = p->grey ? 1 : 3;
-	size_t n = (size_t)w * h * comps;
-	uint8_t *data = (uint8_t *)rgb, *grey = NULL, *rle = NULL, *z = NULL;
+	psd_samples_t sm;
+	uint8_t *rle = NULL, *z = NULL;
 	size_t nrle = 0, nz = 0;
-	int rc = 0;
-	if (p->grey) {
-		if (!(grey = malloc(n)))
-			return dev_fail(p->dev, META_ENOMEM, "out of memory");
-		for (size_t k = 0; k < n; k++)
-			grey[k] = (uint8_t)psd_luma((meta_rgb_t)rgb[3 * k] << 16 | (meta_rgb_t)rgb[3 * k + 1] << 8 | rgb[3 * k + 2]);
-		data = grey;
-	}
+	int rc = psd_samples(p, x, y, w, h, rgb, &sm);
+	if (rc)
+		return rc;
+	const uint8_t *data = sm.data;
+	size_t n = sm.n;
+	unsigned iw = sm.width, ih = sm.height;
+	const char *space = sm.comps == 1 ? "Gray" : "RGB", *decode = sm.comps == 1 ? "0 1" : "0 1 0 1 0 1";
 	/* the smallest encoding this level can read */
 	enum { HEX, A85, RL, FL } pick = p->level == 1 ? HEX : A85;
 	size_t best = p->level == 1 ? pse_hex_size(n) : pse_a85_size(data, n);
@@ -385,34 +383,27 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 			best = a, pick = FL;
 	}
 	newline(s);
+	pse_printf(o, "gsave %lld %lld translate %lld %lld scale\n", (long long)x * PSD_GRID,
+		(long long)y * PSD_GRID, (long long)w * PSD_GRID, (long long)h * PSD_GRID);
 	if (s->packed) {
 		/* inside the compressed body: the samples as they are, compressed harder */
-		pse_printf(o, "gsave %lld %lld translate %lld %lld scale\n/Device%s setcolorspace\n"
-			"<< /ImageType 1 /Width %u /Height %u /BitsPerComponent 8 /Decode [0 1%s]\n"
-			"/ImageMatrix [%u 0 0 -%u 0 %u] /DataSource currentfile >> image\n",
-			(long long)x * PSD_GRID, (long long)y * PSD_GRID, (long long)w * PSD_GRID,
-			(long long)h * PSD_GRID, p->grey ? "Gray" : "RGB", w, h, p->grey ? "" : " 0 1 0 1", w, h, h);
+		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
+			"/Decode [%s] /ImageMatrix [%u 0 0 -%u 0 %u] /DataSource currentfile >> image\n",
+			space, iw, ih, sm.bpc, decode, iw, ih, ih);
 		pse_deflate_level(o, 6);
 		pse_write(o, data, n);
 		pse_deflate_level(o, PSE_HUFFMAN);
-		pse_puts(o, "\ngrestore\n");
-		s->known = 0;
-		if (o->err)
-			rc = dev_fail(p->dev, META_EIO, "%s: write failed", io_name(p->dev->out));
-		goto done;
-	}
-	pse_printf(o, "gsave %lld %lld translate %lld %lld scale\n", (long long)x * PSD_GRID,
-		(long long)y * PSD_GRID, (long long)w * PSD_GRID, (long long)h * PSD_GRID);
-	if (pick == HEX) {
-		pse_printf(o, "/picstr %zu string def\n%u %u 8 [%u 0 0 -%u 0 %u]\n"
-			"{currentfile picstr readhexstring pop} %s\n", (size_t)w * comps, w, h, w, h, h,
-			p->grey ? "image" : "false 3 colorimage");
+		pse_puts(o, "\n");
+	} else if (pick == HEX) {
+		pse_printf(o, "/picstr %zu string def\n%u %u %d [%u 0 0 -%u 0 %u]\n"
+			"{currentfile picstr readhexstring pop} %s\n", n / ih, iw, ih, sm.bpc, iw, ih, ih,
+			sm.comps == 1 ? "image" : "false 3 colorimage");
 		pse_hex_write(o, data, n);
 	} else {
-		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent 8\n"
-			"/Decode [0 1%s] /ImageMatrix [%u 0 0 -%u 0 %u]\n"
+		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
+			"/Decode [%s] /ImageMatrix [%u 0 0 -%u 0 %u]\n"
 			"/DataSource currentfile /ASCII85Decode filter%s >> image\n",
-			p->grey ? "Gray" : "RGB", w, h, p->grey ? "" : " 0 1 0 1", w, h, h,
+			space, iw, ih, sm.bpc, decode, iw, ih, ih,
 			pick == RL ? " /RunLengthDecode filter" : pick == FL ? " /FlateDecode filter" : "");
 		if (pick == A85)
 			pse_a85_write(o, data, n);
@@ -426,7 +417,7 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 	if (o->err)
 		rc = dev_fail(p->dev, META_EIO, "%s: write failed", io_name(p->dev->out));
 done:
-	free(grey);
+	free(sm.owned);
 	free(rle);
 	free(z);
 	return rc;

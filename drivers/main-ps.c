@@ -22,13 +22,14 @@ static const char usage[] =
 	"  --scale F           natural size times F\n"
 	"  --margin MM         margin with a paper (default 10)\n"
 	"  --grey              grey levels (luminance) for monochrome printers\n"
+	"  --dither DPI        images in black and white dots: an 8x8 ordered dither at DPI\n"
 	"  --media             PostScript: ask for the paper with setpagedevice\n"
 	"  --date              write a creation date (SOURCE_DATE_EPOCH if set, else now)\n"
 	"  --title TEXT        document title\n"
 	"  -O KEY=VALUE,...    the same as device options (locus-play -d eps|ps|pdf -O ...)\n"
 	"  --help, --version\n";
 
-enum { O_PAPER = 1000, O_ORIENT, O_PLACE, O_SCALE, O_MARGIN, O_GREY, O_MEDIA, O_DATE, O_TITLE };
+enum { O_PAPER = 1000, O_ORIENT, O_PLACE, O_SCALE, O_MARGIN, O_GREY, O_MEDIA, O_DATE, O_TITLE, O_DITHER };
 
 static const struct option longopts[] = {
 	{ "form", required_argument, NULL, 'f' },
@@ -39,6 +40,7 @@ static const struct option longopts[] = {
 	{ "scale", required_argument, NULL, O_SCALE },
 	{ "margin", required_argument, NULL, O_MARGIN },
 	{ "grey", no_argument, NULL, O_GREY },
+	{ "dither", required_argument, NULL, O_DITHER },
 	{ "media", no_argument, NULL, O_MEDIA },
 	{ "date", no_argument, NULL, O_DATE },
 	{ "title", required_argument, NULL, O_TITLE },
@@ -65,6 +67,7 @@ static int on_option(cli_t *c, int key, const char *arg)
 	case O_SCALE: return cli_set_option(c, "scale", arg) ? 64 : CLI_RUN;
 	case O_MARGIN: return cli_set_option(c, "margin", arg) ? 64 : CLI_RUN;
 	case O_GREY: return cli_set_option(c, "grey", "yes") ? 64 : CLI_RUN;
+	case O_DITHER: return cli_set_option(c, "dither", arg) ? 64 : CLI_RUN;
 	case O_MEDIA: return cli_set_option(c, "media", "yes") ? 64 : CLI_RUN;
 	case O_DATE: return cli_set_option(c, "date", "yes") ? 64 : CLI_RUN;
 	case O_TITLE: return cli_set_option(c, "title", arg) ? 64 : CLI_RUN;

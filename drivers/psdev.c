@@ -16,6 +16,7 @@
 	{ "scale", "F: natural size times F, centred (overrides place)" }, \
 	{ "margin", "MM: margin on every side with a paper (default 10)" }, \
 	{ "grey", "yes | no: grey levels by luminance for monochrome printers (default no)" }, \
+	{ "dither", "DPI: images as an 8x8 ordered dither in black and white at DPI dots per inch (implies grey)" }, \
 	{ "date", "yes | no: write a creation date, SOURCE_DATE_EPOCH or now (default no)" }, \
 	{ "title", "TEXT: the document title (default none)" }
 
@@ -99,6 +100,13 @@ int psd_options(psd_t *p, dev_device_t *d)
 	if ((rc = yes_no(d, "media", &p->media)) || (rc = yes_no(d, "grey", &p->grey)) ||
 			(rc = yes_no(d, "date", &p->date)))
 		return rc;
+	if (dev_option(d, "dither", b, sizeof b)) {
+		double dpi;
+		if ((rc = positive(d, "dither", b, 72, 2400, &dpi)))
+			return rc;
+		p->dither = (unsigned)dpi;
+		p->grey = 1;
+	}
 	if (dev_option(d, "paper", b, sizeof b) && (rc = paper(p, d, b)))
 		return rc;
 	if (dev_option(d, "orientation", b, sizeof b)) {
@@ -396,6 +404,66 @@ void psd_release(psd_t *p)
 	p->blk.pix = NULL;
 	p->blk.cap = 0;
 	p->blk.active = 0;
+}
+
+/* ---- samples: grey and dither ---- */
+
+/* Bayer's 8 x 8 threshold matrix (0..63): M2n = [4M 4M+2; 4M+3 4M+1], the finest 2 x 2 step
+ * in the highest bits, so that neighbouring dots have the most different thresholds. */
+static unsigned bayer(unsigned x, unsigned y)
+{
+	unsigned v = 0;
+	for (int k = 0; k < 3; k++) {
+		unsigned a = x >> k & 1, b = y >> k & 1;
+		v = v << 2 | ((a ^ b) << 1 | b);
+	}
+	return v;
+}
+
+int psd_samples(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb, psd_samples_t *out)
+{
+	memset(out, 0, sizeof *out);
+	out->width = w, out->height = h, out->bpc = 8, out->comps = p->grey ? 1 : 3;
+	if (!p->grey) {
+		out->data = rgb;
+		out->n = (size_t)w * h * 3;
+		return 0;
+	}
+	size_t npx = (size_t)w * h;
+	if (!p->dither) {
+		if (!(out->owned = malloc(npx ? npx : 1)))
+			return dev_fail(p->dev, META_ENOMEM, "out of memory");
+		for (size_t k = 0; k < npx; k++)
+			out->owned[k] = (uint8_t)psd_luma((meta_rgb_t)rgb[3 * k] << 16 | (meta_rgb_t)rgb[3 * k + 1] << 8 | rgb[3 * k + 2]);
+		out->data = out->owned;
+		out->n = npx;
+		return 0;
+	}
+	/* printer dots covering the image, counted from the page's corner so that neighbouring
+	 * images continue one pattern */
+	double k = p->dither / 72.0;
+	long dx0 = lround((p->ox + p->sx * x) * k), dx1 = lround((p->ox + p->sx * (x + w)) * k);
+	long dy0 = lround((p->oy + p->sy * y) * k), dy1 = lround((p->oy + p->sy * (y + h)) * k);
+	unsigned dw = dx1 > dx0 ? (unsigned)(dx1 - dx0) : 1, dh = dy1 > dy0 ? (unsigned)(dy1 - dy0) : 1;
+	size_t row = (dw + 7) / 8;
+	if (!(out->owned = calloc(row * dh, 1)))
+		return dev_fail(p->dev, META_ENOMEM, "out of memory (a dither of %u x %u dots)", dw, dh);
+	for (unsigned r = 0; r < dh; r++) {
+		unsigned sy = (unsigned)((uint64_t)r * h / dh);
+		unsigned long Y = (unsigned long)(dy1 - 1 - r);
+		for (unsigned c = 0; c < dw; c++) {
+			const uint8_t *q = rgb + 3 * ((size_t)sy * w + (size_t)((uint64_t)c * w / dw));
+			unsigned g = psd_luma((meta_rgb_t)q[0] << 16 | (meta_rgb_t)q[1] << 8 | q[2]);
+			unsigned long X = (unsigned long)(dx0 + c);
+			/* white when the level is above the dot's threshold (0.5 .. 63.5)/64 of 255 */
+			if (g * 128 > (2 * bayer((unsigned)(X & 7), (unsigned)(Y & 7)) + 1) * 255)
+				out->owned[r * row + c / 8] |= (uint8_t)(0x80 >> (c % 8));
+		}
+	}
+	out->data = out->owned;
+	out->n = row * dh;
+	out->width = dw, out->height = dh, out->bpc = 1, out->comps = 1;
+	return 0;
 }
 
 /* ---- small helpers ---- */

@@ -50,6 +50,7 @@ struct psd {
 	/* options */
 	int level;                      /* PostScript language level 1, 2, 3 */
 	int grey;                       /* 1: grey levels only */
+	unsigned dither;                /* dots per inch of an ordered dither of images, 0: none */
 	int date;                       /* 1: write a creation date */
 	int media;                      /* 1: PostScript asks for the medium (setpagedevice) */
 	double paper_w, paper_h;        /* pt; 0 = the page's natural size */
@@ -105,6 +106,20 @@ int psd_row(psd_t *p, unsigned x, unsigned y, const meta_run_t *runs, size_t nru
 int psd_flush(psd_t *p);
 /* Free the block's memory. */
 void psd_release(psd_t *p);
+
+/* An image's samples as the device writes them: RGB, grey (luminance) or, with a dither,
+ * one bit a printer dot (1 = white), rows top first, each row padded to whole bytes. */
+typedef struct {
+	const uint8_t *data;
+	size_t n;                        /* bytes */
+	unsigned width, height;          /* samples */
+	int bpc, comps;                  /* bits per component (8 or 1), components (3 or 1) */
+	uint8_t *owned;                  /* what to free */
+} psd_samples_t;
+
+/* The samples for an image of w x h page pixels at (x, y), by the grey and dither options.
+ * 0, or META_ENOMEM with a message. */
+int psd_samples(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb, psd_samples_t *out);
 
 /* Luminance of a colour, 0..255: (299 R + 587 G + 114 B) / 1000 rounded (ITU-R BT.601). */
 unsigned psd_luma(meta_rgb_t rgb);

@@ -177,6 +177,18 @@ for lv in 1 2 3; do
 	atleast "$v" 45 && ok "--grey level $lv EPS: luminance picture (PSNR $v)" || notok "--grey level $lv: PSNR $v"
 done
 
+# an ordered dither at 288 dpi (3 x 3 dots a pixel): only black and white, and averaged over
+# each pixel's dots the luminance picture again
+"$P" --dither 288 -f eps fixtures/render/trifocal-raytrace.meta -o "$T/dith.eps"
+$GS -sDEVICE=pnggray -r288 -dEPSCrop -sOutputFile="$T/dith.png" "$T/dith.eps"
+"$BIN/locus-raster" fixtures/render/trifocal-raytrace.meta -o "$T/rt.png"
+convert "$T/rt.png" -fx '0.299*r+0.587*g+0.114*b' -colorspace Gray "$T/rtg.png"
+convert "$T/dith.png" -filter box -resize 96x72 "$T/dith-avg.png"
+levels=$(convert "$T/dith.png" -format %c histogram:info:- | wc -l)
+v=$(psnr "$T/rtg.png" "$T/dith-avg.png")
+[ "$levels" = 2 ] && atleast "$v" 22 && ok "--dither 288: two levels, averages to the luminance (PSNR $v)" ||
+	notok "--dither: $levels levels, PSNR $v"
+
 # ---- spans and rows merge into images, never a rectangle per pixel ---------------------------
 awk 'BEGIN { print "LOCUS-META 1"; print "page 40 30";
 	for (y = 29; y >= 10; y--) for (x = 5; x < 35; x += 3) printf "span %d %d 3 #%02x%02x40\n", x, y, x * 6, y * 8;
