@@ -25,6 +25,7 @@ typedef struct {
 	list_t kids;                 /* page objects */
 	list_t contents;             /* this page's content streams */
 	list_t images;               /* this page's image XObjects */
+	long long org_x, org_y;      /* grid point the path's coordinates are relative to */
 	unsigned stream_obj;         /* the open content stream (0: none) */
 	uint64_t stream_start;
 } pdf_t;
@@ -178,7 +179,7 @@ static int open_stream(pdf_t *s)
 	s->stream_obj = n;
 	s->stream_start = s->p.out.pos;
 	s->col = 0;
-	return pse_deflate_begin(&s->p.out, 0, 3);   /* level 3: 4x faster than 6, 3% larger */
+	return pse_deflate_begin(&s->p.out, 0, 6);
 }
 
 static int close_stream(pdf_t *s)
@@ -199,8 +200,8 @@ static int close_stream(pdf_t *s)
 
 static void point(pdf_t *s, double x, double y, const char *op)
 {
-	tok_int(s, llround(x * PSD_GRID / 1000));
-	tok_int(s, llround(y * PSD_GRID / 1000));
+	tok_int(s, llround(x * PSD_GRID / 1000) - s->org_x);
+	tok_int(s, llround(y * PSD_GRID / 1000) - s->org_y);
 	if (op)
 		tok(s, op);
 }
@@ -227,8 +228,20 @@ static void arc(pdf_t *s, const dev_elem_t *e, int cur, int circle)
 		tok(s, "h");
 }
 
+/* The path, inside q ... Q with the origin moved to its lower left corner: PDF has no relative
+ * operators, and small positive numbers compress better (workload a: 28% smaller). */
 static void write_path(pdf_t *s, const dev_path_t *dp, int fill)
 {
+	int64_t x0, y0, x1, y1;
+	s->org_x = s->org_y = 0;
+	if (scan_path_bbox(dp->flat, &x0, &y0, &x1, &y1)) {
+		s->org_x = psd_grid(x0);
+		s->org_y = psd_grid(y0);
+	}
+	tok(s, "q 1 0 0 1");
+	tok_int(s, s->org_x);
+	tok_int(s, s->org_y);
+	tok(s, "cm");
 	if (!psd_native(dp)) {
 		const scan_path_t *f = dp->flat;
 		for (size_t k = 0; k < f->nsubs; k++) {
@@ -268,7 +281,7 @@ static int pdf_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *
 	colour(s, st->colour, 0);
 	line_state(s, st);
 	write_path(s, dp, 0);
-	tok(s, "S");
+	tok(s, "S Q");
 	newline(s);
 	return failed(s);
 }
@@ -282,7 +295,7 @@ static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st
 	psd_grow_path(&s->p, dp, st, 0);
 	colour(s, st->colour, 1);
 	write_path(s, dp, 1);
-	tok(s, st->rule == META_RULE_EVEN_ODD ? "f*" : "f");
+	tok(s, st->rule == META_RULE_EVEN_ODD ? "f* Q" : "f Q");
 	newline(s);
 	return failed(s);
 }
