@@ -528,7 +528,10 @@ static int pdf_close(dev_device_t *d)
 	free(s->kids.v);
 	free(s->contents.v);
 	free(s->images.v);
-	memset(&s->offsets, 0, 4 * sizeof s->offsets);
+	memset(&s->offsets, 0, sizeof s->offsets);
+	memset(&s->kids, 0, sizeof s->kids);
+	memset(&s->contents, 0, sizeof s->contents);
+	memset(&s->images, 0, sizeof s->images);
 	return rc;
 }
 

@@ -60,7 +60,6 @@ static int ps_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, met
 {
 	ps_t *s = (ps_t *)p;
 	psp_colour(s, rgb);
-	s->known |= 0;   /* the line state is untouched */
 	psp_int(s, (long long)x * PSD_GRID);
 	psp_int(s, (long long)y * PSD_GRID);
 	psp_int(s, (long long)w * PSD_GRID);
