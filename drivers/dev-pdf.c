@@ -179,7 +179,7 @@ static int open_stream(pdf_t *s)
 	s->stream_obj = n;
 	s->stream_start = s->p.out.pos;
 	s->col = 0;
-	return pse_deflate_begin(&s->p.out, 0, 6);
+	return pse_deflate_begin(&s->p.out, 0, 4);   /* as fast as 3, 4x faster than 6 (9% larger) */
 }
 
 static int close_stream(pdf_t *s)
