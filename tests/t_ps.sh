@@ -240,6 +240,19 @@ rm -rf "$T/eps" && mkdir "$T/eps"
 [ "$(ls "$T/eps")" = "mp-001.eps
 mp-002.eps
 mp-003.eps" ] && ok "EPS: one file per page" || notok "EPS pages: $(ls "$T/eps" | tr '\n' ' ')"
+good=0
+for k in 1 2 3; do
+	$GS -sDEVICE=png16m -r96 -dEPSCrop -sOutputFile="$T/eps/pg.png" $CENTRE "$T/eps/mp-00$k.eps"
+	# pages 1 and 2 are not cleared: their boxes are the strokes; page 3 is the whole page
+	set -- $(sed -n 's/^%%HiResBoundingBox: //p' "$T/eps/mp-00$k.eps")
+	H=$(identify -format %h fixtures/raster/multipage.raster-00$k.png)
+	crop=$(echo "$1 $2 $3 $4" | awk -v h="$H" '{x0 = int($1 / .75 + .5); y0 = int($2 / .75 + .5); x1 = int($3 / .75 + .5); y1 = int($4 / .75 + .5)
+		printf "%dx%d+%d+%d", x1 - x0, y1 - y0, x0, h - y1 }')
+	convert fixtures/raster/multipage.raster-00$k.png -crop "$crop" +repage "$T/eps/ref.png"
+	v=$(psnr "$T/eps/ref.png" "$T/eps/pg.png")
+	atleast "$v" 25 && good=$((good + 1))
+done
+[ "$good" = 3 ] && ok "EPS pages render like their rasters" || notok "EPS pages: $good of 3 match"
 expect_exit 65 "EPS of several pages to stdout is refused" sh -c "'$P' -f eps fixtures/meta/multipage.meta > /dev/null"
 
 # ---- paper, orientation, placement ----------------------------------------------------------
