@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <time.h>
 #include "psdev.h"
 
@@ -61,12 +62,12 @@ static int paper(psd_t *p, dev_device_t *d, const char *s)
 		{ "a4", 210 * MM_PT, 297 * MM_PT }, { "a3", 297 * MM_PT, 420 * MM_PT },
 		{ "letter", 612, 792 }, { "legal", 612, 1008 },
 	};
-	if (!strcmp(s, "page")) {
+	if (!strcasecmp(s, "page")) {
 		p->paper_w = p->paper_h = 0;
 		return 0;
 	}
 	for (size_t k = 0; k < sizeof known / sizeof known[0]; k++)
-		if (!strcmp(s, known[k].name)) {
+		if (!strcasecmp(s, known[k].name)) {
 			p->paper_w = known[k].w;
 			p->paper_h = known[k].h;
 			return 0;
