@@ -1,0 +1,516 @@
+/* quant.c: the colour histogram and the adaptive palettes (median cut, octree, k-means). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "quant_int.h"
+
+/* ---- histogram ---------------------------------------------------------------------- */
+
+quant_hist_t *quant_hist_new(void)
+{
+	quant_hist_t *h = calloc(1, sizeof *h);
+	if (!h)
+		return NULL;
+	h->bin = calloc(QBINS, sizeof *h->bin);
+	h->used = malloc(QBINS * sizeof *h->used);
+	if (!h->bin || !h->used) {
+		quant_hist_free(h);
+		return NULL;
+	}
+	return h;
+}
+
+void quant_hist_free(quant_hist_t *h)
+{
+	if (!h)
+		return;
+	free(h->bin);
+	free(h->used);
+	free(h);
+}
+
+void quant_hist_clear(quant_hist_t *h)
+{
+	for (size_t k = 0; k < h->nused; k++)
+		memset(&h->bin[h->used[k]], 0, sizeof h->bin[0]);
+	h->nused = 0;
+	h->npix = 0;
+}
+
+void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride)
+{
+	for (unsigned y = 0; y < hgt; y++) {
+		const uint8_t *p = rgb + y * stride;
+		for (unsigned x = 0; x < w; x++, p += 3) {
+			uint32_t key = quant_key(p[0], p[1], p[2]);
+			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+			qbin_t *q = &h->bin[key];
+			if (q->count++ == 0) {
+				h->used[h->nused++] = key;
+				q->first = c24;
+			} else if ((q->first & ~QMIXED) != c24) {
+				q->first |= QMIXED;
+			}
+			q->sum[0] += p[0];
+			q->sum[1] += p[1];
+			q->sum[2] += p[2];
+		}
+	}
+	h->npix += (unsigned long)w * hgt;
+}
+
+size_t quant_hist_colours(const quant_hist_t *h)
+{
+	return h->nused;
+}
+
+unsigned long quant_flat_threshold(const quant_hist_t *h)
+{
+	unsigned long t = h->npix / 2048;
+	return t < 32 ? 32 : t;
+}
+
+/* ---- nearest entry ------------------------------------------------------------------ */
+
+void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n)
+{
+	q->n = n;
+	for (unsigned k = 0; k < n; k++) {   /* insertion sort by red: n <= 256 */
+		unsigned j = k;
+		while (j > 0 && q->c[j - 1][0] > col[k][0]) {
+			memcpy(q->c[j], q->c[j - 1], sizeof q->c[0]);
+			q->idx[j] = q->idx[j - 1];
+			j--;
+		}
+		memcpy(q->c[j], col[k], sizeof q->c[0]);
+		q->idx[j] = (uint8_t)k;
+	}
+}
+
+unsigned quant_near_find(const qnear_t *q, int r, int g, int b)
+{
+	unsigned lo = 0, hi = q->n;
+	while (lo < hi) {            /* first entry with red >= r */
+		unsigned mid = (lo + hi) / 2;
+		if (q->c[mid][0] < r)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	long best = -1;
+	unsigned bi = 0;
+	int up = (int)lo, down = (int)lo - 1;
+	while (up < (int)q->n || down >= 0) {
+		if (up < (int)q->n) {
+			long dr = q->c[up][0] - r;
+			if (best >= 0 && dr * dr >= best) {
+				up = (int)q->n;
+			} else {
+				long dg = q->c[up][1] - g, db = q->c[up][2] - b, d = dr * dr + dg * dg + db * db;
+				if (best < 0 || d < best || (d == best && q->idx[up] < bi))
+					best = d, bi = q->idx[up];
+				up++;
+			}
+		}
+		if (down >= 0) {
+			long dr = r - q->c[down][0];
+			if (best >= 0 && dr * dr > best) {
+				down = -1;
+			} else {
+				long dg = q->c[down][1] - g, db = q->c[down][2] - b, d = dr * dr + dg * dg + db * db;
+				if (best < 0 || d < best || (d == best && q->idx[down] < bi))
+					best = d, bi = q->idx[down];
+				down--;
+			}
+		}
+	}
+	return bi;
+}
+
+void quant_near_palette(qnear_t *q, const quant_palette_t *pal)
+{
+	int col[QUANT_MAX][3];
+	for (unsigned k = 0; k < pal->n; k++)
+		for (int c = 0; c < 3; c++)
+			col[k][c] = (int)quant_dac8(pal->dac[k][c]) * 4;
+	quant_near_init(q, (const int (*)[3])col, pal->n);
+}
+
+/* ---- colours to quantise ------------------------------------------------------------ */
+
+typedef struct {
+	double c[3];                /* mean 8-bit colour of the bin */
+	double w;                   /* pixels */
+} qcol_t;
+
+static double mean_of(const qbin_t *q, int c)
+{
+	return (double)q->sum[c] / q->count;
+}
+
+/* The palette entry of a mean colour. */
+static void put_entry(quant_palette_t *pal, const double c[3])
+{
+	for (int k = 0; k < 3; k++) {
+		double v = c[k] * 63.0 / 255.0 + 0.5;
+		pal->dac[pal->n][k] = (uint8_t)(v < 0 ? 0 : v > 63 ? 63 : v);
+	}
+	pal->n++;
+}
+
+/* ---- median cut (Heckbert 1982) ----------------------------------------------------- */
+
+static int sort_axis;
+static int by_axis(const void *a, const void *b)
+{
+	const qcol_t *p = a, *q = b;
+	double d = p->c[sort_axis] - q->c[sort_axis];
+	if (d != 0)
+		return d < 0 ? -1 : 1;
+	for (int k = 0; k < 3; k++)   /* a total order: the same result from any qsort */
+		if (p->c[k] != q->c[k])
+			return p->c[k] < q->c[k] ? -1 : 1;
+	return 0;
+}
+
+typedef struct {
+	size_t lo, hi;              /* colours [lo, hi) */
+	double w;
+} qbox_t;
+
+/* Split colours into at most k boxes; each box's weighted mean goes into means (returns the
+ * number of boxes). The box split next is the one with the most pixels among those holding
+ * more than one colour; it is cut across its longest side at the pixel median. */
+static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
+{
+	qbox_t box[QUANT_MAX];
+	size_t nb = 0;
+	if (n == 0 || k == 0)
+		return 0;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	for (size_t i = 0; i < n; i++)
+		box[0].w += col[i].w;
+	nb = 1;
+	while (nb < k) {
+		size_t pick = nb;
+		for (size_t b = 0; b < nb; b++)
+			if (box[b].hi - box[b].lo > 1 && (pick == nb || box[b].w > box[pick].w))
+				pick = b;
+		if (pick == nb)
+			break;
+		qbox_t *bx = &box[pick];
+		double lo[3] = { 1e9, 1e9, 1e9 }, hi[3] = { -1e9, -1e9, -1e9 };
+		for (size_t i = bx->lo; i < bx->hi; i++)
+			for (int c = 0; c < 3; c++) {
+				if (col[i].c[c] < lo[c]) lo[c] = col[i].c[c];
+				if (col[i].c[c] > hi[c]) hi[c] = col[i].c[c];
+			}
+		int axis = 0;
+		for (int c = 1; c < 3; c++)
+			if (hi[c] - lo[c] > hi[axis] - lo[axis])
+				axis = c;
+		sort_axis = axis;
+		qsort(col + bx->lo, bx->hi - bx->lo, sizeof *col, by_axis);
+		double acc = 0;
+		size_t m = bx->lo;
+		while (m < bx->hi - 1 && (acc + col[m].w) * 2 <= bx->w)
+			acc += col[m++].w;
+		if (m == bx->lo)     /* the first colour alone holds half: it goes below the cut */
+			acc += col[m++].w;
+		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc;
+		bx->hi = m, bx->w = acc;
+		nb++;
+	}
+	for (size_t b = 0; b < nb; b++) {
+		double s[3] = { 0, 0, 0 };
+		for (size_t i = box[b].lo; i < box[b].hi; i++)
+			for (int c = 0; c < 3; c++)
+				s[c] += col[i].c[c] * col[i].w;
+		for (int c = 0; c < 3; c++)
+			means[b][c] = s[c] / box[b].w;
+	}
+	return nb;
+}
+
+/* ---- octree (Gervautz and Purgathofer 1988) ----------------------------------------- */
+
+#define ODEPTH 6                /* one level per bit of the 6-bit DAC value */
+
+typedef struct {
+	int child[8];
+	int nchild;
+	int leaf;
+	int slot;                   /* position in its level's reducible list, -1 if none */
+	double w, s[3];
+} onode_t;
+
+typedef struct {
+	onode_t *node;
+	size_t nnode, cap;
+	int *red[ODEPTH];           /* internal nodes per level, reducible */
+	size_t nred[ODEPTH], capred[ODEPTH];
+	size_t leaves;
+	int fail;
+} otree_t;
+
+static int onew(otree_t *t, int level)
+{
+	if (t->nnode == t->cap) {
+		size_t c = t->cap ? t->cap * 2 : 1024;
+		onode_t *p = realloc(t->node, c * sizeof *p);
+		if (!p)
+			return t->fail = -1;
+		t->node = p, t->cap = c;
+	}
+	int id = (int)t->nnode++;
+	onode_t *o = &t->node[id];
+	memset(o, 0, sizeof *o);
+	for (int k = 0; k < 8; k++)
+		o->child[k] = -1;
+	o->slot = -1;
+	o->leaf = level == ODEPTH;
+	if (o->leaf) {
+		t->leaves++;
+	} else {
+		if (t->nred[level] == t->capred[level]) {
+			size_t c = t->capred[level] ? t->capred[level] * 2 : 64;
+			int *p = realloc(t->red[level], c * sizeof *p);
+			if (!p)
+				return t->fail = -1;
+			t->red[level] = p, t->capred[level] = c;
+		}
+		o->slot = (int)t->nred[level];
+		t->red[level][t->nred[level]++] = id;
+	}
+	return id;
+}
+
+static void oinsert(otree_t *t, const qcol_t *c)
+{
+	int r6 = (int)quant_dac6((unsigned)(c->c[0] + 0.5)), g6 = (int)quant_dac6((unsigned)(c->c[1] + 0.5));
+	int b6 = (int)quant_dac6((unsigned)(c->c[2] + 0.5));
+	int id = 0;
+	for (int level = 0;; level++) {
+		onode_t *o = &t->node[id];
+		o->w += c->w;
+		for (int k = 0; k < 3; k++)
+			o->s[k] += c->c[k] * c->w;
+		if (o->leaf)
+			return;
+		int sh = ODEPTH - 1 - level;
+		int ci = ((r6 >> sh) & 1) << 2 | ((g6 >> sh) & 1) << 1 | ((b6 >> sh) & 1);
+		if (t->node[id].child[ci] < 0) {
+			int nid = onew(t, level + 1);
+			if (nid < 0)
+				return;
+			t->node[id].child[ci] = nid;
+			t->node[id].nchild++;
+		}
+		id = t->node[id].child[ci];
+	}
+}
+
+/* Merge the children of the reducible node at the deepest level holding the fewest pixels. */
+static void oreduce(otree_t *t)
+{
+	int level = ODEPTH - 1;
+	while (level >= 0 && t->nred[level] == 0)
+		level--;
+	if (level < 0)
+		return;
+	size_t pick = 0;
+	for (size_t k = 1; k < t->nred[level]; k++)
+		if (t->node[t->red[level][k]].w < t->node[t->red[level][pick]].w)
+			pick = k;
+	int id = t->red[level][pick];
+	int last = t->red[level][--t->nred[level]];
+	t->red[level][pick] = last;
+	t->node[last].slot = (int)pick;
+	onode_t *o = &t->node[id];
+	o->leaf = 1;
+	o->slot = -1;
+	t->leaves -= (size_t)o->nchild - 1;   /* its children are leaves: it is at the deepest level */
+	for (int k = 0; k < 8; k++)
+		o->child[k] = -1;
+	o->nchild = 0;
+}
+
+static void ocollect(const otree_t *t, int id, double (*means)[3], size_t *n)
+{
+	const onode_t *o = &t->node[id];
+	if (o->leaf) {
+		if (o->w > 0) {
+			for (int k = 0; k < 3; k++)
+				means[*n][k] = o->s[k] / o->w;
+			(*n)++;
+		}
+		return;
+	}
+	for (int k = 0; k < 8; k++)
+		if (o->child[k] >= 0)
+			ocollect(t, o->child[k], means, n);
+}
+
+static long octree(const qcol_t *col, size_t n, size_t k, double (*means)[3])
+{
+	otree_t t;
+	memset(&t, 0, sizeof t);
+	size_t nm = 0;
+	if (n == 0 || k == 0)
+		return 0;
+	onew(&t, 0);
+	for (size_t i = 0; i < n && !t.fail; i++) {
+		oinsert(&t, &col[i]);
+		while (t.leaves > k)
+			oreduce(&t);
+	}
+	if (!t.fail)
+		ocollect(&t, 0, means, &nm);
+	free(t.node);
+	for (int l = 0; l < ODEPTH; l++)
+		free(t.red[l]);
+	return t.fail ? -1 : (long)nm;
+}
+
+/* ---- k-means refinement ------------------------------------------------------------- */
+
+/* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
+ * nearest to them; entries below fixed (the flat colours) stay. An entry left with no colour
+ * is moved to the colour of the largest weighted error. */
+static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes)
+{
+	double (*acc)[4] = malloc(k * sizeof *acc);
+	if (!acc)
+		return -1;
+	for (int pass = 0; pass < passes; pass++) {
+		int ic[QUANT_MAX][3];
+		qnear_t q;
+		for (size_t e = 0; e < k; e++)
+			for (int c = 0; c < 3; c++)
+				ic[e][c] = (int)lround(means[e][c] * 4);
+		quant_near_init(&q, (const int (*)[3])ic, (unsigned)k);
+		memset(acc, 0, k * sizeof *acc);
+		double worst = -1;
+		size_t wi = 0;
+		for (size_t i = 0; i < n; i++) {
+			int r = (int)lround(col[i].c[0] * 4), g = (int)lround(col[i].c[1] * 4), b = (int)lround(col[i].c[2] * 4);
+			unsigned e = quant_near_find(&q, r, g, b);
+			double d = 0;
+			for (int c = 0; c < 3; c++) {
+				acc[e][c] += col[i].c[c] * col[i].w;
+				d += (col[i].c[c] - means[e][c]) * (col[i].c[c] - means[e][c]);
+			}
+			acc[e][3] += col[i].w;
+			if (d * col[i].w > worst)
+				worst = d * col[i].w, wi = i;
+		}
+		double moved = 0;
+		for (size_t e = fixed; e < k; e++) {
+			double nc[3];
+			if (acc[e][3] > 0) {
+				for (int c = 0; c < 3; c++)
+					nc[c] = acc[e][3] > 0 ? acc[e][c] / acc[e][3] : means[e][c];
+			} else if (worst > 0) {
+				memcpy(nc, col[wi].c, sizeof nc);
+				worst = 0;
+			} else {
+				continue;
+			}
+			for (int c = 0; c < 3; c++) {
+				moved += fabs(nc[c] - means[e][c]);
+				means[e][c] = nc[c];
+			}
+		}
+		if (moved < 0.05 * (double)(k - fixed))
+			break;
+	}
+	free(acc);
+	return 0;
+}
+
+/* ---- palettes ----------------------------------------------------------------------- */
+
+static int by_weight_desc(const void *a, const void *b)
+{
+	const qcol_t *p = a, *q = b;
+	if (p->w != q->w)
+		return p->w > q->w ? -1 : 1;
+	return by_axis(a, b);
+}
+
+static int by_key(const void *a, const void *b)
+{
+	uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+	return x < y ? -1 : x > y;
+}
+
+int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_palette_t *pal,
+		char *err, size_t errlen)
+{
+	pal->n = 0;
+	if (ncolours < 1 || ncolours > QUANT_MAX) {
+		snprintf(err, errlen, "palette size %u out of range 1..256", ncolours);
+		return -1;
+	}
+	if (h->nused <= ncolours) {   /* every DAC colour gets its own entry: exact */
+		uint32_t keys[QUANT_MAX];
+		memcpy(keys, h->used, h->nused * sizeof *keys);
+		qsort(keys, h->nused, sizeof *keys, by_key);
+		for (size_t k = 0; k < h->nused; k++) {
+			pal->dac[k][0] = (uint8_t)(keys[k] >> 12);
+			pal->dac[k][1] = (uint8_t)(keys[k] >> 6 & 63);
+			pal->dac[k][2] = (uint8_t)(keys[k] & 63);
+		}
+		pal->n = (unsigned)h->nused;
+		return 0;
+	}
+	unsigned long thr = quant_flat_threshold(h);
+	qcol_t *col = malloc(h->nused * sizeof *col);
+	double (*means)[3] = malloc(QUANT_MAX * sizeof *means);
+	if (!col || !means) {
+		free(col);
+		free(means);
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	/* the flat colours first (most pixels first), then the rest */
+	size_t nflat = 0, n = 0;
+	for (size_t k = 0; k < h->nused; k++) {
+		const qbin_t *q = &h->bin[h->used[k]];
+		if (quant_bin_flat(h, q, thr))
+			nflat++;
+	}
+	size_t fi = 0, ri = nflat;
+	for (size_t k = 0; k < h->nused; k++) {
+		const qbin_t *q = &h->bin[h->used[k]];
+		qcol_t *c = &col[quant_bin_flat(h, q, thr) ? fi++ : ri++];
+		for (int i = 0; i < 3; i++)
+			c->c[i] = mean_of(q, i);
+		c->w = q->count;
+	}
+	n = h->nused;
+	qsort(col, nflat, sizeof *col, by_weight_desc);
+	size_t keep = nflat < ncolours / 2 ? nflat : ncolours / 2;
+	for (size_t k = 0; k < keep; k++)
+		memcpy(means[k], col[k].c, sizeof means[k]);
+	/* the flat colours beyond the half are quantised with the rest */
+	qcol_t *rest = col + keep;
+	size_t nrest = n - keep, kfree = ncolours - keep;
+	long got;
+	if (method == QUANT_OCTREE)
+		got = octree(rest, nrest, kfree, means + keep);
+	else
+		got = (long)median_cut(rest, nrest, kfree, means + keep);
+	int rc = got < 0 ? -1 : 0;
+	if (rc == 0 && method == QUANT_BEST)
+		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 8);
+	if (rc == 0)
+		for (size_t k = 0; k < keep + (size_t)got; k++)
+			put_entry(pal, means[k]);
+	else
+		snprintf(err, errlen, "out of memory");
+	free(col);
+	free(means);
+	return rc;
+}

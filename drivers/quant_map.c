@@ -1,0 +1,378 @@
+/* quant_map.c: fixed and file palettes, and mapping pixels to a palette or 5-6-5 with dithering. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "quant_int.h"
+
+/* ---- fixed palettes ----------------------------------------------------------------- */
+
+/* The 16 colours of the EGA/VGA text and 16-colour modes, as 6-bit DAC values. */
+static const uint8_t ega16[16][3] = {
+	{ 0, 0, 0 }, { 0, 0, 42 }, { 0, 42, 0 }, { 0, 42, 42 }, { 42, 0, 0 }, { 42, 0, 42 },
+	{ 42, 21, 0 }, { 42, 42, 42 }, { 21, 21, 21 }, { 21, 21, 63 }, { 21, 63, 21 },
+	{ 21, 63, 63 }, { 63, 21, 21 }, { 63, 21, 63 }, { 63, 63, 21 }, { 63, 63, 63 },
+};
+
+/* The grey ramp of the VGA BIOS palette, entries 16..31. */
+static const uint8_t vga_grey[16] = { 0, 5, 8, 11, 14, 17, 20, 24, 28, 32, 36, 40, 45, 50, 56, 63 };
+
+/* The five levels of each block of 24 hues (intensity high/medium/low x saturation). */
+static const uint8_t vga_levels[9][5] = {
+	{ 0, 16, 31, 47, 63 }, { 31, 39, 47, 55, 63 }, { 45, 49, 54, 58, 63 },
+	{ 0, 7, 14, 21, 28 }, { 14, 17, 21, 24, 28 }, { 20, 22, 24, 26, 28 },
+	{ 0, 4, 8, 12, 16 }, { 8, 10, 12, 14, 16 }, { 11, 12, 13, 15, 16 },
+};
+
+/* One hue of the 24-step cycle blue, magenta, red, yellow, green, cyan, back to blue. */
+static void vga_hue(const uint8_t *L, int i, uint8_t *rgb)
+{
+	int r, g, b;
+	if (i <= 4)       r = i, g = 0, b = 4;
+	else if (i <= 8)  r = 4, g = 0, b = 8 - i;
+	else if (i <= 12) r = 4, g = i - 8, b = 0;
+	else if (i <= 16) r = 16 - i, g = 4, b = 0;
+	else if (i <= 20) r = 0, g = 4, b = i - 16;
+	else              r = 0, g = 24 - i, b = 4;
+	rgb[0] = L[r], rgb[1] = L[g], rgb[2] = L[b];
+}
+
+int quant_fixed_by_name(const char *name)
+{
+	static const char *const names[] = { "vga", "ega", "cube", "grey" };
+	for (int k = 0; k < 4; k++)
+		if (strcmp(name, names[k]) == 0)
+			return k;
+	if (strcmp(name, "gray") == 0)
+		return QUANT_FIXED_GREY;
+	return -1;
+}
+
+int quant_fixed(int which, unsigned ncolours, quant_palette_t *pal, char *err, size_t errlen)
+{
+	memset(pal, 0, sizeof *pal);
+	switch (which) {
+	case QUANT_FIXED_VGA:
+		if (ncolours != 256)
+			break;
+		memcpy(pal->dac, ega16, sizeof ega16);
+		for (int k = 0; k < 16; k++)
+			memset(pal->dac[16 + k], vga_grey[k], 3);
+		for (int blk = 0; blk < 9; blk++)
+			for (int i = 0; i < 24; i++)
+				vga_hue(vga_levels[blk], i, pal->dac[32 + blk * 24 + i]);
+		pal->n = 256;            /* 248..255 stay black */
+		return 0;
+	case QUANT_FIXED_EGA:
+		if (ncolours != 16)
+			break;
+		memcpy(pal->dac, ega16, sizeof ega16);
+		pal->n = 16;
+		return 0;
+	case QUANT_FIXED_CUBE:
+		if (ncolours != 256)
+			break;
+		for (int k = 0; k < 216; k++) {
+			pal->dac[k][0] = (uint8_t)(k / 36 * 63 / 5);
+			pal->dac[k][1] = (uint8_t)(k / 6 % 6 * 63 / 5);
+			pal->dac[k][2] = (uint8_t)(k % 6 * 63 / 5);
+		}
+		pal->n = 256;            /* 216..255 black */
+		return 0;
+	case QUANT_FIXED_GREY: {
+		unsigned n = ncolours < 64 ? ncolours : 64;
+		for (unsigned k = 0; k < n; k++)
+			memset(pal->dac[k], (int)((k * 63 + (n - 1) / 2) / (n - 1)), 3);
+		pal->n = ncolours;       /* any rest black */
+		return 0;
+	}
+	}
+	snprintf(err, errlen, "the %s palette does not fit a mode of %u colours",
+		which == QUANT_FIXED_VGA ? "vga" : which == QUANT_FIXED_EGA ? "ega" :
+		which == QUANT_FIXED_CUBE ? "cube" : "grey", ncolours);
+	return -1;
+}
+
+/* ---- palette files ------------------------------------------------------------------ */
+
+static int hexval(int c)
+{
+	return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 :
+		c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+}
+
+int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
+		quant_palette_t *pal, char *err, size_t errlen)
+{
+	memset(pal, 0, sizeof *pal);
+	if (n > 0 && buf[0] != '#' && buf[0] != ';' && buf[0] != '/' && buf[0] != '\n' && buf[0] != ' ') {
+		/* a raw DAC dump */
+		if (n != 768) {
+			snprintf(err, errlen, "%s: byte 0: expected 768 bytes of a raw DAC dump or lines of #rrggbb, got %zu bytes", name, n);
+			return -1;
+		}
+		for (size_t k = 0; k < 768; k++)
+			if (buf[k] > 63) {
+				snprintf(err, errlen, "%s: byte %zu: DAC value %u above 63", name, k, buf[k]);
+				return -1;
+			}
+		if (ncolours < 256) {
+			snprintf(err, errlen, "%s: a 256-entry DAC dump does not fit a mode of %u colours", name, ncolours);
+			return -1;
+		}
+		memcpy(pal->dac, buf, 768);
+		pal->n = 256;
+		return 0;
+	}
+	size_t pos = 0;
+	unsigned line = 1;
+	while (pos < n) {
+		size_t end = pos;
+		while (end < n && buf[end] != '\n')
+			end++;
+		size_t a = pos, b = end;
+		while (a < b && (buf[a] == ' ' || buf[a] == '\t'))
+			a++;
+		while (b > a && (buf[b - 1] == ' ' || buf[b - 1] == '\t' || buf[b - 1] == '\r'))
+			b--;
+		int comment = a < b && (buf[a] == ';' || (buf[a] == '/' && a + 1 < b && buf[a + 1] == '/'));
+		if (a < b && !comment) {
+			int v[6] = { -1 };
+			int good = b - a == 7 && buf[a] == '#';
+			for (int k = 0; good && k < 6; k++)
+				good = (v[k] = hexval(buf[a + 1 + k])) >= 0;
+			if (!good) {
+				snprintf(err, errlen, "%s:%u:%zu: expected #rrggbb", name, line, a - pos + 1);
+				return -1;
+			}
+			if (pal->n == ncolours) {
+				snprintf(err, errlen, "%s:%u:1: more than %u colours for this mode", name, line, ncolours);
+				return -1;
+			}
+			for (int c = 0; c < 3; c++)
+				pal->dac[pal->n][c] = (uint8_t)quant_dac6((unsigned)(v[2 * c] * 16 + v[2 * c + 1]));
+			pal->n++;
+		}
+		pos = end + 1;
+		line++;
+	}
+	if (pal->n == 0) {
+		snprintf(err, errlen, "%s:1:1: expected #rrggbb lines, found no colour", name);
+		return -1;
+	}
+	return 0;
+}
+
+/* ---- mapping ------------------------------------------------------------------------ */
+
+static const uint8_t bayer8[8][8] = {
+	{ 0, 32, 8, 40, 2, 34, 10, 42 }, { 48, 16, 56, 24, 50, 18, 58, 26 },
+	{ 12, 44, 4, 36, 14, 46, 6, 38 }, { 60, 28, 52, 20, 62, 30, 54, 22 },
+	{ 3, 35, 11, 43, 1, 33, 9, 41 }, { 51, 19, 59, 27, 49, 17, 57, 25 },
+	{ 15, 47, 7, 39, 13, 45, 5, 37 }, { 63, 31, 55, 23, 61, 29, 53, 21 },
+};
+
+/* The target space of a mapping: a palette (through a cache per DAC colour) or 5-6-5. */
+typedef struct {
+	const quant_palette_t *pal;
+	qnear_t near;
+	int16_t *cache;             /* QBINS, -1 = not yet searched */
+	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
+} qmap_t;
+
+static int clamp8(int v) { return v < 0 ? 0 : v > 255 ? 255 : v; }
+
+/* Index chosen for an 8-bit colour; its shown colour in out. */
+static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
+{
+	r = clamp8(r), g = clamp8(g), b = clamp8(b);
+	if (!m->pal) {               /* 5-6-5 */
+		unsigned r5 = ((unsigned)r * 31 + 127) / 255, g6 = ((unsigned)g * 63 + 127) / 255;
+		unsigned b5 = ((unsigned)b * 31 + 127) / 255;
+		out[0] = (int)(r5 << 3 | r5 >> 2), out[1] = (int)(g6 << 2 | g6 >> 4), out[2] = (int)(b5 << 3 | b5 >> 2);
+		return r5 << 11 | g6 << 5 | b5;
+	}
+	uint32_t key = quant_key((unsigned)r, (unsigned)g, (unsigned)b);
+	int e = m->cache[key];
+	if (e < 0) {
+		/* the DAC colour of this bin stands for every 8-bit colour in it */
+		int cr = (int)quant_dac8(key >> 12) * 4, cg = (int)quant_dac8(key >> 6 & 63) * 4;
+		int cb = (int)quant_dac8(key & 63) * 4;
+		e = (int)quant_near_find(&m->near, cr, cg, cb);
+		m->cache[key] = (int16_t)e;
+	}
+	memcpy(out, m->show[e], sizeof m->show[0]);
+	return (unsigned)e;
+}
+
+/* Index of a flat colour: the entry holding its DAC colour exactly, or -1. */
+static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p)
+{
+	if (!h)
+		return -1;
+	uint32_t key = quant_key(p[0], p[1], p[2]);
+	const qbin_t *q = &h->bin[key];
+	if (!quant_bin_flat(h, q, thr))
+		return -1;
+	int shown[3];
+	unsigned e = pick(m, p[0], p[1], p[2], shown);
+	if (!m->pal)
+		return (int)e;
+	const uint8_t *d = m->pal->dac[e];
+	return (uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) == key ? (int)e : -1;
+}
+
+/* One row of error diffusion state: (w + 2) pixels x 3 channels, in 1/16 steps. */
+static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsigned w,
+		unsigned hgt, size_t stride, int dither, uint8_t *out8, uint16_t *out16)
+{
+	unsigned long thr = h ? quant_flat_threshold(h) : 0;
+	int *err0 = NULL, *err1 = NULL;
+	int spread = 0;
+	if (dither == QUANT_DITHER_FS) {
+		err0 = calloc((size_t)(w + 2) * 3, sizeof *err0);
+		err1 = calloc((size_t)(w + 2) * 3, sizeof *err1);
+		if (!err0 || !err1) {
+			free(err0);
+			free(err1);
+			return -1;
+		}
+	} else if (dither == QUANT_DITHER_ORDERED) {
+		/* the threshold spread: the median distance from an entry to its nearest other */
+		if (!m->pal) {
+			spread = 8;
+		} else {
+			int d[QUANT_MAX];
+			unsigned n = m->pal->n;
+			for (unsigned i = 0; i < n; i++) {
+				long best = 255L * 255 * 3;
+				for (unsigned j = 0; j < n; j++) {
+					if (j == i)
+						continue;
+					long s = 0;
+					for (int c = 0; c < 3; c++)
+						s += (long)(m->show[i][c] - m->show[j][c]) * (m->show[i][c] - m->show[j][c]);
+					if (s > 0 && s < best)
+						best = s;
+				}
+				d[i] = (int)sqrt((double)best);
+			}
+			for (unsigned i = 1; i < n; i++)   /* insertion sort, n <= 256 */
+				for (unsigned j = i; j > 0 && d[j - 1] > d[j]; j--) {
+					int t = d[j]; d[j] = d[j - 1]; d[j - 1] = t;
+				}
+			spread = n > 1 ? d[n / 2] : 0;
+		}
+	}
+	for (unsigned y = 0; y < hgt; y++) {
+		const uint8_t *row = rgb + y * stride;
+		int rtl = dither == QUANT_DITHER_FS && (y & 1);   /* serpentine */
+		if (err1)
+			memset(err1, 0, (size_t)(w + 2) * 3 * sizeof *err1);
+		for (unsigned i = 0; i < w; i++) {
+			unsigned x = rtl ? w - 1 - i : i;
+			const uint8_t *p = row + 3 * x;
+			int shown[3];
+			unsigned v;
+			int fe = flat_entry(m, h, thr, p);
+			if (fe >= 0) {
+				v = (unsigned)fe;    /* flat: no error taken, none given */
+			} else if (err0) {
+				int t[3], e[3];
+				int *ec = err0 + 3 * (x + 1);
+				for (int c = 0; c < 3; c++)
+					t[c] = clamp8(p[c] + (ec[c] + (ec[c] >= 0 ? 8 : -8)) / 16);
+				v = pick(m, t[0], t[1], t[2], shown);
+				for (int c = 0; c < 3; c++)
+					e[c] = t[c] - shown[c];
+				int fwd = rtl ? -3 : 3;
+				for (int c = 0; c < 3; c++) {
+					ec[fwd + c] += e[c] * 7;
+					int *nx = err1 + 3 * (x + 1) + c;
+					nx[-fwd] += e[c] * 3;
+					nx[0] += e[c] * 5;
+					nx[fwd] += e[c];
+				}
+			} else if (spread) {
+				int off = ((2 * bayer8[y & 7][x & 7] + 1) * spread) / 128 - spread / 2;
+				v = pick(m, p[0] + off, p[1] + off, p[2] + off, shown);
+			} else {
+				v = pick(m, p[0], p[1], p[2], shown);
+			}
+			if (out8)
+				out8[(size_t)y * w + x] = (uint8_t)v;
+			else
+				out16[(size_t)y * w + x] = (uint16_t)v;
+		}
+		int *t = err0; err0 = err1; err1 = t;
+	}
+	free(err0);
+	free(err1);
+	return 0;
+}
+
+/* 1 if every DAC colour of the picture is an entry of the palette. */
+static int exact_palette(qmap_t *m, const quant_hist_t *h)
+{
+	if (h->nused > m->pal->n)
+		return 0;
+	for (size_t k = 0; k < h->nused; k++) {
+		uint32_t key = h->used[k];
+		int shown[3];
+		unsigned e = pick(m, (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63), shown);
+		const uint8_t *d = m->pal->dac[e];
+		if ((uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) != key)
+			return 0;
+	}
+	return 1;
+}
+
+int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out)
+{
+	qmap_t *m = calloc(1, sizeof *m);
+	if (!m || pal->n == 0)
+		return free(m), -1;
+	m->cache = malloc(QBINS * sizeof *m->cache);
+	if (!m->cache) {
+		free(m);
+		return -1;
+	}
+	memset(m->cache, 0xff, QBINS * sizeof *m->cache);
+	m->pal = pal;
+	quant_near_palette(&m->near, pal);
+	for (unsigned k = 0; k < pal->n; k++)
+		for (int c = 0; c < 3; c++)
+			m->show[k][c] = (int)quant_dac8(pal->dac[k][c]);
+	if (h && dither != QUANT_DITHER_NONE && exact_palette(m, h))
+		dither = QUANT_DITHER_NONE;   /* every colour of the picture is in the palette */
+	int rc = map_image(m, h, rgb, w, hgt, stride, dither, out, NULL);
+	free(m->cache);
+	free(m);
+	return rc;
+}
+
+int quant_map565(const quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt,
+		size_t stride, int dither, uint16_t *out)
+{
+	qmap_t m;
+	memset(&m, 0, sizeof m);
+	return map_image(&m, h, rgb, w, hgt, stride, dither, NULL, out);
+}
+
+double quant_psnr(const quant_palette_t *pal, const uint8_t *rgb, unsigned w, unsigned hgt,
+		size_t stride, const uint8_t *idx)
+{
+	double se = 0;
+	for (unsigned y = 0; y < hgt; y++)
+		for (unsigned x = 0; x < w; x++) {
+			const uint8_t *p = rgb + y * stride + 3 * x, *d = pal->dac[idx[(size_t)y * w + x]];
+			for (int c = 0; c < 3; c++) {
+				double e = (double)p[c] - quant_dac8(d[c]);
+				se += e * e;
+			}
+		}
+	if (se == 0)
+		return 99;
+	return 10 * log10(255.0 * 255.0 * 3.0 * w * hgt / se);
+}
