@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "device.h"
+#include "devres.h"
 #include "render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)
@@ -60,6 +61,9 @@ typedef struct {
 	size_t nelems, cap_elems;
 	dev_render_t *rr;                /* raster devices */
 	unsigned img_x, img_y, img_h, img_row;   /* current image */
+	dev_map_t map;                   /* raster devices: the page on the device's raster */
+	int mapped;                      /* 1: a raster of its own, not the identity */
+	devres_img_t *img;               /* mapped: the image being resampled */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -73,9 +77,10 @@ static void default_state(dev_state_t *s)
 	s->rule = META_RULE_NON_ZERO;
 }
 
-static void style_of(const dev_state_t *s, scan_style_t *st, int text)
+static void style_of(const play_t *p, scan_style_t *st, int text)
 {
-	st->width = s->width;
+	const dev_state_t *s = &p->st;
+	st->width = p->mapped ? devres_width(&p->map, s->width) : s->width;
 	st->cap = text ? META_CAP_ROUND : s->cap;
 	st->join = text ? META_JOIN_ROUND : s->join;
 	st->miter_limit = s->miter_limit;
@@ -123,6 +128,8 @@ static int rect_path(play_t *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 
 static int do_span(play_t *p, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
+	if (p->mapped)
+		return devres_span(&p->map, p->rr, x, y, n, rgb);
 	if (is_raster(p->d))
 		return dev_render_span(p->rr, x, y, n, rgb);
 	if (x >= p->page.width || y >= p->page.height)
@@ -137,6 +144,8 @@ static int do_span(play_t *p, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 static int do_row(play_t *p, const meta_cmd_t *c)
 {
 	int64_t y = (int64_t)p->img_y + p->img_h - 1 - p->img_row++;
+	if (p->mapped)
+		return p->img ? devres_image_row(p->img, p->rr, y, c->runs, c->nruns) : 0;
 	if (is_raster(p->d))
 		return dev_render_row(p->rr, p->img_x, y, c->runs, c->nruns);
 	if (p->d->ops->put_image_row)
@@ -172,8 +181,14 @@ static int path_elem(play_t *p, const meta_cmd_t *c)
 			return dev_fail(p->d, META_ESTATE, "draw without a current point");
 		rc = scan_path_draw(&p->path, c->f[0], c->f[1]);
 		break;
-	case META_ARC: rc = scan_path_arc(&p->path, c->f[0], c->f[1], c->f[2], c->f[3], c->f[4]); break;
-	case META_CIRCLE: rc = scan_path_circle(&p->path, c->f[0], c->f[1], c->f[2]); break;
+	case META_ARC:
+		rc = scan_path_arc_res(&p->path, c->f[0], c->f[1], c->f[2], c->f[3], c->f[4],
+			p->mapped ? devres_chord_radius(&p->map, c->f[2]) : c->f[2]);
+		break;
+	case META_CIRCLE:
+		rc = scan_path_circle_res(&p->path, c->f[0], c->f[1], c->f[2],
+			p->mapped ? devres_chord_radius(&p->map, c->f[2]) : c->f[2]);
+		break;
 	case META_CLOSE: rc = scan_path_close(&p->path); break;
 	default: break;
 	}
@@ -193,7 +208,9 @@ static int paint_path(play_t *p, int kind, int text)
 		return 0;
 	if (is_raster(d)) {
 		scan_style_t st;
-		style_of(&p->st, &st, text);
+		style_of(p, &st, text);
+		if (p->mapped)
+			devres_path(&p->map, &p->path);
 		rc = kind == META_FILL ? dev_render_fill(p->rr, &p->path, p->st.rule, p->st.colour)
 			: dev_render_stroke(p->rr, &p->path, &st, p->st.colour);
 		return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
@@ -233,10 +250,20 @@ static int begin_page(play_t *p, const meta_cmd_t *c)
 	p->page.width = c->u[0];
 	p->page.height = c->u[1];
 	p->page.index = d->pages;
+	p->page.model_width = p->page.width;
+	p->page.model_height = p->page.height;
 	default_state(&p->st);
 	p->in_page = 1;
+	p->mapped = 0;
 	if (is_raster(d)) {
 		char err[256];
+		if (dev_fit_map(&p->map, p->page.width, p->page.height, d->raster_width, d->raster_height,
+				d->pixel_aspect, d->fit))
+			return dev_fail(d, DEV_EUSAGE, "%s: bad device raster (fit %d, pixel aspect %g)",
+				d->ops->name, d->fit, d->pixel_aspect);
+		p->mapped = !p->map.identity;
+		p->page.width = p->map.width;
+		p->page.height = p->map.height;
 		p->rr = dev_render_new(p->page.width, p->page.height, d->band_rows, d->mem_budget, err, sizeof err);
 		if (!p->rr)
 			return dev_fail(d, META_ENOMEM, "%s", err);
@@ -264,6 +291,10 @@ static int end_page(play_t *p)
 {
 	dev_device_t *d = p->d;
 	int rc = device_page(p);
+	devres_image_free(p->img);
+	p->img = NULL;
+	if (!rc && p->mapped && (rc = devres_bars(&p->map, p->rr, d->letterbox)) != 0)
+		dev_fail(d, rc, "out of memory or spool failure while rendering");
 	if (!rc && is_raster(d)) {
 		rc = dev_render_finish(p->rr, emit_band, d);
 		if (rc && !d->err[0])
@@ -335,6 +366,11 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		p->img_y = c->u[1];
 		p->img_h = c->u[3];
 		p->img_row = 0;
+		if (p->mapped) {
+			devres_image_free(p->img);
+			if (!(p->img = devres_image_new(&p->map, c->u[0], c->u[1], c->u[2], c->u[3])))
+				return nomem(p);
+		}
 		return 0;
 	case META_ROW: return do_row(p, c);
 	default: return 0;
@@ -380,6 +416,7 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 			rc = c2;
 	}
 	dev_render_free(p.rr);
+	devres_image_free(p.img);
 	scan_path_free(&p.path);
 	free(p.elems);
 	return rc;

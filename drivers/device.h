@@ -40,12 +40,15 @@
 /* Extra error code for device failures (besides META_E*). */
 #define DEV_EDEVICE (-20)
 
-/* One page as announced by the `page` and `size` statements. */
+/* One page as announced by the `page` and `size` statements. For a raster device with a raster
+ * of its own (dev_device_t.raster_width), width x height is that raster (what its bands hold)
+ * and model_width x model_height the page as the file gave it; otherwise they are equal. */
 typedef struct {
 	unsigned width, height;     /* pixels */
 	int has_size;               /* 1 if a size statement gave the physical size */
 	meta_fix_t width_mm, height_mm;
 	unsigned index;             /* 0-based page number in the file */
+	unsigned model_width, model_height;  /* the `page` statement's W H */
 } dev_page_t;
 
 /* The graphics state in force (spec §1, §4). Dash normalised to an even count (≤ 32). */
@@ -96,8 +99,43 @@ typedef struct {
 	const char *help;           /* one line: the values and the default */
 } dev_option_t;
 
-/* How a model page is mapped onto a device raster of its own (dev_device_t.fit). */
+/* How a model page is mapped onto a device raster of its own (dev_device_t.fit): ASPECT keeps
+ * the page's shape and centres it, with letterbox bars where it does not reach; FILL keeps the
+ * shape and covers the whole raster, cropping the page's excess evenly on both sides; STRETCH
+ * maps the page onto the whole raster, each axis scaled on its own. */
 enum { DEV_FIT_ASPECT = 0, DEV_FIT_FILL = 1, DEV_FIT_STRETCH = 2 };
+
+/* The mapping of a model page onto a device raster (docs/drivers.md, "Rendering at the
+ * device's resolution"). Model point (x, y) in pixels lies at device point (ox + x*sx,
+ * oy + y*sy) in device pixels, both y up; the model page covers device pixels
+ * [ox, ox + pw) x [oy, oy + ph), which may extend past the raster when cropped. */
+typedef struct {
+	unsigned width, height;     /* the device raster */
+	unsigned model_w, model_h;  /* the model page */
+	int64_t ox, oy;             /* device pixel of the page's bottom-left corner */
+	int64_t pw, ph;             /* the page's size in whole device pixels */
+	double sx, sy;              /* device pixels per model pixel: pw / model_w, ph / model_h */
+	double wscale;              /* line widths scale by this: sqrt(sx * sy) */
+	int identity;               /* 1: device pixels are the model's (no mapping at all) */
+} dev_map_t;
+
+/* Compute the mapping of a model_w x model_h page onto a dev_w x dev_h raster of pixels of
+ * shape pixel_aspect (width / height of one device pixel; 0 = square) by fit (DEV_FIT_*). A
+ * dev_w or dev_h of 0 gives the identity. Returns 0, or DEV_EUSAGE for an unknown fit or a
+ * non-finite or non-positive aspect. Programs use it too (a framebuffer maps a mode onto the
+ * screen's resolution by the same rules). */
+int dev_fit_map(dev_map_t *m, unsigned model_w, unsigned model_h, unsigned dev_w, unsigned dev_h,
+		double pixel_aspect, int fit);
+/* The fit named by s ("aspect", "fill", "stretch"), or -1. For --fit / -O fit=. */
+int dev_fit_by_name(const char *s);
+/* For a device with a raster of its own: read the -O keys `fit` (aspect|fill|stretch) and
+ * `letterbox` (#rrggbb) into d->fit and d->letterbox (defaults: aspect, black), to be called
+ * from its open(). Returns 0 or DEV_EUSAGE with a one-line message. Declare the keys by putting
+ * DEV_FIT_OPTIONS in the device's option_list. */
+int dev_fit_options(dev_device_t *d);
+#define DEV_FIT_OPTIONS \
+	{ "fit", "aspect (keep the shape, letterbox bars; default), fill (crop) or stretch" }, \
+	{ "letterbox", "#rrggbb colour of the bars with fit=aspect (default #000000)" }
 
 /* The operations table. Any member may be NULL (a default or nothing is used). */
 typedef struct dev_ops {

@@ -108,7 +108,13 @@ static void arc_point(int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t 
 
 int scan_path_arc(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t sweep)
 {
-	int64_t m = scan_circle_chords(r), as = sweep < 0 ? -sweep : sweep;
+	return scan_path_arc_res(p, cx, cy, r, start, sweep, r);
+}
+
+int scan_path_arc_res(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t sweep,
+		int64_t rchord)
+{
+	int64_t m = scan_circle_chords(rchord), as = sweep < 0 ? -sweep : sweep;
 	int64_t n = (as * m + 359999) / 360000;
 	if (n < 1)
 		n = 1;
@@ -124,7 +130,12 @@ int scan_path_arc(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t sta
 
 int scan_path_circle(scan_path_t *p, int64_t cx, int64_t cy, int64_t r)
 {
-	int64_t m = scan_circle_chords(r);
+	return scan_path_circle_res(p, cx, cy, r, r);
+}
+
+int scan_path_circle_res(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t rchord)
+{
+	int64_t m = scan_circle_chords(rchord);
 	for (int64_t k = 0; k < m; k++) {
 		int64_t x, y;
 		arc_point(cx, cy, r, 0, 360000, k, m, &x, &y);

@@ -92,6 +92,11 @@ int scan_path_has_current(const scan_path_t *p);
 int scan_path_arc(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t sweep);
 /* Full circle as a closed subpath of its own; leaves no current point. */
 int scan_path_circle(scan_path_t *p, int64_t cx, int64_t cy, int64_t r);
+/* The same with the chord count M of a circle of radius rchord: a raster device of its own
+ * resolution flattens at its pixels (rchord = the radius in device thousandths), then maps. */
+int scan_path_arc_res(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t sweep,
+		int64_t rchord);
+int scan_path_circle_res(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int64_t rchord);
 /* Number of chords M of a full circle of radius r thousandths (§5.4). */
 int scan_circle_chords(int64_t r);
 /* Bounding box of the path's points; returns 0 when the path has no points. */
