@@ -32,8 +32,7 @@ const dev_option_t fbm_options[] = {
 	{ "palette", "page (adaptive per page, default), shared (the first page's for all), vga, ega, cube, grey, or a FILE" },
 	{ "quant", "adaptive palette method: best (median cut + k-means, default), median, octree" },
 	{ "dither", "none, ordered (Bayer 8x8) or fs (serpentine Floyd-Steinberg, default)" },
-	{ "fit", "aspect (default), fill or stretch: how the page maps onto the mode" },
-	{ "letterbox", "#rrggbb: the bars with fit=aspect (default #000000)" },
+	DEV_FIT_OPTIONS,
 	{ "fb", "a Linux framebuffer node (/dev/fb0) to show the pages on instead of files" },
 	{ "hold", "seconds each page stays on the framebuffer before the screen is restored (default 0: keep)" },
 	{ NULL, NULL }
@@ -59,18 +58,6 @@ void fbm_describe(const fbm_mode_t *m, char *buf, size_t n)
 }
 
 /* ---- options ------------------------------------------------------------------------ */
-
-static int parse_rgb(const char *s, meta_rgb_t *v)
-{
-	if (s[0] != '#' || strlen(s) != 7)
-		return -1;
-	char *e;
-	unsigned long x = strtoul(s + 1, &e, 16);
-	if (*e)
-		return -1;
-	*v = (meta_rgb_t)x;
-	return 0;
-}
 
 static int load_palette_file(dev_device_t *d, fbm_t *f, const char *path, unsigned ncol)
 {
@@ -135,19 +122,9 @@ int fbm_open(dev_device_t *d, const fbm_modes_t *ml)
 		else
 			return dev_fail(d, DEV_EUSAGE, "unknown dither '%s' (none, ordered or fs)", v);
 	}
-	d->fit = DEV_FIT_ASPECT;
-	if (dev_option(d, "fit", v, sizeof v)) {
-		if (!strcmp(v, "aspect"))
-			d->fit = DEV_FIT_ASPECT;
-		else if (!strcmp(v, "fill"))
-			d->fit = DEV_FIT_FILL;
-		else if (!strcmp(v, "stretch"))
-			d->fit = DEV_FIT_STRETCH;
-		else
-			return dev_fail(d, DEV_EUSAGE, "unknown fit '%s' (aspect, fill or stretch)", v);
-	}
-	if (dev_option(d, "letterbox", v, sizeof v) && parse_rgb(v, &d->letterbox))
-		return dev_fail(d, DEV_EUSAGE, "letterbox wants a colour #rrggbb, not '%s'", v);
+	int frc = dev_fit_options(d);
+	if (frc)
+		return frc;
 	if (dev_option(d, "hold", v, sizeof v)) {
 		char *e;
 		f->hold = strtod(v, &e);
