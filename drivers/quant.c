@@ -76,49 +76,57 @@ unsigned long quant_flat_threshold(const quant_hist_t *h)
 void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n)
 {
 	q->n = n;
-	for (unsigned k = 0; k < n; k++) {   /* insertion sort by red: n <= 256 */
+	for (unsigned k = 0; k < n; k++) {   /* insertion sort by r + g + b: n <= 256 */
+		int key = col[k][0] + col[k][1] + col[k][2];
 		unsigned j = k;
-		while (j > 0 && q->c[j - 1][0] > col[k][0]) {
+		while (j > 0 && q->key[j - 1] > key) {
 			memcpy(q->c[j], q->c[j - 1], sizeof q->c[0]);
 			q->idx[j] = q->idx[j - 1];
+			q->key[j] = q->key[j - 1];
 			j--;
 		}
 		memcpy(q->c[j], col[k], sizeof q->c[0]);
 		q->idx[j] = (uint8_t)k;
+		q->key[j] = key;
 	}
 }
 
 unsigned quant_near_find(const qnear_t *q, int r, int g, int b)
 {
+	int key = r + g + b;
 	unsigned lo = 0, hi = q->n;
-	while (lo < hi) {            /* first entry with red >= r */
+	while (lo < hi) {            /* first entry with key >= key */
 		unsigned mid = (lo + hi) / 2;
-		if (q->c[mid][0] < r)
+		if (q->key[mid] < key)
 			lo = mid + 1;
 		else
 			hi = mid;
 	}
+	/* |dr + dg + db| <= sqrt(3) * distance: an entry whose key differs by dk is no nearer
+	 * than dk^2 / 3, and neither is any entry beyond it */
 	long best = -1;
 	unsigned bi = 0;
 	int up = (int)lo, down = (int)lo - 1;
 	while (up < (int)q->n || down >= 0) {
 		if (up < (int)q->n) {
-			long dr = q->c[up][0] - r;
-			if (best >= 0 && dr * dr >= best) {
+			long dk = q->key[up] - key;
+			if (best >= 0 && dk * dk > 3 * best) {
 				up = (int)q->n;
 			} else {
-				long dg = q->c[up][1] - g, db = q->c[up][2] - b, d = dr * dr + dg * dg + db * db;
+				long dr = q->c[up][0] - r, dg = q->c[up][1] - g, db = q->c[up][2] - b;
+				long d = dr * dr + dg * dg + db * db;
 				if (best < 0 || d < best || (d == best && q->idx[up] < bi))
 					best = d, bi = q->idx[up];
 				up++;
 			}
 		}
 		if (down >= 0) {
-			long dr = r - q->c[down][0];
-			if (best >= 0 && dr * dr > best) {
+			long dk = key - q->key[down];
+			if (best >= 0 && dk * dk > 3 * best) {
 				down = -1;
 			} else {
-				long dg = q->c[down][1] - g, db = q->c[down][2] - b, d = dr * dr + dg * dg + db * db;
+				long dr = q->c[down][0] - r, dg = q->c[down][1] - g, db = q->c[down][2] - b;
+				long d = dr * dr + dg * dg + db * db;
 				if (best < 0 || d < best || (d == best && q->idx[down] < bi))
 					best = d, bi = q->idx[down];
 				down--;
@@ -220,6 +228,91 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 			acc += col[m++].w;
 		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc;
 		bx->hi = m, bx->w = acc;
+		nb++;
+	}
+	for (size_t b = 0; b < nb; b++) {
+		double s[3] = { 0, 0, 0 };
+		for (size_t i = box[b].lo; i < box[b].hi; i++)
+			for (int c = 0; c < 3; c++)
+				s[c] += col[i].c[c] * col[i].w;
+		for (int c = 0; c < 3; c++)
+			means[b][c] = s[c] / box[b].w;
+	}
+	return nb;
+}
+
+/* ---- variance cut (the start of the default) ---------------------------------------- */
+
+/* Sum of squared distances to the mean of colours [lo, hi). */
+static double box_sse(const qcol_t *col, size_t lo, size_t hi)
+{
+	double w = 0, s[3] = { 0, 0, 0 }, q = 0;
+	for (size_t i = lo; i < hi; i++) {
+		w += col[i].w;
+		for (int c = 0; c < 3; c++) {
+			s[c] += col[i].w * col[i].c[c];
+			q += col[i].w * col[i].c[c] * col[i].c[c];
+		}
+	}
+	return w > 0 ? q - (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) / w : 0;
+}
+
+/* Like median_cut, but the box split next is the one of the largest squared error, cut
+ * across its axis of largest variance where the two halves' squared errors sum least. */
+static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
+{
+	qbox_t box[QUANT_MAX];
+	double sse[QUANT_MAX];
+	if (n == 0 || k == 0)
+		return 0;
+	size_t nb = 1;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	for (size_t i = 0; i < n; i++)
+		box[0].w += col[i].w;
+	sse[0] = box_sse(col, 0, n);
+	while (nb < k) {
+		size_t pick = nb;
+		for (size_t b = 0; b < nb; b++)
+			if (box[b].hi - box[b].lo > 1 && sse[b] > 0 && (pick == nb || sse[b] > sse[pick]))
+				pick = b;
+		if (pick == nb)
+			break;
+		qbox_t *bx = &box[pick];
+		size_t lo = bx->lo, hi = bx->hi, m = lo + 1;
+		double var[3];
+		for (int c = 0; c < 3; c++) {
+			double s = 0, q = 0;
+			for (size_t i = lo; i < hi; i++)
+				s += col[i].w * col[i].c[c], q += col[i].w * col[i].c[c] * col[i].c[c];
+			var[c] = q - s * s / bx->w;
+		}
+		int axis = var[1] > var[0] ? 1 : 0;
+		if (var[2] > var[axis])
+			axis = 2;
+		sort_axis = axis;
+		qsort(col + lo, hi - lo, sizeof *col, by_axis);
+		/* the squared error along the axis only, for each cut (the other axes' share of the
+		 * error changes less and is left out, as in Wu's and pngquant's cuts) */
+		double W = 0, S = 0;
+		for (size_t i = lo; i < hi; i++)
+			W += col[i].w, S += col[i].w * col[i].c[axis];
+		double wl = 0, sl = 0, best = -1;
+		for (size_t i = lo; i + 1 < hi; i++) {
+			wl += col[i].w, sl += col[i].w * col[i].c[axis];
+			if (col[i + 1].c[axis] == col[i].c[axis])
+				continue;
+			double wr = W - wl, sr = S - sl;
+			double gain = sl * sl / wl + sr * sr / wr;   /* maximal gain = least error */
+			if (gain > best)
+				best = gain, m = i + 1;
+		}
+		double wsum = 0;
+		for (size_t i = lo; i < m; i++)
+			wsum += col[i].w;
+		box[nb].lo = m, box[nb].hi = hi, box[nb].w = bx->w - wsum;
+		bx->hi = m, bx->w = wsum;
+		sse[pick] = box_sse(col, lo, m);
+		sse[nb] = box_sse(col, m, hi);
 		nb++;
 	}
 	for (size_t b = 0; b < nb; b++) {
@@ -375,14 +468,28 @@ static long octree(const qcol_t *col, size_t n, size_t k, double (*means)[3])
 
 /* ---- k-means refinement ------------------------------------------------------------- */
 
+/* The 8-bit value the DAC shows nearest to v. */
+static double on_grid(double v)
+{
+	double x = v * 63.0 / 255.0 + 0.5;
+	return quant_dac8((unsigned)(x < 0 ? 0 : x > 63 ? 63 : x));
+}
+
 /* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
  * nearest to them; entries below fixed (the flat colours) stay. An entry left with no colour
- * is moved to the colour of the largest weighted error. */
-static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes)
+ * is moved to the colour of the largest weighted error. With grid, every entry is held at
+ * the nearest colour the DAC shows (the last passes: assignments then match the palette
+ * that will be used). */
+static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
+		int grid)
 {
 	double (*acc)[4] = malloc(k * sizeof *acc);
 	if (!acc)
 		return -1;
+	if (grid)
+		for (size_t e = 0; e < k; e++)
+			for (int c = 0; c < 3; c++)
+				means[e][c] = on_grid(means[e][c]);
 	for (int pass = 0; pass < passes; pass++) {
 		int ic[QUANT_MAX][3];
 		qnear_t q;
@@ -418,11 +525,13 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				continue;
 			}
 			for (int c = 0; c < 3; c++) {
+				if (grid)
+					nc[c] = on_grid(nc[c]);
 				moved += fabs(nc[c] - means[e][c]);
 				means[e][c] = nc[c];
 			}
 		}
-		if (moved < 0.05 * (double)(k - fixed))
+		if (moved < (grid ? 0.5 : 0.02 * (double)(k - fixed)))
 			break;
 	}
 	free(acc);
@@ -500,11 +609,15 @@ int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_pale
 	long got;
 	if (method == QUANT_OCTREE)
 		got = octree(rest, nrest, kfree, means + keep);
-	else
+	else if (method == QUANT_MEDIAN)
 		got = (long)median_cut(rest, nrest, kfree, means + keep);
+	else
+		got = (long)variance_cut(rest, nrest, kfree, means + keep);
 	int rc = got < 0 ? -1 : 0;
 	if (rc == 0 && method == QUANT_BEST)
-		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 8);
+		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 20, 0);
+	if (rc == 0 && method == QUANT_BEST)
+		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, 1);
 	if (rc == 0)
 		for (size_t k = 0; k < keep + (size_t)got; k++)
 			put_entry(pal, means[k]);

@@ -34,11 +34,12 @@ static inline int quant_bin_flat(const quant_hist_t *h, const qbin_t *q, unsigne
 	return q->count >= thr && !(q->first & QMIXED);
 }
 
-/* Nearest-entry search: entries sorted by red, searched outwards from the nearest red with
- * the red distance alone as the bound. Units: 8-bit values times 4. */
+/* Nearest-entry search: entries sorted by r + g + b, searched outwards from the nearest sum
+ * with the sum's distance as the bound. Units: 8-bit values times 4. */
 typedef struct {
 	unsigned n;
 	int c[QUANT_MAX][3];
+	int key[QUANT_MAX];         /* r + g + b */
 	uint8_t idx[QUANT_MAX];
 } qnear_t;
 
