@@ -137,12 +137,56 @@ def header(path, fmt, mode):
         report(bw == w and bh == h, f"{mode} bmp: bottom-up rows (height {bh} > 0)")
 
 
+def fbmem(mem, bpp, xres, yres, ll, dump, mode, cmap, what):
+    """The fake framebuffer's memory (tests/fbdev/fbharness.c) against a dump of the same
+    picture: pixels through the harness's bit fields, padding and tail untouched, and for 8 bits
+    the indices and the colour map. dump "-" means: everything restored (marker bytes only,
+    the grey colour map back)."""
+    m = open(mem, "rb").read()
+    bpp, xres, yres, ll = int(bpp), int(xres), int(yres), int(ll)
+    bytes_pp = bpp // 8
+    marker_ok = all(b == 0x5A for b in m[ll * yres:]) and all(
+        b == 0x5A for y in range(yres) for b in m[y * ll + xres * bytes_pp:(y + 1) * ll])
+    report(marker_ok, f"{what}: row padding and the memory after the screen untouched")
+    cm = [tuple(int(v) for v in line.split()) for line in open(cmap)] if cmap != "-" else []
+    if dump == "-":
+        report(all(b == 0x5A for b in m), f"{what}: the screen's old contents restored")
+        if bpp == 8:
+            report(len(cm) == 256 and all(c == (k, k * 257, k * 257, k * 257) for k, c in enumerate(cm)),
+                   f"{what}: the old colour map restored")
+        return
+    w, h, rgb, pal, idx, _ = decode(dump, mode)
+    if (w, h) != (xres, yres):
+        sys.exit(f"{dump}: {w}x{h}, the screen is {xres}x{yres}")
+    bad = 0
+    for y in range(yres):
+        row = m[y * ll: y * ll + xres * bytes_pp]
+        for x in range(xres):
+            px = row[x * bytes_pp:(x + 1) * bytes_pp]
+            k = y * w + x
+            if bpp == 32:
+                got = (px[0], px[1], px[2])        # red at bit 0, green 8, blue 16
+                bad += got != rgb[k] or px[3] != 0
+            elif bpp == 16:
+                v = px[0] | px[1] << 8
+                r, g, b = rgb[k]
+                bad += v != ((r >> 3) << 11 | (g >> 2) << 5 | (b >> 3))
+            else:
+                bad += px[0] != idx[k]
+    report(bad == 0, f"{what}: every pixel is the dump's ({bad} differ)")
+    if bpp == 8:
+        want = [(k, *(pal[k][c] * 65535 // 63 for c in range(3))) for k in range(len(cm))]
+        report(len(cm) >= 2 and cm == want, f"{what}: FBIOPUTCMAP holds the dump's DAC palette scaled to 16 bits")
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1]
     if cmd == "f":
         fcheck(sys.argv[2], sys.argv[3])
     elif cmd == "expect":
         expect(sys.argv[2], sys.argv[3], sys.argv[4])
+    elif cmd == "fbmem":
+        fbmem(*sys.argv[2:11])
     elif cmd == "header":
         header(sys.argv[2], sys.argv[3], sys.argv[4])
     else:
