@@ -1,149 +1,9 @@
-/* quant.c: the colour histogram and the adaptive palettes (median cut, octree, k-means). */
+/* quant.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "quant_int.h"
-
-/* ---- histogram ---------------------------------------------------------------------- */
-
-quant_hist_t *quant_hist_new(void)
-{
-	quant_hist_t *h = calloc(1, sizeof *h);
-	if (!h)
-		return NULL;
-	h->bin = calloc(QBINS, sizeof *h->bin);
-	h->used = malloc(QBINS * sizeof *h->used);
-	if (!h->bin || !h->used) {
-		quant_hist_free(h);
-		return NULL;
-	}
-	return h;
-}
-
-void quant_hist_free(quant_hist_t *h)
-{
-	if (!h)
-		return;
-	free(h->bin);
-	free(h->used);
-	free(h);
-}
-
-void quant_hist_clear(quant_hist_t *h)
-{
-	for (size_t k = 0; k < h->nused; k++)
-		memset(&h->bin[h->used[k]], 0, sizeof h->bin[0]);
-	h->nused = 0;
-	h->npix = 0;
-}
-
-void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride)
-{
-	for (unsigned y = 0; y < hgt; y++) {
-		const uint8_t *p = rgb + y * stride;
-		for (unsigned x = 0; x < w; x++, p += 3) {
-			uint32_t key = quant_key(p[0], p[1], p[2]);
-			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-			qbin_t *q = &h->bin[key];
-			if (q->count++ == 0) {
-				h->used[h->nused++] = key;
-				q->first = c24;
-			} else if ((q->first & ~QMIXED) != c24) {
-				q->first |= QMIXED;
-			}
-			q->sum[0] += p[0];
-			q->sum[1] += p[1];
-			q->sum[2] += p[2];
-		}
-	}
-	h->npix += (unsigned long)w * hgt;
-}
-
-size_t quant_hist_colours(const quant_hist_t *h)
-{
-	return h->nused;
-}
-
-unsigned long quant_flat_threshold(const quant_hist_t *h)
-{
-	unsigned long t = h->npix / 2048;
-	return t < 32 ? 32 : t;
-}
-
-/* ---- nearest entry ------------------------------------------------------------------ */
-
-void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n)
-{
-	q->n = n;
-	for (unsigned k = 0; k < n; k++) {   /* insertion sort by r + g + b: n <= 256 */
-		int key = col[k][0] + col[k][1] + col[k][2];
-		unsigned j = k;
-		while (j > 0 && q->key[j - 1] > key) {
-			memcpy(q->c[j], q->c[j - 1], sizeof q->c[0]);
-			q->idx[j] = q->idx[j - 1];
-			q->key[j] = q->key[j - 1];
-			j--;
-		}
-		memcpy(q->c[j], col[k], sizeof q->c[0]);
-		q->idx[j] = (uint8_t)k;
-		q->key[j] = key;
-	}
-}
-
-unsigned quant_near_find(const qnear_t *q, int r, int g, int b)
-{
-	int key = r + g + b;
-	unsigned lo = 0, hi = q->n;
-	while (lo < hi) {            /* first entry with key >= key */
-		unsigned mid = (lo + hi) / 2;
-		if (q->key[mid] < key)
-			lo = mid + 1;
-		else
-			hi = mid;
-	}
-	/* |dr + dg + db| <= sqrt(3) * distance: an entry whose key differs by dk is no nearer
-	 * than dk^2 / 3, and neither is any entry beyond it */
-	long best = -1;
-	unsigned bi = 0;
-	int up = (int)lo, down = (int)lo - 1;
-	while (up < (int)q->n || down >= 0) {
-		if (up < (int)q->n) {
-			long dk = q->key[up] - key;
-			if (best >= 0 && dk * dk > 3 * best) {
-				up = (int)q->n;
-			} else {
-				long dr = q->c[up][0] - r, dg = q->c[up][1] - g, db = q->c[up][2] - b;
-				long d = dr * dr + dg * dg + db * db;
-				if (best < 0 || d < best || (d == best && q->idx[up] < bi))
-					best = d, bi = q->idx[up];
-				up++;
-			}
-		}
-		if (down >= 0) {
-			long dk = key - q->key[down];
-			if (best >= 0 && dk * dk > 3 * best) {
-				down = -1;
-			} else {
-				long dr = q->c[down][0] - r, dg = q->c[down][1] - g, db = q->c[down][2] - b;
-				long d = dr * dr + dg * dg + db * db;
-				if (best < 0 || d < best || (d == best && q->idx[down] < bi))
-					best = d, bi = q->idx[down];
-				down--;
-			}
-		}
-	}
-	return bi;
-}
-
-void quant_near_palette(qnear_t *q, const quant_palette_t *pal)
-{
-	int col[QUANT_MAX][3];
-	for (unsigned k = 0; k < pal->n; k++)
-		for (int c = 0; c < 3; c++)
-			col[k][c] = (int)quant_dac8(pal->dac[k][c]) * 4;
-	quant_near_init(q, (const int (*)[3])col, pal->n);
-}
 
 /* ---- colours to quantise ------------------------------------------------------------ */
 
@@ -169,18 +29,20 @@ static void put_entry(quant_palette_t *pal, const double c[3])
 
 /* ---- median cut (Heckbert 1982) ----------------------------------------------------- */
 
-static int sort_axis;
-static int by_axis(const void *a, const void *b)
+/* Order by channel axis first, then all channels: a total order, the same result from any qsort. */
+static int by_channels(const qcol_t *p, const qcol_t *q, int axis)
 {
-	const qcol_t *p = a, *q = b;
-	double d = p->c[sort_axis] - q->c[sort_axis];
-	if (d != 0)
-		return d < 0 ? -1 : 1;
-	for (int k = 0; k < 3; k++)   /* a total order: the same result from any qsort */
+	if (p->c[axis] != q->c[axis])
+		return p->c[axis] < q->c[axis] ? -1 : 1;
+	for (int k = 0; k < 3; k++)
 		if (p->c[k] != q->c[k])
 			return p->c[k] < q->c[k] ? -1 : 1;
 	return 0;
 }
+static int by_red(const void *a, const void *b) { return by_channels(a, b, 0); }
+static int by_green(const void *a, const void *b) { return by_channels(a, b, 1); }
+static int by_blue(const void *a, const void *b) { return by_channels(a, b, 2); }
+static int (*const by_axis[3])(const void *, const void *) = { by_red, by_green, by_blue };
 
 typedef struct {
 	size_t lo, hi;              /* colours [lo, hi) */
@@ -218,8 +80,7 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		for (int c = 1; c < 3; c++)
 			if (hi[c] - lo[c] > hi[axis] - lo[axis])
 				axis = c;
-		sort_axis = axis;
-		qsort(col + bx->lo, bx->hi - bx->lo, sizeof *col, by_axis);
+		qsort(col + bx->lo, bx->hi - bx->lo, sizeof *col, by_axis[axis]);
 		double acc = 0;
 		size_t m = bx->lo;
 		while (m < bx->hi - 1 && (acc + col[m].w) * 2 <= bx->w)
@@ -289,8 +150,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		int axis = var[1] > var[0] ? 1 : 0;
 		if (var[2] > var[axis])
 			axis = 2;
-		sort_axis = axis;
-		qsort(col + lo, hi - lo, sizeof *col, by_axis);
+		qsort(col + lo, hi - lo, sizeof *col, by_axis[axis]);
 		/* the squared error along the axis only, for each cut (the other axes' share of the
 		 * error changes less and is left out, as in Wu's and pngquant's cuts) */
 		double W = 0, S = 0;
@@ -545,7 +405,7 @@ static int by_weight_desc(const void *a, const void *b)
 	const qcol_t *p = a, *q = b;
 	if (p->w != q->w)
 		return p->w > q->w ? -1 : 1;
-	return by_axis(a, b);
+	return by_red(a, b);
 }
 
 static int by_key(const void *a, const void *b)
