@@ -7,7 +7,7 @@
 #include "quant.h"
 #include "run.h"
 
-enum { OPT_MODE = 0x2000, OPT_LIST, OPT_PALETTE, OPT_QUANT, OPT_DITHER, OPT_FIT, OPT_LETTERBOX, OPT_HOLD };
+enum { OPT_MODE = 0x2000, OPT_LIST, OPT_PALETTE, OPT_QUANT, OPT_DITHER, OPT_FIT, OPT_LETTERBOX, OPT_HOLD, OPT_DAC };
 
 static const struct option fb_long[] = {
 	{ "mode", required_argument, NULL, OPT_MODE },
@@ -19,6 +19,7 @@ static const struct option fb_long[] = {
 	{ "fit", required_argument, NULL, OPT_FIT },
 	{ "letterbox", required_argument, NULL, OPT_LETTERBOX },
 	{ "hold", required_argument, NULL, OPT_HOLD },
+	{ "dac", required_argument, NULL, OPT_DAC },
 	{ 0, 0, 0, 0 }
 };
 
@@ -48,6 +49,7 @@ static int on_option(cli_t *c, int key, const char *arg)
 	case OPT_FIT: return cli_set_option(c, "fit", arg) ? 64 : CLI_RUN;
 	case OPT_LETTERBOX: return cli_set_option(c, "letterbox", arg) ? 64 : CLI_RUN;
 	case OPT_HOLD: return cli_set_option(c, "hold", arg) ? 64 : CLI_RUN;
+	case OPT_DAC: return cli_set_option(c, "dac", arg) ? 64 : CLI_RUN;
 	}
 	return cli_fail(c, 64, "unhandled option");
 }
@@ -93,6 +95,7 @@ int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, co
 		"  --fit F          aspect (default, letterboxed), fill (crop) or stretch\n"
 		"  --letterbox C    bar colour #rrggbb with --fit aspect\n"
 		"  --hold S         framebuffer: show each page S seconds, then restore the screen\n"
+		"  --dac 6|8        palette precision: 6 bits as the hardware (default), or 8 for files\n"
 		"  -O KEY=VALUE     device options (the same keys as above; locus-play -d %s -O ...)\n"
 		"  --band-rows N, --mem-budget MIB, --help, --version\n",
 		prog, names, ops->name, ml->modes[0].name, ops->name);

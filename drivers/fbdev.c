@@ -124,9 +124,10 @@ int fbdev_show(fbdev_t *fb, const uint8_t *idx, const quant_palette_t *pal, cons
 		uint16_t r[256], g[256], b[256];
 		unsigned n = pal->n;
 		for (unsigned k = 0; k < n; k++) {
-			r[k] = (uint16_t)(pal->dac[k][0] * 65535u / 63);
-			g[k] = (uint16_t)(pal->dac[k][1] * 65535u / 63);
-			b[k] = (uint16_t)(pal->dac[k][2] * 65535u / 63);
+			unsigned top = pal->bits == 8 ? 255 : 63;
+			r[k] = (uint16_t)(pal->dac[k][0] * 65535u / top);
+			g[k] = (uint16_t)(pal->dac[k][1] * 65535u / top);
+			b[k] = (uint16_t)(pal->dac[k][2] * 65535u / top);
 		}
 		struct fb_cmap cm = { 0, n, r, g, b, NULL };
 		if (ioctl(fb->fd, FBIOPUTCMAP, &cm) < 0) {

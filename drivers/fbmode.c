@@ -14,6 +14,7 @@ typedef struct {
 	const fbm_mode_t *mode;
 	int format;                  /* FBOUT_*, FBOUT_UNKNOWN = from the output's suffix */
 	int palkind, method, dither;
+	unsigned dacbits;            /* 6 (the hardware) or 8 (adaptive palettes for files only) */
 	quant_palette_t pal;         /* fixed, file, or the shared palette once made */
 	int have_pal;
 	quant_hist_t *hist;
@@ -33,6 +34,7 @@ const dev_option_t fbm_options[] = {
 	{ "quant", "adaptive palette method: best (median cut + k-means, default), median, octree" },
 	{ "dither", "none, ordered (Bayer 8x8) or fs (serpentine Floyd-Steinberg, default)" },
 	DEV_FIT_OPTIONS,
+	{ "dac", "6 (the mode's DAC, default) or 8: adaptive palettes of 8-bit entries, for PNG/PCX/BMP files" },
 	{ "fb", "a Linux framebuffer node (/dev/fb0) to show the pages on instead of files" },
 	{ "hold", "seconds each page stays on the framebuffer before the screen is restored (default 0: keep)" },
 	{ NULL, NULL }
@@ -121,6 +123,14 @@ int fbm_open(dev_device_t *d, const fbm_modes_t *ml)
 			f->dither = QUANT_DITHER_FS;
 		else
 			return dev_fail(d, DEV_EUSAGE, "unknown dither '%s' (none, ordered or fs)", v);
+	}
+	f->dacbits = 6;
+	if (dev_option(d, "dac", v, sizeof v)) {
+		if (strcmp(v, "6") && strcmp(v, "8"))
+			return dev_fail(d, DEV_EUSAGE, "dac wants 6 or 8 bits, not '%s'", v);
+		f->dacbits = (unsigned)atoi(v);
+		if (f->dacbits == 8 && f->format == FBOUT_DUMP)
+			return dev_fail(d, DEV_EUSAGE, "dac=8 is beyond the hardware: no dump (png, pcx or bmp)");
 	}
 	int frc = dev_fit_options(d);
 	if (frc)
@@ -221,7 +231,8 @@ static int show_on_fb(dev_device_t *d, fbm_t *f, unsigned ncol)
 			uint8_t *c = f->shown + 3 * k;
 			if (ncol) {
 				const uint8_t *dac = f->pal.dac[f->idx[k]];
-				c[0] = (uint8_t)quant_dac8(dac[0]), c[1] = (uint8_t)quant_dac8(dac[1]), c[2] = (uint8_t)quant_dac8(dac[2]);
+				c[0] = (uint8_t)quant_show(&f->pal, dac[0]), c[1] = (uint8_t)quant_show(&f->pal, dac[1]);
+				c[2] = (uint8_t)quant_show(&f->pal, dac[2]);
 			} else {
 				unsigned v = f->pix[k], r = v >> 11, g = v >> 5 & 63, b = v & 31;
 				c[0] = (uint8_t)(r << 3 | r >> 2), c[1] = (uint8_t)(g << 2 | g >> 4), c[2] = (uint8_t)(b << 3 | b >> 2);
@@ -251,7 +262,7 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 			return dev_fail(d, META_ENOMEM, "out of memory");
 	} else {
 		if (!f->have_pal) {
-			if (quant_build(f->hist, f->method, ncol, &f->pal, err, sizeof err))
+			if (quant_build_bits(f->hist, f->method, ncol, f->dacbits, &f->pal, err, sizeof err))
 				return dev_fail(d, META_ENOMEM, "%s", err);
 			f->have_pal = f->palkind == PAL_SHARED;
 		}
@@ -265,6 +276,8 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 		fmt = fbout_format_by_suffix(io_name(d->out));
 	if (fmt == FBOUT_UNKNOWN)
 		fmt = FBOUT_PNG;
+	if (fmt == FBOUT_DUMP && f->pal.bits == 8 && ncol)
+		return dev_fail(d, DEV_EUSAGE, "dac=8 is beyond the hardware: no dump (png, pcx or bmp)");
 	fbout_picture_t p = { f->w, f->h, f->mode->layout, f->idx, f->pix, &f->pal, d->pixel_aspect };
 	if (ncol && p.layout == FBOUT_DIRECT565)
 		p.layout = FBOUT_LINEAR8;

@@ -48,7 +48,7 @@ static void rgb_of(const fbout_picture_t *p, size_t k, uint8_t *c)
 	} else {
 		const uint8_t *d = p->pal->dac[p->idx[k]];
 		for (int i = 0; i < 3; i++)
-			c[i] = (uint8_t)quant_dac8(d[i]);
+			c[i] = (uint8_t)quant_show(p->pal, d[i]);
 	}
 }
 
@@ -180,9 +180,9 @@ static int write_png(wbuf_t *w, const fbout_picture_t *p)
 			n = 16;
 		memset(plte, 0, sizeof plte);
 		for (unsigned k = 0; k < p->pal->n && k < n; k++) {
-			plte[k].red = (png_byte)quant_dac8(p->pal->dac[k][0]);
-			plte[k].green = (png_byte)quant_dac8(p->pal->dac[k][1]);
-			plte[k].blue = (png_byte)quant_dac8(p->pal->dac[k][2]);
+			plte[k].red = (png_byte)quant_show(p->pal, p->pal->dac[k][0]);
+			plte[k].green = (png_byte)quant_show(p->pal, p->pal->dac[k][1]);
+			plte[k].blue = (png_byte)quant_show(p->pal, p->pal->dac[k][2]);
 		}
 		png_set_PLTE(png, info, plte, (int)n);
 	}
@@ -266,7 +266,7 @@ static int write_pcx(wbuf_t *w, const fbout_picture_t *p)
 		put_byte(w, 0x0c);
 		for (unsigned k = 0; k < 256; k++)
 			for (int c = 0; c < 3; c++)
-				put_byte(w, k < p->pal->n ? quant_dac8(p->pal->dac[k][c]) : 0);
+				put_byte(w, k < p->pal->n ? quant_show(p->pal, p->pal->dac[k][c]) : 0);
 	}
 	free(line);
 	return 0;
@@ -293,7 +293,7 @@ static int write_bmp(wbuf_t *w, const fbout_picture_t *p)
 	put_le(w, ncol, 4), put_le(w, 0, 4);
 	for (unsigned k = 0; k < ncol; k++) {
 		const uint8_t *d = k < p->pal->n ? p->pal->dac[k] : (const uint8_t *)"\0\0\0";
-		put_byte(w, quant_dac8(d[2])), put_byte(w, quant_dac8(d[1])), put_byte(w, quant_dac8(d[0]));
+		put_byte(w, quant_show(p->pal, d[2])), put_byte(w, quant_show(p->pal, d[1])), put_byte(w, quant_show(p->pal, d[0]));
 		put_byte(w, 0);
 	}
 	for (unsigned yy = p->height; yy-- > 0;) {

@@ -20,9 +20,10 @@ static double mean_of(const qbin_t *q, int c)
 /* The palette entry of a mean colour. */
 static void put_entry(quant_palette_t *pal, const double c[3])
 {
+	double top = pal->bits == 8 ? 255 : 63;
 	for (int k = 0; k < 3; k++) {
-		double v = c[k] * 63.0 / 255.0 + 0.5;
-		pal->dac[pal->n][k] = (uint8_t)(v < 0 ? 0 : v > 63 ? 63 : v);
+		double v = c[k] * top / 255.0 + 0.5;
+		pal->dac[pal->n][k] = (uint8_t)(v < 0 ? 0 : v > top ? top : v);
 	}
 	pal->n++;
 }
@@ -328,9 +329,11 @@ static long octree(const qcol_t *col, size_t n, size_t k, double (*means)[3])
 
 /* ---- k-means refinement ------------------------------------------------------------- */
 
-/* The 8-bit value the DAC shows nearest to v. */
-static double on_grid(double v)
+/* The 8-bit value the DAC of bits (6 or 8) shows nearest to v. */
+static double on_grid(double v, unsigned bits)
 {
+	if (bits == 8)
+		return v < 0 ? 0 : v > 255 ? 255 : floor(v + 0.5);
 	double x = v * 63.0 / 255.0 + 0.5;
 	return quant_dac8((unsigned)(x < 0 ? 0 : x > 63 ? 63 : x));
 }
@@ -341,7 +344,7 @@ static double on_grid(double v)
  * the nearest colour the DAC shows (the last passes: assignments then match the palette
  * that will be used). */
 static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
-		int grid)
+		unsigned grid)
 {
 	double (*acc)[4] = malloc(k * sizeof *acc);
 	if (!acc)
@@ -349,7 +352,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 	if (grid)
 		for (size_t e = 0; e < k; e++)
 			for (int c = 0; c < 3; c++)
-				means[e][c] = on_grid(means[e][c]);
+				means[e][c] = on_grid(means[e][c], grid);
 	for (int pass = 0; pass < passes; pass++) {
 		int ic[QUANT_MAX][3];
 		qnear_t q;
@@ -386,7 +389,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			}
 			for (int c = 0; c < 3; c++) {
 				if (grid)
-					nc[c] = on_grid(nc[c]);
+					nc[c] = on_grid(nc[c], grid);
 				moved += fabs(nc[c] - means[e][c]);
 				means[e][c] = nc[c];
 			}
@@ -417,12 +420,42 @@ static int by_key(const void *a, const void *b)
 int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_palette_t *pal,
 		char *err, size_t errlen)
 {
+	return quant_build_bits(h, method, ncolours, 6, pal, err, errlen);
+}
+
+/* 8 bits: 1 if every bin holds one exact colour and there are at most n: the palette is them. */
+static int exact8(const quant_hist_t *h, unsigned n, quant_palette_t *pal)
+{
+	if (h->nused > n)
+		return 0;
+	for (size_t k = 0; k < h->nused; k++)
+		if (h->bin[h->used[k]].first & QMIXED)
+			return 0;
+	uint32_t c[QUANT_MAX];
+	for (size_t k = 0; k < h->nused; k++)
+		c[k] = h->bin[h->used[k]].first;
+	qsort(c, h->nused, sizeof *c, by_key);
+	for (size_t k = 0; k < h->nused; k++) {
+		pal->dac[k][0] = (uint8_t)(c[k] >> 16);
+		pal->dac[k][1] = (uint8_t)(c[k] >> 8);
+		pal->dac[k][2] = (uint8_t)c[k];
+	}
+	pal->n = (unsigned)h->nused;
+	return 1;
+}
+
+int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsigned bits,
+		quant_palette_t *pal, char *err, size_t errlen)
+{
 	pal->n = 0;
+	pal->bits = bits == 8 ? 8 : 6;
 	if (ncolours < 1 || ncolours > QUANT_MAX) {
 		snprintf(err, errlen, "palette size %u out of range 1..256", ncolours);
 		return -1;
 	}
-	if (h->nused <= ncolours) {   /* every DAC colour gets its own entry: exact */
+	if (pal->bits == 8 && exact8(h, ncolours, pal))
+		return 0;
+	if (pal->bits == 6 && h->nused <= ncolours) {   /* every DAC colour gets its own entry: exact */
 		uint32_t keys[QUANT_MAX];
 		memcpy(keys, h->used, h->nused * sizeof *keys);
 		qsort(keys, h->nused, sizeof *keys, by_key);
@@ -477,7 +510,7 @@ int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_pale
 	if (rc == 0 && method == QUANT_BEST)
 		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 20, 0);
 	if (rc == 0 && method == QUANT_BEST)
-		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, 1);
+		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, pal->bits);
 	if (rc == 0)
 		for (size_t k = 0; k < keep + (size_t)got; k++)
 			put_entry(pal, means[k]);

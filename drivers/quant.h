@@ -25,9 +25,12 @@
 
 #define QUANT_MAX 256
 
-/* A palette: n entries of 6-bit DAC values (0..63), R, G, B in that order. */
+/* A palette: n entries of DAC values, R, G, B in that order: 6 bits (0..63) as on the VGA
+ * and XGA, or 8 bits (0..255) when bits is 8 (a palette for today's indexed files, beyond the
+ * hardware). bits 0 means 6. */
 typedef struct {
 	unsigned n;
+	unsigned bits;
 	uint8_t dac[QUANT_MAX][3];
 } quant_palette_t;
 
@@ -42,6 +45,11 @@ enum { QUANT_FIXED_VGA = 0, QUANT_FIXED_EGA = 1, QUANT_FIXED_CUBE = 2, QUANT_FIX
 static inline unsigned quant_dac8(unsigned v6) { return (v6 << 2) | (v6 >> 4); }
 /* The nearest 6-bit DAC value of an 8-bit value. */
 static inline unsigned quant_dac6(unsigned v8) { return (v8 * 63 + 127) / 255; }
+/* The 8-bit value a palette value shows. */
+static inline unsigned quant_show(const quant_palette_t *p, unsigned v)
+{
+	return p->bits == 8 ? v : quant_dac8(v);
+}
 
 typedef struct quant_hist quant_hist_t;
 
@@ -63,6 +71,10 @@ unsigned long quant_flat_threshold(const quant_hist_t *h);
  * Returns 0, or <0 with a message. */
 int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_palette_t *pal,
 		char *err, size_t errlen);
+/* The same with a palette of bits (6 or 8) per channel: with 8, a histogram of at most
+ * ncolours exact 24-bit colours gives exactly those. */
+int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsigned bits,
+		quant_palette_t *pal, char *err, size_t errlen);
 /* A fixed palette (QUANT_FIXED_*) of ncolours entries: VGA is 256 only, EGA 16 only, the cube
  * 216 (padded with black to 256), grey min(ncolours, 64) levels. 0 or <0 with a message. */
 int quant_fixed(int which, unsigned ncolours, quant_palette_t *pal, char *err, size_t errlen);

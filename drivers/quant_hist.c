@@ -139,7 +139,7 @@ void quant_near_palette(qnear_t *q, const quant_palette_t *pal)
 	int col[QUANT_MAX][3];
 	for (unsigned k = 0; k < pal->n; k++)
 		for (int c = 0; c < 3; c++)
-			col[k][c] = (int)quant_dac8(pal->dac[k][c]) * 4;
+			col[k][c] = (int)quant_show(pal, pal->dac[k][c]) * 4;
 	quant_near_init(q, (const int (*)[3])col, pal->n);
 }
 

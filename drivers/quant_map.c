@@ -177,6 +177,7 @@ typedef struct {
 	const quant_palette_t *pal;
 	qnear_t near;
 	int16_t *cache;             /* QBINS, -1 = not yet searched */
+	int16_t *exact;             /* QBINS: holds(), -2 = not yet known */
 	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
 } qmap_t;
 
@@ -205,7 +206,35 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 	return (unsigned)e;
 }
 
-/* Index of a flat colour: the entry holding its DAC colour exactly, or -1. */
+/* The entry showing the colour of bin key exactly (6 bits: its DAC colour; 8 bits: its one
+ * 24-bit colour), or -1; remembered per bin. */
+static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
+{
+	int e = m->exact[key];
+	if (e != -2)
+		return e;
+	const qbin_t *q = &h->bin[key];
+	int shown[3];
+	if (m->pal->bits == 8) {
+		uint32_t c = q->first;
+		e = -1;
+		if (!(c & QMIXED)) {
+			e = (int)quant_near_find(&m->near, (int)(c >> 16) * 4, (int)(c >> 8 & 255) * 4, (int)(c & 255) * 4);
+			const uint8_t *d = m->pal->dac[e];
+			if ((uint32_t)(d[0] << 16 | d[1] << 8 | d[2]) != c)
+				e = -1;
+		}
+	} else {
+		e = (int)pick(m, (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63), shown);
+		const uint8_t *d = m->pal->dac[e];
+		if ((uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) != key)
+			e = -1;
+	}
+	m->exact[key] = (int16_t)e;
+	return e;
+}
+
+/* Index of a flat colour: the entry holding its colour exactly, or -1. */
 static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p)
 {
 	if (!h)
@@ -214,12 +243,11 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 	const qbin_t *q = &h->bin[key];
 	if (!quant_bin_flat(h, q, thr))
 		return -1;
-	int shown[3];
-	unsigned e = pick(m, p[0], p[1], p[2], shown);
-	if (!m->pal)
-		return (int)e;
-	const uint8_t *d = m->pal->dac[e];
-	return (uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) == key ? (int)e : -1;
+	if (!m->pal) {
+		int shown[3];
+		return (int)pick(m, p[0], p[1], p[2], shown);
+	}
+	return holds(m, h, key);
 }
 
 /* The largest difference (sum over channels) between a pixel and its four neighbours. */
@@ -342,19 +370,14 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	return 0;
 }
 
-/* 1 if every DAC colour of the picture is an entry of the palette. */
+/* 1 if every colour of the picture is an entry of the palette. */
 static int exact_palette(qmap_t *m, const quant_hist_t *h)
 {
 	if (h->nused > m->pal->n)
 		return 0;
-	for (size_t k = 0; k < h->nused; k++) {
-		uint32_t key = h->used[k];
-		int shown[3];
-		unsigned e = pick(m, (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63), shown);
-		const uint8_t *d = m->pal->dac[e];
-		if ((uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) != key)
+	for (size_t k = 0; k < h->nused; k++)
+		if (holds(m, h, h->used[k]) < 0)
 			return 0;
-	}
 	return 1;
 }
 
@@ -365,20 +388,26 @@ int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *
 	if (!m || pal->n == 0)
 		return free(m), -1;
 	m->cache = malloc(QBINS * sizeof *m->cache);
-	if (!m->cache) {
+	m->exact = malloc(QBINS * sizeof *m->exact);
+	if (!m->cache || !m->exact) {
+		free(m->cache);
+		free(m->exact);
 		free(m);
 		return -1;
 	}
 	memset(m->cache, 0xff, QBINS * sizeof *m->cache);
+	for (size_t k = 0; k < QBINS; k++)
+		m->exact[k] = -2;
 	m->pal = pal;
 	quant_near_palette(&m->near, pal);
 	for (unsigned k = 0; k < pal->n; k++)
 		for (int c = 0; c < 3; c++)
-			m->show[k][c] = (int)quant_dac8(pal->dac[k][c]);
+			m->show[k][c] = (int)quant_show(pal, pal->dac[k][c]);
 	if (h && dither != QUANT_DITHER_NONE && exact_palette(m, h))
 		dither = QUANT_DITHER_NONE;   /* every colour of the picture is in the palette */
 	int rc = map_image(m, h, rgb, w, hgt, stride, dither, out, NULL);
 	free(m->cache);
+	free(m->exact);
 	free(m);
 	return rc;
 }
@@ -399,7 +428,7 @@ double quant_psnr(const quant_palette_t *pal, const uint8_t *rgb, unsigned w, un
 		for (unsigned x = 0; x < w; x++) {
 			const uint8_t *p = rgb + y * stride + 3 * x, *d = pal->dac[idx[(size_t)y * w + x]];
 			for (int c = 0; c < 3; c++) {
-				double e = (double)p[c] - quant_dac8(d[c]);
+				double e = (double)p[c] - quant_show(pal, d[c]);
 				se += e * e;
 			}
 		}

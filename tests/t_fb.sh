@@ -120,6 +120,8 @@ bad 64 "16-colour mode refuses the 256-colour VGA palette" "does not fit" $BIN/l
 bad 64 "direct colour takes no palette" "direct colour" $BIN/locus-xga --mode 640x480 --palette cube $F -o "$T/bad.png"
 printf 'LOCUS-META 1\npage 10 10\nclear #ff0000\nspan 1 2\n' > "$T/broken.meta"
 bad 65 "bad meta file: named with line" "broken.meta:4" $BIN/locus-vga "$T/broken.meta" -o "$T/bad.pcx"
+bad 64 "dac=8 has no dump" "beyond the hardware" $BIN/locus-vga --dac 8 $F -o "$T/bad.dump"
+bad 64 "dac wants 6 or 8" "dac wants 6 or 8" $BIN/locus-vga --dac 7 $F -o "$T/bad.png"
 bad 74 "an fbdev node that is not a framebuffer" "not a framebuffer" $BIN/locus-vga $F -o fb:/dev/null
 bad 74 "a missing fbdev node" "cannot open framebuffer" $BIN/locus-vga $F -o fb:"$T/nofb"
 done_tests

@@ -72,6 +72,18 @@ static void test_exact(void)
 			CHECK(rc == 0 && bad == 0 && pal.n <= 200, "%zu DAC colours come back exact (method %d, dither %d)",
 				quant_hist_colours(hist), m, d);
 		}
+	/* with 8-bit entries the 24-bit colours themselves come back */
+	for (int m = 0; m < 3; m++) {
+		quant_palette_t pal;
+		int rc = quant_build_bits(hist, m, 256, 8, &pal, err, sizeof err);
+		rc |= quant_map(&pal, hist, pic, w, h, 3 * (size_t)w, QUANT_DITHER_FS, idx);
+		int bad = 0;
+		for (size_t k = 0; k < (size_t)w * h; k++)
+			for (int c = 0; c < 3; c++)
+				bad += pal.dac[idx[k]][c] != pic[3 * k + c];
+		CHECK(rc == 0 && bad == 0 && pal.bits == 8 && quant_psnr(&pal, pic, w, h, 3 * (size_t)w, idx) == 99,
+			"8-bit palette: 200 colours come back exact in 24 bits (method %d)", m);
+	}
 	free(idx);
 	free(pic);
 	quant_hist_free(hist);
