@@ -178,6 +178,12 @@ typedef struct {
 	qnear_t near;
 	int16_t *cache;             /* QBINS, -1 = not yet searched */
 	int16_t *exact;             /* QBINS: holds(), -2 = not yet known */
+	int16_t *pure;              /* QBINS: nearest entry of a one-colour bin, -1 = not yet */
+	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
+	uint16_t cellcount[4096];
+	uint8_t *pool;
+	long *pooldist;             /* each candidate's squared distance to its cell */
+	size_t npool, cappool;
 	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
 } qmap_t;
 
@@ -234,6 +240,82 @@ static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
 	return e;
 }
 
+/* Heckbert's locally sorted search: the candidates of a grid cell (16 levels a side) are the
+ * entries that can be nearest to some colour in it (no farther from the cell than the least
+ * farthest-corner distance of any entry), sorted by their distance to the cell; a query stops
+ * at the first candidate no nearer to the cell than the best so far. Built per cell on first
+ * use. Same answers as quant_near_find (ties to the lowest index). */
+static int cell_candidates(qmap_t *m, unsigned cell)
+{
+	int lo[3] = { (int)(cell >> 8) * 64, (int)(cell >> 4 & 15) * 64, (int)(cell & 15) * 64 };
+	unsigned n = m->pal->n;
+	long dmin[QUANT_MAX], least = -1;
+	for (unsigned e = 0; e < n; e++) {
+		long a = 0, b = 0;
+		for (int c = 0; c < 3; c++) {
+			long v = m->show[e][c] * 4, l = lo[c], h = lo[c] + 63;
+			long in = v < l ? l - v : v > h ? v - h : 0, out = v - l > h - v ? v - l : h - v;
+			a += in * in, b += out * out;
+		}
+		dmin[e] = a;
+		if (least < 0 || b < least)
+			least = b;
+	}
+	if (m->npool + n > m->cappool) {
+		size_t c = m->cappool ? m->cappool * 2 : 65536;
+		while (c < m->npool + n)
+			c *= 2;
+		uint8_t *p = realloc(m->pool, c);
+		long *d = realloc(m->pooldist, c * sizeof *d);
+		if (p)
+			m->pool = p;
+		if (d)
+			m->pooldist = d;
+		if (!p || !d)
+			return -1;
+		m->cappool = c;
+	}
+	size_t start = m->npool, k = start;
+	for (unsigned e = 0; e < n; e++) {
+		if (dmin[e] > least)
+			continue;
+		size_t j = k++;   /* insertion by distance, then index */
+		while (j > start && m->pooldist[j - 1] > dmin[e]) {
+			m->pool[j] = m->pool[j - 1];
+			m->pooldist[j] = m->pooldist[j - 1];
+			j--;
+		}
+		m->pool[j] = (uint8_t)e;
+		m->pooldist[j] = dmin[e];
+	}
+	m->npool = k;
+	m->cellstart[cell] = (uint32_t)start;
+	m->cellcount[cell] = (uint16_t)(k - start);
+	return 0;
+}
+
+/* The entry nearest to an 8-bit colour (exact, through the cell candidates). */
+static unsigned nearest_cached(qmap_t *m, const int *t)
+{
+	unsigned cell = (unsigned)(t[0] >> 4) << 8 | (unsigned)(t[1] >> 4) << 4 | (unsigned)(t[2] >> 4);
+	if (m->cellcount[cell] == 0 && cell_candidates(m, cell) < 0)
+		return quant_near_find(&m->near, t[0] * 4, t[1] * 4, t[2] * 4);
+	const uint8_t *cand = m->pool + m->cellstart[cell];
+	const long *cd = m->pooldist + m->cellstart[cell];
+	long best = -1;
+	unsigned bi = 0;
+	for (unsigned k = 0; k < m->cellcount[cell]; k++) {
+		if (best >= 0 && cd[k] > best)
+			break;
+		const int *s = m->show[cand[k]];
+		long dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+		long d = dr * dr + dg * dg + db * db;
+		if (best < 0 || d < best || (d == best && cand[k] < bi))
+			best = d, bi = cand[k];
+	}
+	return bi;
+}
+
 /* Index of a flat colour: the entry holding its colour exactly, or -1. */
 static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p)
 {
@@ -262,6 +344,20 @@ static int contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, u
 			best = d;
 	}
 	return best;
+}
+
+/* Undithered: the entry nearest to the pixel's own colour; searched once per bin when one
+ * colour fills the bin (vector content), per pixel otherwise. */
+static unsigned nearest_of_pixel(qmap_t *m, const quant_hist_t *h, const uint8_t *p)
+{
+	uint32_t key = quant_key(p[0], p[1], p[2]);
+	int t[3] = { p[0], p[1], p[2] };
+	if (h->bin[key].first & QMIXED)
+		return nearest_cached(m, t);
+	int e = m->pure[key];
+	if (e < 0)
+		m->pure[key] = (int16_t)(e = (int)nearest_cached(m, t));
+	return (unsigned)e;
 }
 
 /* One row of error diffusion state: (w + 2) pixels x 3 channels, in 1/16 steps. */
@@ -333,7 +429,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 					t[c] = clamp8(p[c] + in);
 				}
 				if (m->pal) {
-					v = quant_near_find(&m->near, t[0] * 4, t[1] * 4, t[2] * 4);
+					v = nearest_cached(m, t);
 					memcpy(shown, m->show[v], sizeof shown);
 				} else {
 					v = pick(m, t[0], t[1], t[2], shown);
@@ -354,7 +450,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				int off = ((2 * bayer8[y & 7][x & 7] + 1) * spread) / 128 - spread / 2;
 				v = pick(m, p[0] + off, p[1] + off, p[2] + off, shown);
 			} else if (h && m->pal) {
-				v = quant_near_find(&m->near, p[0] * 4, p[1] * 4, p[2] * 4);
+				v = nearest_of_pixel(m, h, p);
 			} else {
 				v = pick(m, p[0], p[1], p[2], shown);
 			}
@@ -389,13 +485,16 @@ int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *
 		return free(m), -1;
 	m->cache = malloc(QBINS * sizeof *m->cache);
 	m->exact = malloc(QBINS * sizeof *m->exact);
-	if (!m->cache || !m->exact) {
+	m->pure = malloc(QBINS * sizeof *m->pure);
+	if (!m->cache || !m->exact || !m->pure) {
 		free(m->cache);
 		free(m->exact);
+		free(m->pure);
 		free(m);
 		return -1;
 	}
 	memset(m->cache, 0xff, QBINS * sizeof *m->cache);
+	memset(m->pure, 0xff, QBINS * sizeof *m->pure);
 	for (size_t k = 0; k < QBINS; k++)
 		m->exact[k] = -2;
 	m->pal = pal;
@@ -408,6 +507,9 @@ int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *
 	int rc = map_image(m, h, rgb, w, hgt, stride, dither, out, NULL);
 	free(m->cache);
 	free(m->exact);
+	free(m->pure);
+	free(m->pool);
+	free(m->pooldist);
 	free(m);
 	return rc;
 }
