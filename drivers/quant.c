@@ -394,7 +394,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				means[e][c] = nc[c];
 			}
 		}
-		if (moved < (grid ? 0.5 : 0.02 * (double)(k - fixed)))
+		if (moved < (grid ? 0.5 : 0.01 * (double)(k - fixed)))
 			break;
 	}
 	free(acc);
@@ -508,7 +508,7 @@ int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsig
 		got = (long)variance_cut(rest, nrest, kfree, means + keep);
 	int rc = got < 0 ? -1 : 0;
 	if (rc == 0 && method == QUANT_BEST)
-		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 20, 0);
+		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 30, 0);
 	if (rc == 0 && method == QUANT_BEST)
 		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, pal->bits);
 	if (rc == 0)
