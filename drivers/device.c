@@ -4,7 +4,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include "device.h"
+#include "devaa.h"
 #include "devres.h"
+#include "devvec.h"
+#include "scan_int.h"
 #include "render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)
@@ -64,6 +67,9 @@ typedef struct {
 	dev_map_t map;                   /* raster devices: the page on the device's raster */
 	int mapped;                      /* 1: a raster of its own, not the identity */
 	devres_img_t *img;               /* mapped: the image being resampled */
+	scan_path_t pieces;              /* raster, mapped: dash pieces */
+	devvec_t vec;                    /* vector devices: scratch for what the framework supplies */
+	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -71,6 +77,7 @@ static void default_state(dev_state_t *s)
 	memset(s, 0, sizeof *s);
 	s->colour = 0x000000;
 	s->width = 1000;
+	s->line_width = 1000;
 	s->cap = META_CAP_BUTT;
 	s->join = META_JOIN_MITER;
 	s->miter_limit = 10000;
@@ -93,12 +100,19 @@ static int is_raster(const dev_device_t *d)
 	return (d->ops->caps & DEV_CAP_RASTER) != 0;
 }
 
-static int emit_band(void *user, const dev_band_t *b)
+static int write_band(void *user, const dev_band_t *b)
 {
 	dev_device_t *d = user;
 	if (!d->ops->write_band)
 		return 0;
 	return d->ops->write_band(d, b);
+}
+
+/* A band from the renderer: to the device, or through the anti-aliasing downsampler. */
+static int emit_band(void *user, const dev_band_t *b)
+{
+	play_t *p = user;
+	return p->aa ? devaa_band(p->aa, b, write_band, p->d) : write_band(p->d, b);
 }
 
 static int nomem(play_t *p)
@@ -119,9 +133,7 @@ static int rect_path(play_t *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 	dev_state_t s = p->st;
 	s.colour = rgb;
 	s.rule = META_RULE_NON_ZERO;
-	dev_path_t dp = { &r, NULL, 0 };
-	if (p->d->ops->fill_path)
-		rc = p->d->ops->fill_path(p->d, &dp, &s);
+	rc = devvec_fill(p->d, &p->vec, &r, NULL, 0, &s);
 	scan_path_free(&r);
 	return rc;
 }
@@ -149,7 +161,7 @@ static int do_row(play_t *p, const meta_cmd_t *c)
 	if (is_raster(p->d))
 		return dev_render_row(p->rr, p->img_x, y, c->runs, c->nruns);
 	if (p->d->ops->put_image_row)
-		return y < p->page.height ? p->d->ops->put_image_row(p->d, p->img_x, (unsigned)y, c->runs, c->nruns) : 0;
+		return devvec_row(p->d, &p->vec, p->img_x, y, c->runs, c->nruns);
 	int64_t x = p->img_x;
 	for (size_t k = 0; k < c->nruns; k++) {
 		int rc = do_span(p, x, y, c->runs[k].count, c->runs[k].rgb);
@@ -209,25 +221,34 @@ static int paint_path(play_t *p, int kind, int text)
 	if (is_raster(d)) {
 		scan_style_t st;
 		style_of(p, &st, text);
+		scan_path_t *path = &p->path;
+		if (p->mapped && kind != META_FILL && st.ndash) {
+			/* dashes are measured along the model path: dash there, then map the pieces */
+			scan_path_reset(&p->pieces);
+			if (scan_dash_path(&p->path, st.dash, st.ndash, &p->pieces))
+				return nomem(p);
+			path = &p->pieces;
+			st.dash = NULL;
+			st.ndash = 0;
+		}
 		if (p->mapped)
-			devres_path(&p->map, &p->path);
-		rc = kind == META_FILL ? dev_render_fill(p->rr, &p->path, p->st.rule, p->st.colour)
-			: dev_render_stroke(p->rr, &p->path, &st, p->st.colour);
+			devres_path(&p->map, path);
+		rc = kind == META_FILL ? dev_render_fill(p->rr, path, p->st.rule, p->st.colour)
+			: dev_render_stroke(p->rr, path, &st, p->st.colour);
 		return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
 	}
-	dev_path_t dp = { &p->path, p->elems, p->nelems };
+	/* text has no raw elements of its own: NULL makes them from its strokes */
+	const dev_elem_t *el = text ? NULL : p->elems;
 	if (kind == META_FILL)
-		return d->ops->fill_path ? d->ops->fill_path(d, &dp, &p->st) : 0;
-	if (!d->ops->stroke_path)
-		return 0;
+		return devvec_fill(d, &p->vec, &p->path, el, p->nelems, &p->st);
 	if (text) {
 		dev_state_t s = p->st;
 		s.cap = META_CAP_ROUND;
 		s.join = META_JOIN_ROUND;
 		s.ndash = 0;
-		return d->ops->stroke_path(d, &dp, &s);
+		return devvec_stroke(d, &p->vec, &p->path, NULL, 0, &s);
 	}
-	return d->ops->stroke_path(d, &dp, &p->st);
+	return devvec_stroke(d, &p->vec, &p->path, el, p->nelems, &p->st);
 }
 
 static int do_text(play_t *p, const meta_cmd_t *c)
@@ -254,17 +275,29 @@ static int begin_page(play_t *p, const meta_cmd_t *c)
 	p->page.model_height = p->page.height;
 	default_state(&p->st);
 	p->in_page = 1;
+	d->page = &p->page;
 	p->mapped = 0;
 	if (is_raster(d)) {
 		char err[256];
-		if (dev_fit_map(&p->map, p->page.width, p->page.height, d->raster_width, d->raster_height,
-				d->pixel_aspect, d->fit))
+		/* anti-aliased: render k x k samples per device pixel, then average them */
+		unsigned k = d->antialias > 1 ? d->antialias : 1;
+		unsigned dw = d->raster_width && d->raster_height ? d->raster_width : p->page.width;
+		unsigned dh = d->raster_width && d->raster_height ? d->raster_height : p->page.height;
+		if (k > DEV_AA_MAX || (uint64_t)dw * k > 1u << 20 || (uint64_t)dh * k > 1u << 20)
+			return dev_fail(d, DEV_EUSAGE, "%s: anti-aliasing factor %u too large for %ux%u (at most %d)",
+				d->ops->name, k, dw, dh, DEV_AA_MAX);
+		if (dev_fit_map(&p->map, p->page.width, p->page.height, k > 1 ? dw * k : d->raster_width,
+				k > 1 ? dh * k : d->raster_height, d->pixel_aspect, d->fit))
 			return dev_fail(d, DEV_EUSAGE, "%s: bad device raster (fit %d, pixel aspect %g)",
 				d->ops->name, d->fit, d->pixel_aspect);
 		p->mapped = !p->map.identity;
-		p->page.width = p->map.width;
-		p->page.height = p->map.height;
-		p->rr = dev_render_new(p->page.width, p->page.height, d->band_rows, d->mem_budget, err, sizeof err);
+		p->page.width = k > 1 ? dw : p->map.width;
+		p->page.height = k > 1 ? dh : p->map.height;
+		devaa_free(p->aa);
+		p->aa = NULL;
+		if (k > 1 && !(p->aa = devaa_new(k, dw, dh)))
+			return nomem(p);
+		p->rr = dev_render_new(p->map.width, p->map.height, d->band_rows, d->mem_budget, err, sizeof err);
 		if (!p->rr)
 			return dev_fail(d, META_ENOMEM, "%s", err);
 		d->bands = dev_render_bands(p->rr);
@@ -296,7 +329,7 @@ static int end_page(play_t *p)
 	if (!rc && p->mapped && (rc = devres_bars(&p->map, p->rr, d->letterbox)) != 0)
 		dev_fail(d, rc, "out of memory or spool failure while rendering");
 	if (!rc && is_raster(d)) {
-		rc = dev_render_finish(p->rr, emit_band, d);
+		rc = dev_render_finish(p->rr, emit_band, p);
 		if (rc && !d->err[0])
 			dev_fail(d, rc, "rendering failed (spool I/O)");
 		dev_render_free(p->rr);
@@ -307,6 +340,7 @@ static int end_page(play_t *p)
 	if (!rc && d->on_page)
 		rc = d->on_page(d, &p->page, 1);
 	p->in_page = 0;
+	d->page = NULL;
 	d->pages++;
 	return rc;
 }
@@ -332,16 +366,21 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		if (is_raster(p->d))
 			return dev_render_clear(p->rr, c->rgb) ? nomem(p) : 0;
 		if (p->d->ops->clear)
-			return p->d->ops->clear(p->d, c->rgb);
+			return p->d->ops->clear(p->d, &p->page, c->rgb);
 		return rect_path(p, 0, 0, (int64_t)p->page.width * 1000, (int64_t)p->page.height * 1000, c->rgb);
 	case META_END_PAGE: return end_page(p);
 	case META_COLOUR: s->colour = c->rgb; return 0;
-	case META_WIDTH: s->width = c->f[0]; return 0;
+	case META_WIDTH:
+		s->width = c->f[0];
+		s->line_width = c->f[0] < 1000 ? 1000 : c->f[0];
+		return 0;
 	case META_DASH:
 		s->ndash = 0;
 		for (int rep = 0; rep < (c->nlist % 2 ? 2 : 1); rep++)
 			for (size_t k = 0; k < c->nlist; k++)
 				s->dash[s->ndash++] = c->list[k];
+		if (scan_dash_period(s->dash, s->ndash) < SCAN_DASH_MIN_PERIOD)
+			s->ndash = 0;   /* finer than a pixel: solid (§5.3), for every device */
 		return 0;
 	case META_CAP: s->cap = c->k; return 0;
 	case META_JOIN: s->join = c->k; return 0;
@@ -418,6 +457,10 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	dev_render_free(p.rr);
 	devres_image_free(p.img);
 	scan_path_free(&p.path);
+	scan_path_free(&p.pieces);
+	devvec_free(&p.vec);
+	devaa_free(p.aa);
+	d->page = NULL;
 	free(p.elems);
 	return rc;
 }

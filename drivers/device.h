@@ -12,7 +12,13 @@
  *    chords, §5.4) and the raw elements (for devices with native arcs, DEV_CAP_ARCS), with the
  *    state in force. Text is expanded to a stroked path unless DEV_CAP_TEXT is set; image rows
  *    become put_span calls when put_image_row is NULL; spans become filled rectangles when
- *    put_span is NULL; clear becomes a filled page rectangle when clear is NULL.
+ *    put_span is NULL; clear becomes a filled page rectangle when clear is NULL. What the
+ *    device cannot do (DEV_CAP_ONLY with FILL, DASH, WIDTH) the framework builds from §5.3's
+ *    pieces: dash pieces, stroke outlines, hatch lines.
+ *
+ * Rows: a raster device's bands count rows from the TOP (dev_band_t.y0 = 0 is the top row);
+ * put_span and put_image_row take the meta file's pixel coordinates, rows from the BOTTOM
+ * (y = 0 is the bottom row), like every path coordinate a vector device gets.
  *
  * Drivers write through a borrowed transport (transport.h) and never print or exit: every
  * operation returns 0 or a negative META_E* / DEV_E* code after dev_error() recorded a message.
@@ -33,9 +39,19 @@
 #define DEV_CAP_VECTOR  0x02   /* device gets paths */
 #define DEV_CAP_ARCS    0x04   /* vector device draws arcs and circles natively (uses elems) */
 #define DEV_CAP_TEXT    0x08   /* vector device draws the text statement itself */
-#define DEV_CAP_FILL    0x10   /* vector device can fill polygons (else fills are outlined) */
-#define DEV_CAP_DASH    0x20   /* vector device dashes natively */
-#define DEV_CAP_WIDTH   0x40   /* vector device draws wide lines natively */
+#define DEV_CAP_FILL    0x10   /* vector device fills polygons (fill_path) */
+#define DEV_CAP_DASH    0x20   /* vector device dashes natively (stroke_path gets the dash) */
+#define DEV_CAP_WIDTH   0x40   /* vector device draws lines of any width natively */
+/* With DEV_CAP_ONLY, the three flags above are ALL the vector device can do, and the framework
+ * supplies the rest: without DEV_CAP_DASH, stroke_path gets the dash pieces (§5.3) as open
+ * subpaths and no dash; without DEV_CAP_WIDTH, a stroke wider than one pixel reaches fill_path
+ * as its §5.3 pieces (convex, counter-clockwise, filled non-zero: their union is the stroke) and
+ * thinner strokes reach stroke_path; without DEV_CAP_FILL, fill_path is never called: a fill
+ * goes to the device's hatch op if it has one, else it becomes its outline plus hatch lines
+ * through the pixel centres one line width apart (scan_hatch), stroked with stroke_path.
+ * Without DEV_CAP_ONLY a vector device is taken to do all three (as devices written before the
+ * flags were honoured expect). */
+#define DEV_CAP_ONLY    0x80
 
 /* Extra error code for device failures (besides META_E*). */
 #define DEV_EDEVICE (-20)
@@ -59,6 +75,7 @@ typedef struct {
 	size_t ndash;
 	int cap, join, rule;
 	meta_fix_t miter_limit;
+	meta_fix_t line_width;      /* the width §5.3 draws: max(width, 1000), never below a pixel */
 } dev_state_t;
 
 /* A raw path element as written in the meta file (for devices with native arcs). */
@@ -98,6 +115,9 @@ typedef struct {
 	const char *key;
 	const char *help;           /* one line: the values and the default */
 } dev_option_t;
+
+/* The largest anti-aliasing factor (dev_device_t.antialias). */
+#define DEV_AA_MAX 16
 
 /* How a model page is mapped onto a device raster of its own (dev_device_t.fit): ASPECT keeps
  * the page's shape and centres it, with letterbox bars where it does not reach; FILL keeps the
@@ -149,11 +169,16 @@ typedef struct dev_ops {
 	int (*open)(dev_device_t *d);
 	int (*begin_page)(dev_device_t *d, const dev_page_t *pg);
 	int (*write_band)(dev_device_t *d, const dev_band_t *band);             /* raster */
-	int (*clear)(dev_device_t *d, meta_rgb_t rgb);                          /* vector */
+	/* vector: paint the whole page (pg: its size in pixels, and the physical size if given) */
+	int (*clear)(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb);
 	int (*stroke_path)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
 	int (*fill_path)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
 	int (*text)(dev_device_t *d, const dev_text_t *t, const dev_state_t *st);
+	/* vector, without DEV_CAP_FILL (DEV_CAP_ONLY): hatch the polygon p (rule in st) itself */
+	int (*hatch)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
+	/* pixels n from (x, y), y from the bottom; clipped to the page (x + n <= width) */
 	int (*put_span)(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
+	/* one image row at page row y (from the bottom) from x; the runs clipped to the page */
 	int (*put_image_row)(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
 	int (*end_page)(dev_device_t *d, const dev_page_t *pg);
 	int (*close)(dev_device_t *d);
@@ -175,12 +200,18 @@ struct dev {
 	double pixel_aspect;
 	int fit;                    /* DEV_FIT_* */
 	meta_rgb_t letterbox;       /* the bars' colour with DEV_FIT_ASPECT */
+	/* Raster, set by the program (--antialias): 0 or 1 = exact, the reference (default);
+	 * k = 2 .. DEV_AA_MAX: anti-aliased, each device pixel the mean in linear light of a k x k
+	 * grid of exact samples (the page rendered by §5 at k times the resolution, as a device
+	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". */
+	unsigned antialias;
 	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
 	void *user;                 /* free for the program */
 	/* Optional program hook, called before the device's begin_page (end = 0) and after its
 	 * end_page (end = 1): lets a program give each page its own transport (d->out). */
 	int (*on_page)(dev_device_t *d, const dev_page_t *pg, int end);
 	/* filled by dev_play */
+	const dev_page_t *page;     /* the page being replayed (NULL outside pages) */
 	unsigned pages;             /* pages replayed so far */
 	unsigned bands;             /* bands of the last page */
 	int reader_error;           /* 1: err is the reader's message (it names the file) */
@@ -214,6 +245,19 @@ const char *dev_option(const dev_device_t *d, const char *key, char *buf, size_t
  * message naming the unknown key and the known ones. dev_play() calls it before open(). */
 int dev_check_options(dev_device_t *d);
 #define DEV_EUSAGE (-21)
+
+/* Formatted output for text-format drivers (devout.c): printf through d->out (io_write); 0, or
+ * <0 with a message naming the output (META_EIO) or the device. */
+int dev_printf(dev_device_t *d, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+/* The fixed-point value v / 10^scale (scale 0..6; meta values have scale 3) rounded to at most
+ * decimals places (halves away from zero, in integers), trailing zeros dropped, and never "-0":
+ * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs DEV_FMT_SIZE bytes. */
+const char *dev_fmt_fix(char *buf, int64_t v, int scale, int decimals);
+#define DEV_FMT_SIZE 32
 
 /* The device registry (registry.c): NULL-terminated list, and lookup by name. */
 extern const dev_ops_t *const dev_registry[];

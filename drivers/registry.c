@@ -4,6 +4,7 @@
 
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops, dev_null_ops;
 extern const dev_ops_t dev_vga_ops, dev_xga_ops;
+extern const dev_ops_t dev_svg_ops;
 
 const dev_ops_t *const dev_registry[] = {
 	&dev_png_ops,
@@ -12,6 +13,7 @@ const dev_ops_t *const dev_registry[] = {
 	&dev_null_ops,
 	&dev_vga_ops,
 	&dev_xga_ops,
+	&dev_svg_ops,
 	NULL
 };
 

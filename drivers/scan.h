@@ -68,6 +68,23 @@ int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, si
 /* Stroke the path's subpaths with the style (§5.3). Returns 0 or META_ENOMEM. */
 int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
 		meta_rgb_t rgb);
+/* The pieces of that stroke (§5.3: segments, joins, caps, dots, dash pieces), appended to out
+ * as closed convex contours, each counter-clockwise, so that filling out by the non-zero rule
+ * (§5.1) paints exactly the pixels scan_stroke paints. Pieces that cannot reach the page of
+ * width x height pixels are left out. For vector devices that fill or hatch a stroke's
+ * outline themselves. Returns 0 or META_ENOMEM. */
+int scan_stroke_pieces(scan_ctx_t *c, const scan_path_t *p, const scan_style_t *st, int width,
+		int height, scan_path_t *out);
+/* The dash pieces of p by the §5.3 walk, appended to out as open subpaths (a subpath whose
+ * points are all equal is copied as it is: it is a dot). Stroking out solid paints what
+ * stroking p dashed paints. dash: the even list in thousandths, ndash > 0. */
+int scan_dash_path(const scan_path_t *p, const int64_t *dash, size_t ndash, scan_path_t *out);
+/* The polygon p (subpaths implicitly closed) as horizontal hatch lines y = y0 + k * step
+ * (thousandths): on each line, the intervals whose points the §5.1 rule covers, appended to out
+ * as open two-point subpaths from crossing to crossing. With y0 = 500 and step = 1000 the lines
+ * run through the pixel centres and cover exactly the centres scan_fill paints. For devices
+ * that cannot fill (pen plotters). Returns 0 or META_ENOMEM. */
+int scan_hatch(const scan_path_t *p, int rule, int64_t y0, int64_t step, scan_path_t *out);
 /* Paint n pixels from pixel (x, y) rightwards, clipped to the band and page. */
 void scan_span(const scan_band_t *b, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb);
 /* Paint the whole band with rgb. */

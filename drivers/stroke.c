@@ -15,12 +15,34 @@ typedef struct {
 	double ext;            /* farthest a piece reaches from its path, thousandths */         /* miter limit squared (pixels/pixels) */
 	scan_pt_t *disc;       /* disc offsets for radius h */
 	size_t ndisc;
+	scan_path_t *out;      /* scan_stroke_pieces: pieces are collected here, not painted */
 	int rc;
 } stroker_t;
 
+/* Append the piece to s->out as a closed counter-clockwise contour (zero-area pieces, which
+ * cover no pixel centre, are left out). */
+static void collect(stroker_t *s, const scan_pt_t *q, size_t n)
+{
+	__int128 a2 = 0;
+	for (size_t k = 0; k < n; k++) {
+		const scan_pt_t *u = &q[k], *v = &q[k + 1 == n ? 0 : k + 1];
+		a2 += (__int128)u->x * v->y - (__int128)v->x * u->y;
+	}
+	if (a2 == 0)
+		return;
+	for (size_t k = 0; k < n && s->rc == 0; k++) {
+		const scan_pt_t *u = &q[a2 > 0 ? k : n - 1 - k];
+		s->rc = k ? scan_path_draw(s->out, u->x, u->y) : scan_path_move(s->out, u->x, u->y);
+	}
+	if (s->rc == 0)
+		s->rc = scan_path_close(s->out);
+}
+
 static void piece(stroker_t *s, const scan_pt_t *q, size_t n)
 {
-	if (s->rc == 0)
+	if (s->rc == 0 && s->out)
+		collect(s, q, n);
+	else if (s->rc == 0)
 		s->rc = scan_fill_piece(s->c, s->b, q, n, META_RULE_NON_ZERO, s->rgb, 0);
 }
 
@@ -28,7 +50,9 @@ static void piece(stroker_t *s, const scan_pt_t *q, size_t n)
  * rectangles of caps, triangles, discs (their chords' sagitta far exceeds the rounding). */
 static void convex_piece(stroker_t *s, const scan_pt_t *q, size_t n)
 {
-	if (s->rc == 0)
+	if (s->rc == 0 && s->out)
+		collect(s, q, n);
+	else if (s->rc == 0)
 		s->rc = scan_fill_piece(s->c, s->b, q, n, META_RULE_NON_ZERO, s->rgb, 1);
 }
 
@@ -218,19 +242,52 @@ static void solid(stroker_t *s, const scan_pt_t *pts, size_t n, int closed)
 	}
 }
 
-/* Stroke the finished dash piece and start afresh. */
-static void flush_piece(stroker_t *s, scan_path_t *dp)
+/* The dash walk's window: the part of p -> q within the stroke's reach of the band (clipped
+ * to the reach box by Liang-Barsky, widened by a few thousandths for the rounding). */
+static int reach_window(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, double *tb)
 {
-	if (dp->nsubs && dp->subs[0].n == 2 && far_segment(s, dp->pts[0], dp->pts[1]))
-		dp->nsubs = 0;   /* a dash within one segment, out of reach */
-	if (dp->nsubs && dp->subs[0].n >= 2)
-		solid(s, dp->pts + dp->subs[0].start, dp->subs[0].n, 0);
-	scan_path_reset(dp);
+	const stroker_t *s = user;
+	double lo[2] = { -s->ext - 16.0, s->b->jlo * 1000.0 - s->ext - 16.0 };
+	double hi[2] = { s->b->width * 1000.0 + s->ext + 16.0, s->b->jhi * 1000.0 + s->ext + 16.0 };
+	double a[2] = { (double)p.x, (double)p.y }, d[2] = { (double)(q.x - p.x), (double)(q.y - p.y) };
+	double u0 = 0, u1 = 1;
+	for (int k = 0; k < 2; k++) {
+		if (d[k] == 0) {
+			if (a[k] < lo[k] || a[k] > hi[k])
+				return 0;
+			continue;
+		}
+		double e0 = (lo[k] - a[k]) / d[k], e1 = (hi[k] - a[k]) / d[k];
+		if (e0 > e1) {
+			double t = e0; e0 = e1; e1 = t;
+		}
+		if (e0 > u0)
+			u0 = e0;
+		if (e1 < u1)
+			u1 = e1;
+	}
+	if (u0 > u1)
+		return 0;
+	*ta = u0 * len - 16.0;
+	*tb = u1 * len + 16.0;
+	if (*ta < 0)
+		*ta = 0;
+	if (*tb > len)
+		*tb = len;
+	return 1;
 }
 
-/* Split the subpath into dash pieces, each stroked solid and open as soon as it ends. Along a
- * segment that cannot reach the band the pattern is walked without making pieces (a piece
- * running on from there starts at the segment's end: its cap and join there are out of reach). */
+/* A finished dash piece: stroked solid and open (culled segment by segment). */
+static int dash_piece(void *user, scan_path_t *dp)
+{
+	stroker_t *s = user;
+	if (dp->nsubs && dp->subs[0].n >= 2)
+		solid(s, dp->pts + dp->subs[0].start, dp->subs[0].n, 0);
+	return s->rc;
+}
+
+/* Split the subpath into dash pieces, each stroked solid and open as soon as it ends; pieces
+ * are made only where the band can see them (dash.c). */
 static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, size_t n, int closed)
 {
 	size_t same = 1;
@@ -240,57 +297,18 @@ static void dashed(stroker_t *s, const scan_style_t *st, const scan_pt_t *pts, s
 		solid(s, pts, n, closed);   /* all points equal: the dot, as when solid */
 		return;
 	}
-	scan_path_t *dp = scan_ctx_dashed(s->c);
-	scan_path_reset(dp);
-	size_t idx = 0;
-	double rem = (double)st->dash[0];
-	int on = 1;
-	size_t nseg = closed ? n : n - 1;
-	for (size_t i = 0; i < nseg && s->rc == 0; i++) {
-		scan_pt_t p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
-		if (p.x == q.x && p.y == q.y)
-			continue;
-		double dx = (double)(q.x - p.x), dy = (double)(q.y - p.y);
-		double len = sqrt(dx * dx + dy * dy), t = 0;
-		int far = far_segment(s, p, q);
-		if (on && dp->nsubs == 0 && (s->rc = scan_path_move(dp, p.x, p.y)))
-			return;
-		while (rem < len - t) {
-			t += rem;
-			/* a piece already begun is always finished exactly; new pieces are made only
-			 * where they can be seen */
-			if (!far || dp->nsubs) {
-				double f = t / len;
-				int64_t bx = p.x + scan_round(dx * f), by = p.y + scan_round(dy * f);
-				int rc = on ? scan_path_draw(dp, bx, by) : scan_path_move(dp, bx, by);
-				if (rc) {
-					s->rc = rc;
-					return;
-				}
-				if (on)
-					flush_piece(s, dp);
-			}
-			on = !on;
-			idx = (idx + 1) % st->ndash;
-			rem = (double)st->dash[idx];
-		}
-		rem -= len - t;
-		if (on) {
-			int rc = dp->nsubs ? scan_path_draw(dp, q.x, q.y) : scan_path_move(dp, q.x, q.y);
-			if (rc) {
-				s->rc = rc;
-				return;
-			}
-		}
-	}
-	if (on && s->rc == 0)
-		flush_piece(s, dp);
+	scan_dasher_t w = { reach_window, dash_piece, s };
+	int rc = scan_dash_walk(scan_ctx_dashed(s->c), st->dash, st->ndash, pts, n, closed, &w);
+	if (rc && s->rc == 0)
+		s->rc = rc;
 }
 
-int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
-		meta_rgb_t rgb)
+/* The stroke into the band, or its pieces into out (then b is a band without pixels). */
+static int stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
+		meta_rgb_t rgb, scan_path_t *out)
 {
 	stroker_t s = { 0 };
+	s.out = out;
 	s.c = c;
 	s.b = b;
 	s.rgb = rgb;
@@ -305,7 +323,8 @@ int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const
 	s.ext = ext;
 	double lo = (double)b->jlo * 1000.0 - ext, hi = (double)b->jhi * 1000.0 + ext;
 	double right = (double)b->width * 1000.0 + ext;
-	int solid_only = st->ndash == 0 || st->dash == NULL;
+	int solid_only = st->ndash == 0 || st->dash == NULL ||
+		scan_dash_period(st->dash, st->ndash) < SCAN_DASH_MIN_PERIOD;
 	for (size_t k = 0; k < p->nsubs && s.rc == 0; k++) {
 		const scan_pt_t *q = p->pts + p->subs[k].start;
 		size_t n = p->subs[k].n;
@@ -327,4 +346,18 @@ int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const
 	}
 	free(s.disc);
 	return s.rc;
+}
+
+int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
+		meta_rgb_t rgb)
+{
+	return stroke(c, b, p, st, rgb, NULL);
+}
+
+int scan_stroke_pieces(scan_ctx_t *c, const scan_path_t *p, const scan_style_t *st, int width,
+		int height, scan_path_t *out)
+{
+	/* the page as a band without pixels: the pieces that cannot reach it are left out */
+	scan_band_t page = { NULL, 0, width, height, 0, height };
+	return stroke(c, &page, p, st, 0, out);
 }

@@ -60,6 +60,7 @@ static const dev_ops_t cap_ops = {
 
 /* Replay text onto the capture device; returns its state (pix owned by the caller). */
 static const char *cfg_options;
+static unsigned cfg_aa;
 
 static cap_t play(const char *text, unsigned band_rows, int *rc)
 {
@@ -68,6 +69,7 @@ static cap_t play(const char *text, unsigned band_rows, int *rc)
 	dev_device_t *d = dev_new(&cap_ops, NULL);
 	d->band_rows = band_rows;
 	d->options = cfg_options;
+	d->antialias = cfg_aa;
 	*rc = dev_play(r, d);
 	if (*rc)
 		printf("# %s\n", dev_error(d));
@@ -175,6 +177,27 @@ static void test_thin_lines(void)
 	free(h.pix);
 	free(v.pix);
 	free(d.pix);
+}
+
+static void test_dash_scaled(void)
+{
+	/* dashes are measured along the model path: at 2x, dash 10 10 is 20 device pixels on */
+	set(200, 200, 0, DEV_FIT_ASPECT);
+	int rc;
+	cap_t c = play("LOCUS-META 1\npage 100 100\nwidth 2\ndash 10 10\nstroke\nmove 0 50\ndraw 100 50\nend\nend-page\n", 0, &rc);
+	int runs = 0, ok = 1, len = 0;
+	for (unsigned u = 0; u < 200; u++) {
+		int black = px(&c, u, 99) == 0;
+		if (black)
+			len++;
+		if ((!black || u == 199) && len) {
+			runs++;
+			ok &= len == 20;
+			len = 0;
+		}
+	}
+	CHECK(rc == 0 && runs == 5 && ok, "dash 10 10 at 2x: five dashes of 20 device pixels (%d runs)", runs);
+	free(c.pix);
 }
 
 static const char *bars_page =
@@ -334,10 +357,49 @@ static void test_options(void)
 	cfg_options = NULL;
 }
 
+static void test_antialias(void)
+{
+	int rc1, rc2, rc3;
+	const char *half = "LOCUS-META 1\npage 40 20\nfill\nmove 10.5 5\ndraw 20 5\ndraw 20 15.25\ndraw 10.5 15.25\nend\n"
+		"colour #ff0000\nwidth 0.25\nstroke\nmove 30 0\ndraw 30 20\nend\nend-page\n";
+	set(0, 0, 0, 0);
+	cfg_aa = 4;
+	cap_t a = play(half, 0, &rc1), b = play(half, 1, &rc2), c = play(half, 7, &rc3);
+	dump(&a, "aa");
+	CHECK(rc1 == 0 && a.w == 40 && a.h == 20 && px(&a, 10, 10) == 0xbcbcbc && px(&a, 11, 10) == 0 &&
+		px(&a, 19, 10) == 0 && px(&a, 20, 10) == 0xffffff && px(&a, 9, 10) == 0xffffff,
+		"antialias 4: a half-covered column is linear-light half grey #bcbcbc, full ones exact (%06x)", px(&a, 10, 10));
+	/* the top edge at 15.25: row 4 from the top is covered 1/4 by the 4x4 grid */
+	CHECK(px(&a, 15, 4) == 0xe1e1e1 && px(&a, 15, 5) == 0, "a quarter-covered row is 3/4 white in linear light, #e1e1e1 (%06x)", px(&a, 15, 4));
+	/* widths below 1 draw as 1 (§5.3) here too: the line at x = 30 covers half of 29 and of 30 */
+	CHECK(px(&a, 29, 10) == 0xffbcbc && px(&a, 30, 10) == 0xffbcbc && px(&a, 28, 10) == 0xffffff,
+		"a 0.25-pixel red line is one pixel wide, split over two columns (%06x %06x)", px(&a, 29, 10), px(&a, 30, 10));
+	size_t n = (size_t)a.w * a.h * 3;
+	CHECK(rc2 == 0 && rc3 == 0 && !memcmp(a.pix, b.pix, n) && !memcmp(a.pix, c.pix, n) && !b.bad_band && !c.bad_band,
+		"antialiased bands of 1 and 7 sample rows agree with the whole page");
+	free(a.pix);
+	free(b.pix);
+	free(c.pix);
+	set(160, 100, 5.0 / 6.0, DEV_FIT_ASPECT);
+	cap_t e = play(all_page, 0, &rc1), f = play(all_page, 3, &rc2);
+	dump(&e, "aa-083");
+	CHECK(rc1 == 0 && rc2 == 0 && e.w == 160 && e.h == 100 && !memcmp(e.pix, f.pix, (size_t)160 * 100 * 3) &&
+		px(&e, 0, 0) == cfg_box, "antialias on a raster of its own: device size, bars, bands agree");
+	free(e.pix);
+	free(f.pix);
+	cfg_aa = 99;
+	e = play(all_page, 0, &rc1);
+	CHECK(rc1 == DEV_EUSAGE, "an anti-aliasing factor above %d is refused", DEV_AA_MAX);
+	free(e.pix);
+	cfg_aa = 0;
+}
+
 int main(void)
 {
+	test_antialias();
 	test_options();
 	test_aspect_circle();
+	test_dash_scaled();
 	test_thin_lines();
 	test_bars();
 	test_images();

@@ -1,0 +1,106 @@
+/* devaa.c: anti-aliasing by supersampling: k x k exact samples per pixel, averaged in linear
+ * light, band by band, so banding and the memory budget work as in the exact mode. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include "devaa.h"
+
+struct devaa {
+	unsigned k, width, height;   /* the factor; the device's raster */
+	double *acc;                 /* one output row being summed, width * 3 */
+	unsigned acc_rows;           /* sample rows summed into acc */
+	uint8_t *out;                /* finished output rows not yet handed over */
+	unsigned out_rows, out_cap, y0;
+	float lin[256], mid[255];
+};
+
+devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
+{
+	devaa_t *a = calloc(1, sizeof *a);
+	if (!a)
+		return NULL;
+	a->k = k;
+	a->width = width;
+	a->height = height;
+	a->out_cap = 64;
+	a->acc = calloc((size_t)width * 3, sizeof *a->acc);
+	a->out = malloc((size_t)width * 3 * a->out_cap);
+	if (!a->acc || !a->out) {
+		devaa_free(a);
+		return NULL;
+	}
+	for (int c = 0; c < 256; c++) {
+		double v = c / 255.0;
+		a->lin[c] = (float)(v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4));
+	}
+	for (int c = 0; c < 255; c++)
+		a->mid[c] = (float)(((double)a->lin[c] + a->lin[c + 1]) / 2.0);
+	return a;
+}
+
+void devaa_free(devaa_t *a)
+{
+	if (!a)
+		return;
+	free(a->acc);
+	free(a->out);
+	free(a);
+}
+
+static uint8_t to_byte(const devaa_t *a, double v)
+{
+	unsigned lo = 0, hi = 255;
+	while (lo < hi) {
+		unsigned m = (lo + hi) / 2;
+		if (v > a->mid[m])
+			lo = m + 1;
+		else
+			hi = m;
+	}
+	return (uint8_t)lo;
+}
+
+static int hand_over(devaa_t *a, devaa_fn fn, void *user)
+{
+	if (!a->out_rows)
+		return 0;
+	dev_band_t b = { a->out, (size_t)a->width * 3, a->width, a->y0, a->out_rows, a->height };
+	int rc = fn(user, &b);
+	a->y0 += a->out_rows;
+	a->out_rows = 0;
+	return rc;
+}
+
+int devaa_band(devaa_t *a, const dev_band_t *in, devaa_fn fn, void *user)
+{
+	unsigned k = a->k, w = a->width;
+	double norm = 1.0 / ((double)k * k);
+	for (unsigned r = 0; r < in->nrows; r++) {
+		const uint8_t *q = in->pix + (size_t)r * in->stride;
+		for (unsigned x = 0; x < w; x++) {
+			double s0 = 0, s1 = 0, s2 = 0;
+			for (unsigned i = 0; i < k; i++, q += 3) {
+				s0 += a->lin[q[0]];
+				s1 += a->lin[q[1]];
+				s2 += a->lin[q[2]];
+			}
+			a->acc[3 * x] += s0;
+			a->acc[3 * x + 1] += s1;
+			a->acc[3 * x + 2] += s2;
+		}
+		if (++a->acc_rows < k)
+			continue;
+		uint8_t *o = a->out + (size_t)a->out_rows * w * 3;
+		for (unsigned x = 0; x < 3 * w; x++)
+			o[x] = to_byte(a, a->acc[x] * norm);
+		memset(a->acc, 0, (size_t)w * 3 * sizeof *a->acc);
+		a->acc_rows = 0;
+		if (++a->out_rows == a->out_cap) {
+			int rc = hand_over(a, fn, user);
+			if (rc)
+				return rc;
+		}
+	}
+	/* hand over what this band finished, so bands reach the device as they are rendered */
+	return hand_over(a, fn, user);
+}
