@@ -347,8 +347,12 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 		unsigned grid)
 {
 	double (*acc)[4] = malloc(k * sizeof *acc);
-	if (!acc)
+	uint8_t *was = malloc(n ? n : 1);   /* each colour's entry in the pass before */
+	if (!acc || !was) {
+		free(acc);
+		free(was);
 		return -1;
+	}
 	if (grid)
 		for (size_t e = 0; e < k; e++)
 			for (int c = 0; c < 3; c++)
@@ -360,12 +364,36 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			for (int c = 0; c < 3; c++)
 				ic[e][c] = (int)lround(means[e][c] * 4);
 		quant_near_init(&q, (const int (*)[3])ic, (unsigned)k);
+		/* Hamerly's test: a colour nearer to its entry than half the distance from that entry
+		 * to any other keeps it, with no search (strictly nearer: the same answer) */
+		long quarter[QUANT_MAX];
+		for (size_t e = 0; e < k; e++) {
+			long m = -1;
+			for (size_t f = 0; f < k; f++) {
+				if (f == e)
+					continue;
+				long dr = ic[e][0] - ic[f][0], dg = ic[e][1] - ic[f][1], db = ic[e][2] - ic[f][2];
+				long d = dr * dr + dg * dg + db * db;
+				if (m < 0 || d < m)
+					m = d;
+			}
+			quarter[e] = m < 0 ? 0 : m / 4;
+		}
 		memset(acc, 0, k * sizeof *acc);
 		double worst = -1;
 		size_t wi = 0;
 		for (size_t i = 0; i < n; i++) {
 			int r = (int)lround(col[i].c[0] * 4), g = (int)lround(col[i].c[1] * 4), b = (int)lround(col[i].c[2] * 4);
-			unsigned e = quant_near_find(&q, r, g, b);
+			unsigned e;
+			if (pass) {
+				const int *c = ic[was[i]];
+				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
+				e = dr * dr + dg * dg + db * db < quarter[was[i]] ? was[i] :
+					quant_near_find_from(&q, r, g, b, was[i]);
+			} else {
+				e = quant_near_find(&q, r, g, b);
+			}
+			was[i] = (uint8_t)e;
 			double d = 0;
 			for (int c = 0; c < 3; c++) {
 				acc[e][c] += col[i].c[c] * col[i].w;
@@ -398,6 +426,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			break;
 	}
 	free(acc);
+	free(was);
 	return 0;
 }
 

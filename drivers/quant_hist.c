@@ -87,9 +87,16 @@ void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n)
 		q->idx[j] = (uint8_t)k;
 		q->key[j] = key;
 	}
+	for (unsigned j = 0; j < n; j++)
+		q->pos[q->idx[j]] = (uint8_t)j;
 }
 
 unsigned quant_near_find(const qnear_t *q, int r, int g, int b)
+{
+	return quant_near_find_from(q, r, g, b, -1);
+}
+
+unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint)
 {
 	int key = r + g + b;
 	unsigned lo = 0, hi = q->n;
@@ -104,6 +111,12 @@ unsigned quant_near_find(const qnear_t *q, int r, int g, int b)
 	 * than dk^2 / 3, and neither is any entry beyond it */
 	long best = -1;
 	unsigned bi = 0;
+	if (hint >= 0) {             /* a good first guess bounds the search from the start */
+		const int *c = q->c[q->pos[hint]];
+		long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
+		best = dr * dr + dg * dg + db * db;
+		bi = (unsigned)hint;
+	}
 	int up = (int)lo, down = (int)lo - 1;
 	while (up < (int)q->n || down >= 0) {
 		if (up < (int)q->n) {

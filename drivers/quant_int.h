@@ -40,6 +40,7 @@ typedef struct {
 	unsigned n;
 	int c[QUANT_MAX][3];
 	int key[QUANT_MAX];         /* r + g + b */
+	uint8_t pos[QUANT_MAX];     /* where index k sits in the sorted order */
 	uint8_t idx[QUANT_MAX];
 } qnear_t;
 
@@ -47,6 +48,9 @@ typedef struct {
 void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n);
 /* Index (as given to quant_near_init) of the entry nearest to (r, g, b) in the same units. */
 unsigned quant_near_find(const qnear_t *q, int r, int g, int b);
+/* The same, starting from the guess hint (an index, or -1 for none): same answer, faster when
+ * the guess is near (k-means: the entry of the pass before). */
+unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
 /* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
 void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
 
