@@ -323,6 +323,8 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 		return -1;
 	uint32_t key = quant_key(p[0], p[1], p[2]);
 	const qbin_t *q = &h->bin[key];
+	if (m->pal && !(q->first & QMIXED))
+		return holds(m, h, key);     /* one exact colour that the palette holds: as is */
 	if (!quant_bin_flat(h, q, thr))
 		return -1;
 	if (!m->pal) {
