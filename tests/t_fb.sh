@@ -1,7 +1,7 @@
 #!/bin/sh
 # t_fb.sh: locus-vga and locus-xga: dump goldens for every mode on fixtures/meta/*.meta (whole
 # page and 7-row bands), the F picture in every mode (flips, channel order, 6-bit DAC), PNG, PCX
-# and BMP read back by ImageMagick to exactly the dump's colours, palettes, and bad input.
+# and BMP read back by ImageMagick and netpbm to exactly the dump's colours, palettes, and bad input.
 # FB_RECORD=1 records missing goldens into fixtures/fb/ (look at them before committing).
 . tests/lib.sh
 CHK="python3 tests/fbdev/fbcheck.py"
@@ -52,6 +52,10 @@ for mode in $MODES; do
 		$CHK header "$T/f.$fmt" $fmt $mode
 		convert "$T/f.$fmt" -depth 8 "rgb:$T/f.$fmt.rgb" 2>/dev/null
 		same_file "F $mode $fmt: ImageMagick reads exactly the dump's colours" "$T/f.rgb" "$T/f.$fmt.rgb"
+		# and netpbm, a second reader: its P6 pixels after the header
+		case $fmt in png) np=pngtopnm ;; pcx) np=pcxtoppm ;; bmp) np=bmptopnm ;; esac
+		$np "$T/f.$fmt" 2>/dev/null | tail -c "$(wc -c < "$T/f.rgb")" > "$T/f.$fmt.pnm.rgb"
+		same_file "F $mode $fmt: netpbm $np reads exactly the dump's colours" "$T/f.rgb" "$T/f.$fmt.pnm.rgb"
 	done
 done
 # -f wins over the suffix; stdin to stdout
