@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "cli.h"
 #include "fbmode.h"
 #include "quant.h"
@@ -76,6 +77,76 @@ static int check_palette_file(const cli_t *c, const char *path)
 	return 0;
 }
 
+static int run_job(const char *prog, const dev_job_t *job)
+{
+	char err[600];
+	int st = dev_run(job, err, sizeof err);
+	if (st == 65)
+		fprintf(stderr, "%s\n", err);
+	else if (st)
+		fprintf(stderr, "%s: %s\n", prog, err);
+	return st;
+}
+
+/* A temporary file (its name in name) holding the rest of stdin, or -1. */
+static int spool_stdin(char *name, size_t n)
+{
+	const char *dir = getenv("TMPDIR");
+	snprintf(name, n, "%s/locus-fb-in.XXXXXX", dir && *dir ? dir : "/tmp");
+	int fd = mkstemp(name);
+	if (fd < 0)
+		return -1;
+	char buf[65536];
+	size_t k;
+	int bad = 0;
+	while (!bad && (k = fread(buf, 1, sizeof buf, stdin)) > 0)
+		bad = write(fd, buf, k) != (ssize_t)k;
+	if (close(fd) != 0 || bad || ferror(stdin)) {
+		unlink(name);
+		return -1;
+	}
+	return 0;
+}
+
+/* --palette shared: a first pass counts every page into one palette (written to a temporary
+ * palette file), the second draws every page with it. stdin is spooled to a file for that. */
+static int run_shared(cli_t *c, const char *prog, dev_job_t *job)
+{
+	char in[4096] = "", pal[4096], saved[sizeof c->options];
+	const char *dir = getenv("TMPDIR");
+	int st;
+	if (strcmp(job->in, "-") == 0) {
+		if (spool_stdin(in, sizeof in))
+			return cli_fail(c, 74, "cannot keep standard input for the two passes of --palette shared");
+		job->in = in;
+	}
+	snprintf(pal, sizeof pal, "%s/locus-fb-pal.XXXXXX", dir && *dir ? dir : "/tmp");
+	int fd = mkstemp(pal);
+	if (fd < 0) {
+		st = cli_fail(c, 74, "cannot make a temporary palette file");
+		goto done;
+	}
+	close(fd);
+	memcpy(saved, c->options, sizeof saved);
+	if ((st = cli_set_option(c, "palette", "page")) != 0 || (st = cli_set_option(c, "collect", pal)) != 0)
+		goto done;
+	dev_job_t first = *job;
+	first.out = NULL;
+	first.options = c->options;
+	if ((st = run_job(prog, &first)) != 0)
+		goto done;
+	memcpy(c->options, saved, sizeof saved);
+	if ((st = cli_set_option(c, "palette", pal)) != 0)
+		goto done;
+	job->options = c->options;
+	st = run_job(prog, job);
+done:
+	unlink(pal);
+	if (in[0])
+		unlink(in);
+	return st;
+}
+
 int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, const fbm_modes_t *ml)
 {
 	char usage[2048], names[128] = "";
@@ -88,7 +159,7 @@ int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, co
 		"suffix, else PNG; page k of several goes to OUT with -00k before its suffix), or show it\n"
 		"on a Linux framebuffer with -o fb:/dev/fb0.\n"
 		"  --mode M         display mode (default %s); --list-modes lists them\n"
-		"  --palette P      page (adaptive per page, default), shared (first page's for all),\n"
+		"  --palette P      page (adaptive per page, default), shared (one from all pages),\n"
 		"                   vga, ega, cube, grey, or FILE (#rrggbb lines or a 768-byte DAC dump)\n"
 		"  --quant Q        best (median cut + k-means, default), median, octree\n"
 		"  --dither D       fs (serpentine Floyd-Steinberg, default), ordered (Bayer 8x8), none\n"
@@ -122,11 +193,7 @@ int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, co
 	if (fc.palette && (st = check_palette_file(&c, fc.palette)) != 0)
 		return st;
 	dev_job_t job = { c.in[0], out, ops, c.band_rows, c.budget, c.options[0] ? c.options : NULL };
-	char err[600];
-	st = dev_run(&job, err, sizeof err);
-	if (st == 65)
-		fprintf(stderr, "%s\n", err);
-	else if (st)
-		fprintf(stderr, "%s: %s\n", prog, err);
-	return st;
+	if (fc.palette && strcmp(fc.palette, "shared") == 0)
+		return run_shared(&c, prog, &job);
+	return run_job(prog, &job);
 }

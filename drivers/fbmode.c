@@ -23,6 +23,7 @@ typedef struct {
 	uint16_t *pix;
 	fbdev_t *fb;
 	double hold;                 /* seconds each page stays on the framebuffer, then restored */
+	char collect[512];           /* the first pass of --palette shared: the file to write */
 } fbm_t;
 
 _Static_assert(sizeof(fbm_t) <= FBM_PRIV_SIZE, "FBM_PRIV_SIZE too small");
@@ -30,11 +31,12 @@ _Static_assert(sizeof(fbm_t) <= FBM_PRIV_SIZE, "FBM_PRIV_SIZE too small");
 const dev_option_t fbm_options[] = {
 	{ "mode", "the display mode (--list-modes); default the device's first" },
 	{ "format", "dump, png, pcx or bmp; default from the output's suffix, else png" },
-	{ "palette", "page (adaptive per page, default), shared (the first page's for all), vga, ega, cube, grey, or a FILE" },
+	{ "palette", "page (adaptive per page, default), shared (the first page's for all; locus-vga/xga: one from all pages), vga, ega, cube, grey, or a FILE" },
 	{ "quant", "adaptive palette method: best (median cut + k-means, default), median, octree" },
 	{ "dither", "none, ordered (Bayer 8x8) or fs (serpentine Floyd-Steinberg, default)" },
 	DEV_FIT_OPTIONS,
 	{ "dac", "6 (the mode's DAC, default) or 8: adaptive palettes of 8-bit entries, for PNG/PCX/BMP files" },
+	{ "collect", "FILE: count every page, write their one palette to FILE (#rrggbb lines), no pictures (--palette shared)" },
 	{ "fb", "a Linux framebuffer node (/dev/fb0) to show the pages on instead of files" },
 	{ "hold", "seconds each page stays on the framebuffer before the screen is restored (default 0: keep)" },
 	{ NULL, NULL }
@@ -73,7 +75,7 @@ static int load_palette_file(dev_device_t *d, fbm_t *f, const char *path, unsign
 	if (big)
 		return dev_fail(d, META_ESYNTAX, "%s: byte 65536: too long for a palette file", path);
 	char err[300];
-	if (quant_parse_palette(buf, n, path, ncol, &f->pal, err, sizeof err))
+	if (quant_parse_palette_bits(buf, n, path, ncol, f->dacbits, &f->pal, err, sizeof err))
 		return dev_fail(d, META_ESYNTAX, "%s", err);
 	return 0;
 }
@@ -147,7 +149,11 @@ int fbm_open(dev_device_t *d, const fbm_modes_t *ml)
 		if (!f->fb)
 			return dev_fail(d, DEV_EDEVICE, "%s", err);
 	}
+	if (dev_option(d, "collect", v, sizeof v))
+		snprintf(f->collect, sizeof f->collect, "%s", v);
 	unsigned ncol = palette_colours(f);
+	if (f->collect[0] && ncol == 0)
+		return dev_fail(d, DEV_EUSAGE, "mode %s is direct colour: it has no palette to collect", f->mode->name);
 	if (dev_option(d, "palette", v, sizeof v) && strcmp(v, "page") && strcmp(v, "adaptive")) {
 		int fixed = quant_fixed_by_name(v);
 		if (!strcmp(v, "shared")) {
@@ -186,7 +192,7 @@ int fbm_open(dev_device_t *d, const fbm_modes_t *ml)
 int fbm_begin_page(dev_device_t *d, const dev_page_t *pg)
 {
 	fbm_t *f = d->priv;
-	if (!d->out && !f->fb)
+	if (!d->out && !f->fb && !f->collect[0])
 		return dev_fail(d, DEV_EDEVICE, "%s: no output", d->ops->name);
 	if (pg->width != f->w || pg->height != f->h || !f->rgb) {
 		size_t px = (size_t)pg->width * pg->height;
@@ -255,6 +261,10 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 	char err[400];
 	(void)pg;
 	unsigned ncol = palette_colours(f);
+	if (f->collect[0]) {         /* every page into one histogram, nothing out */
+		quant_hist_add(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3);
+		return 0;
+	}
 	quant_hist_clear(f->hist);
 	quant_hist_add(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3);
 	if (ncol == 0) {
@@ -286,14 +296,35 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 	return 0;
 }
 
+/* The collected palette of all pages as #rrggbb lines. */
+static int write_collected(dev_device_t *d, fbm_t *f)
+{
+	char err[300];
+	quant_palette_t pal;
+	if (quant_build_bits(f->hist, f->method, palette_colours(f), f->dacbits, &pal, err, sizeof err))
+		return dev_fail(d, META_ENOMEM, "%s", err);
+	FILE *fp = fopen(f->collect, "w");
+	if (!fp)
+		return dev_fail(d, META_EIO, "%s: cannot write the palette", f->collect);
+	for (unsigned k = 0; k < pal.n; k++)
+		fprintf(fp, "#%02x%02x%02x\n", quant_show(&pal, pal.dac[k][0]), quant_show(&pal, pal.dac[k][1]),
+			quant_show(&pal, pal.dac[k][2]));
+	if (fclose(fp) != 0)
+		return dev_fail(d, META_EIO, "%s: cannot write the palette", f->collect);
+	return 0;
+}
+
 int fbm_close(dev_device_t *d)
 {
 	fbm_t *f = d->priv;
+	int rc = 0;
+	if (f->collect[0] && f->hist && quant_hist_colours(f->hist) > 0)
+		rc = write_collected(d, f);
 	free(f->rgb), free(f->idx), free(f->pix), free(f->shown);
 	f->rgb = f->idx = f->shown = NULL, f->pix = NULL;
 	quant_hist_free(f->hist);
 	f->hist = NULL;
 	fbdev_close(f->fb);
 	f->fb = NULL;
-	return 0;
+	return rc;
 }

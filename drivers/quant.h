@@ -86,6 +86,9 @@ int quant_fixed_by_name(const char *name);
  * must hold between 1 and ncolours entries. 0 or <0 with a message. */
 int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
 		quant_palette_t *pal, char *err, size_t errlen);
+/* The same, "#rrggbb" lines kept at 8 bits when bits is 8 (a raw dump is always 6-bit). */
+int quant_parse_palette_bits(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
+		unsigned bits, quant_palette_t *pal, char *err, size_t errlen);
 
 /* Map w x h pixels (24-bit RGB, row stride bytes) to palette indices (out, one byte per
  * pixel, row k at out + k * w) with the given dithering. h may be NULL (no flat colours);

@@ -104,6 +104,12 @@ static int hexval(int c)
 int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
 		quant_palette_t *pal, char *err, size_t errlen)
 {
+	return quant_parse_palette_bits(buf, n, name, ncolours, 6, pal, err, errlen);
+}
+
+int quant_parse_palette_bits(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
+		unsigned bits, quant_palette_t *pal, char *err, size_t errlen)
+{
 	memset(pal, 0, sizeof *pal);
 	if (n > 0 && buf[0] != '#' && buf[0] != ';' && buf[0] != '/' && buf[0] != '\n' && buf[0] != ' ') {
 		/* a raw DAC dump */
@@ -150,7 +156,8 @@ int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, un
 				return -1;
 			}
 			for (int c = 0; c < 3; c++)
-				pal->dac[pal->n][c] = (uint8_t)quant_dac6((unsigned)(v[2 * c] * 16 + v[2 * c + 1]));
+				pal->dac[pal->n][c] = (uint8_t)(bits == 8 ? (unsigned)(v[2 * c] * 16 + v[2 * c + 1]) :
+					quant_dac6((unsigned)(v[2 * c] * 16 + v[2 * c + 1])));
 			pal->n++;
 		}
 		pos = end + 1;
@@ -160,6 +167,7 @@ int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, un
 		snprintf(err, errlen, "%s:1:1: expected #rrggbb lines, found no colour", name);
 		return -1;
 	}
+	pal->bits = bits == 8 ? 8 : 6;
 	return 0;
 }
 

@@ -94,6 +94,15 @@ same_file "--palette RAW-DAC of the picture's own palette gives the same dump" "
 $BIN/locus-vga --palette shared fixtures/meta/multipage.meta -o "$T/sh.dump"
 tail -c 768 "$T/sh-001.dump" > "$T/sh1.pal"; tail -c 768 "$T/sh-003.dump" > "$T/sh3.pal"
 same_file "--palette shared: page 3 has page 1's palette" "$T/sh1.pal" "$T/sh3.pal"
+# made from every page: page 1's red (63,0,0) and page 3's yellow (63,63,0) are both in it
+od -An -tu1 -w3 -v "$T/sh1.pal" | xargs -L1 echo > "$T/sh1.txt"
+if grep -qx "63 0 0" "$T/sh1.txt" && grep -qx "63 63 0" "$T/sh1.txt"; then ok "--palette shared: one palette made from all pages"; else notok "--palette shared: one palette made from all pages"; fi
+$BIN/locus-vga -f dump --palette shared < fixtures/meta/multipage.meta > "$T/shstd.dump"
+cat "$T/sh-001.dump" "$T/sh-002.dump" "$T/sh-003.dump" > "$T/sh-all.dump"
+same_file "--palette shared from stdin (spooled for the two passes)" "$T/sh-all.dump" "$T/shstd.dump"
+$BIN/locus-play -d vga -O palette=shared,format=dump fixtures/meta/multipage.meta -o "$T/plsh.dump"
+tail -c 768 "$T/plsh-001.dump" > "$T/plsh1.pal"; tail -c 768 "$T/plsh-003.dump" > "$T/plsh3.pal"
+same_file "locus-play -O palette=shared: the first page's palette for all" "$T/plsh1.pal" "$T/plsh3.pal"
 $BIN/locus-vga fixtures/meta/multipage.meta -o "$T/pp.dump"
 tail -c 768 "$T/pp-003.dump" > "$T/pp3.pal"
 if cmp -s "$T/sh1.pal" "$T/pp3.pal"; then notok "per-page palettes differ from page to page"; else ok "per-page palettes differ from page to page"; fi
