@@ -70,6 +70,8 @@ typedef struct {
 	scan_path_t pieces;              /* raster, mapped: dash pieces */
 	devvec_t vec;                    /* vector devices: scratch for what the framework supplies */
 	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
+	scan_ctx_t *sctx;                /* mapped, non-square pixels: stroke pieces */
+	scan_path_t iso, outline;        /* and their scratch paths */
 } play_t;
 
 static void default_state(dev_state_t *s)
@@ -230,6 +232,15 @@ static int paint_path(play_t *p, int kind, int text)
 			path = &p->pieces;
 			st.dash = NULL;
 			st.ndash = 0;
+		}
+		if (p->mapped && kind != META_FILL && p->map.sx != p->map.sy && st.width > 1000) {
+			/* wide lines on non-square pixels: pieces built where the model is isotropic */
+			if (!p->sctx && !(p->sctx = scan_ctx_new()))
+				return nomem(p);
+			scan_style_t ms = st;
+			ms.width = p->st.width;   /* the model width: the pieces are scaled by sy */
+			rc = devres_stroke_aniso(&p->map, p->rr, p->sctx, path, &ms, p->st.colour, &p->iso, &p->outline);
+			return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
 		}
 		if (p->mapped)
 			devres_path(&p->map, path);
@@ -416,6 +427,42 @@ static int statement(play_t *p, const meta_cmd_t *c)
 	}
 }
 
+/* Take the framework's own -O keys (raster devices: antialias=K) out of d->options into the
+ * device's fields; the rest is copied into buf for the device. Returns 1 when buf holds the
+ * options to use, 0 when d->options is left as it is, or DEV_EUSAGE. */
+static int framework_options(dev_device_t *d, char *buf, size_t n)
+{
+	size_t used = 0;
+	if (!d->options || !is_raster(d))
+		return 0;   /* nothing taken: d->options stays as it is */
+	buf[0] = 0;
+	for (const char *q = d->options; *q;) {
+		const char *end = strchr(q, ',');
+		size_t len = end ? (size_t)(end - q) : strlen(q);
+		if (len > 10 && !strncmp(q, "antialias=", 10)) {
+			char v[8] = "";
+			char *e;
+			if (len - 10 < sizeof v)
+				memcpy(v, q + 10, len - 10);
+			unsigned long k = strtoul(v, &e, 10);
+			if (!v[0] || *e || v[0] < '0' || v[0] > '9' || k > DEV_AA_MAX)
+				return dev_fail(d, DEV_EUSAGE, "antialias must be 0 (exact), or 2 to %d samples a side, not '%.*s'",
+					DEV_AA_MAX, (int)(len - 10), q + 10);
+			d->antialias = (unsigned)k;
+		} else if (used + len + 2 > n) {
+			return dev_fail(d, DEV_EUSAGE, "device options longer than %zu bytes", n - 2);
+		} else {
+			if (used)
+				buf[used++] = ',';
+			memcpy(buf + used, q, len);
+			used += len;
+			buf[used] = 0;
+		}
+		q += len + (end != NULL);
+	}
+	return 1;
+}
+
 int dev_play(meta_reader_t *r, dev_device_t *d)
 {
 	play_t p;
@@ -424,7 +471,13 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	p.d = d;
 	d->err[0] = 0;
 	d->reader_error = 0;
-	int rc = dev_check_options(d);
+	const char *given = d->options;
+	char rest[1024];
+	int rc = framework_options(d, rest, sizeof rest);
+	if (rc == 1)
+		d->options = rest;
+	if (rc >= 0)
+		rc = dev_check_options(d);
 	if (rc == 0 && d->ops->open)
 		rc = d->ops->open(d);
 	meta_cmd_t c;
@@ -460,6 +513,10 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 	scan_path_free(&p.pieces);
 	devvec_free(&p.vec);
 	devaa_free(p.aa);
+	scan_ctx_free(p.sctx);
+	scan_path_free(&p.iso);
+	scan_path_free(&p.outline);
+	d->options = given;
 	d->page = NULL;
 	free(p.elems);
 	return rc;

@@ -163,7 +163,10 @@ typedef struct dev_ops {
 	const char *description;    /* one line for `locus-play -l` */
 	const char *extension;      /* default output suffix, e.g. ".png" */
 	unsigned caps;              /* DEV_CAP_* */
-	unsigned colours;           /* distinct colours the device shows; 0 = 24-bit */
+	/* Informational: how many colours the device shows at once (0 = 24-bit). The framework
+	 * hands every device 24-bit colour and reduces nothing: a palette device quantises in
+	 * write_band, a pen plotter maps colours to pens in its own ops. */
+	unsigned colours;
 	size_t priv_size;           /* bytes of zeroed private state allocated for dev->priv */
 	const dev_option_t *option_list; /* the -O keys it accepts, {NULL} terminated; NULL: none */
 	int (*open)(dev_device_t *d);
@@ -203,7 +206,8 @@ struct dev {
 	/* Raster, set by the program (--antialias): 0 or 1 = exact, the reference (default);
 	 * k = 2 .. DEV_AA_MAX: anti-aliased, each device pixel the mean in linear light of a k x k
 	 * grid of exact samples (the page rendered by §5 at k times the resolution, as a device
-	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". */
+	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". dev_play() also
+	 * takes it from the framework's own device option antialias=K in d->options. */
 	unsigned antialias;
 	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
 	void *user;                 /* free for the program */

@@ -186,6 +186,40 @@ int devres_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int6
 	return 0;
 }
 
+int devres_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
+		const scan_style_t *st, meta_rgb_t rgb, scan_path_t *iso, scan_path_t *pieces)
+{
+	/* iso: device coordinates with x in units of a device pixel's height (x * sy / sx), where
+	 * the model is scaled alike in both axes, so §5.3's pieces keep the model's shape */
+	double k = m->sy / m->sx;
+	int64_t ox = scan_round((double)m->ox * 1000.0 * k), oy = m->oy * 1000;
+	scan_path_reset(iso);
+	for (size_t s = 0; s < p->nsubs; s++) {
+		const scan_subpath_t *sub = &p->subs[s];
+		for (size_t i = 0; i < sub->n; i++) {
+			const scan_pt_t *q = &p->pts[sub->start + i];
+			int64_t x = ox + scan_round((double)q->x * m->sy), y = oy + scan_round((double)q->y * m->sy);
+			if (i ? scan_path_draw(iso, x, y) : scan_path_move(iso, x, y))
+				return META_ENOMEM;
+		}
+		if (sub->closed)
+			scan_path_close(iso);
+	}
+	iso->open = 0;
+	scan_style_t is = *st;
+	is.width = scan_round((double)(st->width < 1000 ? 1000 : st->width) * m->sy);
+	is.dash = NULL;
+	is.ndash = 0;
+	scan_path_reset(pieces);
+	double wi = ceil((double)m->width * k) + 1;
+	int rc = scan_stroke_pieces(ctx, iso, &is, wi > 1e9 ? 1000000000 : (int)wi, (int)m->height, pieces);
+	if (rc || pieces->npts == 0)
+		return rc;
+	for (size_t i = 0; i < pieces->npts; i++)
+		pieces->pts[i].x = scan_round((double)pieces->pts[i].x / k);
+	return dev_render_fill(rr, pieces, META_RULE_NON_ZERO, rgb);
+}
+
 /* ---- images ---- */
 
 struct devres_img {

@@ -17,6 +17,13 @@ int64_t devres_width(const dev_map_t *m, int64_t w);
 /* The radius (device thousandths) whose §5.4 chord count flattens a model arc of radius r
  * (model thousandths) finely enough for the device: r times the larger scale. */
 int64_t devres_chord_radius(const dev_map_t *m, int64_t r);
+/* A stroke on non-square device pixels (sx != sy) wider than a device pixel: its §5.3 pieces
+ * are built where the model is scaled alike in x and y (width W * sy, in units of a device
+ * pixel's height), then x is scaled to device pixels and the pieces are filled non-zero, so the
+ * line is as thick on the screen across as along. p is in model thousandths, solid (dash it
+ * first); iso and pieces are scratch. Returns 0 or <0. */
+int devres_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
+		const scan_style_t *st, meta_rgb_t rgb, scan_path_t *iso, scan_path_t *pieces);
 /* Paint the letterbox bars (the raster outside the mapped page) with rgb; called last on each
  * page, so that it also clips what was drawn beyond the page's edges. Returns 0 or <0. */
 int devres_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb);

@@ -179,6 +179,24 @@ static void test_thin_lines(void)
 	free(d.pix);
 }
 
+static void test_wide_aspect(void)
+{
+	/* 13h: a 10-pixel model line is 10 * sy = 6.7 rows thick lying down and 10 * sx = 8 columns
+	 * standing up, both 6.7 device pixel heights on the screen */
+	set(320, 200, 5.0 / 6.0, DEV_FIT_ASPECT);
+	int rc, x0, x1, y0, y1;
+	cap_t c = play("LOCUS-META 1\npage 400 300\nwidth 10\ncolour #ff0000\nstroke\nmove 20 150\ndraw 180 150\nend\n"
+		"colour #0000ff\nstroke\nmove 300 20\ndraw 300 280\nend\nend-page\n", 0, &rc);
+	dump(&c, "wide");
+	extents(&c, 0xff0000, &x0, &x1, &y0, &y1);
+	int rows = y1 - y0 + 1;
+	extents(&c, 0x0000ff, &x0, &x1, &y0, &y1);
+	int cols = x1 - x0 + 1;
+	CHECK(rc == 0 && rows >= 6 && rows <= 7 && cols == 8, "13h: a wide line is %d rows lying down and %d columns standing up "
+		"(6.7 and 8: as thick on the screen)", rows, cols);
+	free(c.pix);
+}
+
 static void test_dash_scaled(void)
 {
 	/* dashes are measured along the model path: at 2x, dash 10 10 is 20 device pixels on */
@@ -247,7 +265,7 @@ static void test_bars(void)
 	extents(&c, cfg_box, &x0, &x1, &y0, &y1);
 	CHECK(rc == 0 && x1 < 0, "stretch: no letterbox pixel");
 	CHECK(px(&c, 97, 10) == 0xff0000 && px(&c, 102, 10) == 0xff0000 && px(&c, 95, 10) == 0x00ff00,
-		"stretch: the vertical line is wider than the horizontal one is tall (width by the geometric mean)");
+		"stretch: the vertical line is 8 columns, the horizontal 4 rows (lines stretch with the page)");
 	free(c.pix);
 }
 
@@ -394,12 +412,81 @@ static void test_antialias(void)
 	cfg_aa = 0;
 }
 
+static unsigned rs = 777;
+static int rn(int lo, int hi)
+{
+	rs = rs * 1103515245u + 12345u;
+	return lo + (int)((rs >> 8) % (unsigned)(hi - lo + 1));
+}
+
+/* Random pages on random rasters, fits and aspects: bands of 1 and 5 rows agree with the whole
+ * page, and nothing is painted outside the raster's bands. */
+static void test_random(void)
+{
+	static char buf[16384];
+	int ok = 1, rc0 = 0;
+	for (int t = 0; t < 60; t++) {
+		int w = rn(1, 90), h = rn(1, 90);
+		int n = snprintf(buf, sizeof buf, "LOCUS-META 1\npage %d %d\n", w, h);
+		for (int k = 0; k < 8; k++) {
+			int kind = rn(0, 4);
+			n += snprintf(buf + n, sizeof buf - n, "colour #%06x\n", (unsigned)rn(0, 0xffffff));
+			if (kind == 0)
+				n += snprintf(buf + n, sizeof buf - n, "width %d\ndash %d %d\nstroke\nmove %d %d\ndraw %d %d\n"
+					"arc %d %d %d 0 %d\nend\n", rn(0, 6), rn(1, 9), rn(1, 9), rn(-20, w + 20), rn(-20, h + 20),
+					rn(-20, w + 20), rn(-20, h + 20), rn(0, w), rn(0, h), rn(1, 40), rn(-360, 360));
+			else if (kind == 1)
+				n += snprintf(buf + n, sizeof buf - n, "fill\ncircle %d %d %d\nmove %d %d\ndraw %d %d\ndraw %d %d\nend\n",
+					rn(0, w), rn(0, h), rn(1, 30), rn(-9, w), rn(-9, h), rn(0, w + 9), rn(0, h), rn(0, w), rn(0, h + 9));
+			else if (kind == 2) {
+				int iw = rn(1, 12), ih = rn(1, 12);
+				n += snprintf(buf + n, sizeof buf - n, "image %d %d %d %d\n", rn(0, w), rn(0, h), iw, ih);
+				for (int r = 0; r < ih; r++) {
+					int left = iw;
+					n += snprintf(buf + n, sizeof buf - n, "row");
+					while (left > 0) {
+						int c = rn(1, left);
+						n += snprintf(buf + n, sizeof buf - n, " %d #%06x", c, (unsigned)rn(0, 0xffffff));
+						left -= c;
+					}
+					n += snprintf(buf + n, sizeof buf - n, "\n");
+				}
+			} else if (kind == 3)
+				n += snprintf(buf + n, sizeof buf - n, "span %d %d %d #%06x\n", rn(0, w), rn(0, h), rn(1, 30),
+					(unsigned)rn(0, 0xffffff));
+			else
+				n += snprintf(buf + n, sizeof buf - n, "text %d %d %d %d \"Ab\"\n", rn(0, w), rn(0, h), rn(0, 20), rn(0, 90));
+		}
+		snprintf(buf + n, sizeof buf - n, "end-page\n");
+		static const double aspects[4] = { 0, 5.0 / 6.0, 1.25, 0.5 };
+		set((unsigned)rn(1, 120), (unsigned)rn(1, 120), aspects[rn(0, 3)], rn(0, 2));
+		cfg_aa = rn(0, 3) == 0 ? (unsigned)rn(2, 3) : 0;
+		int rc1, rc2, rc3;
+		cap_t a = play(buf, 0, &rc1), b = play(buf, 1, &rc2), c = play(buf, 5, &rc3);
+		size_t sz = (size_t)a.w * a.h * 3;
+		rc0 |= rc1 | rc2 | rc3;
+		if (rc1 || rc2 || rc3 || a.w != cfg_w || a.h != cfg_h || memcmp(a.pix, b.pix, sz) || memcmp(a.pix, c.pix, sz) ||
+				b.bad_band || c.bad_band || a.rows_seen != a.h) {
+			ok = 0;
+			printf("# case %d differs: %s\n", t, buf);
+		}
+		free(a.pix);
+		free(b.pix);
+		free(c.pix);
+	}
+	cfg_aa = 0;
+	CHECK(ok && rc0 == 0, "60 random pages on random rasters, fits, aspects (some anti-aliased): bands of 1 and 5 rows "
+		"equal the whole page, every row handed over once");
+}
+
 int main(void)
 {
+	test_random();
 	test_antialias();
 	test_options();
 	test_aspect_circle();
 	test_dash_scaled();
+	test_wide_aspect();
 	test_thin_lines();
 	test_bars();
 	test_images();
