@@ -261,12 +261,13 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 	char err[400];
 	(void)pg;
 	unsigned ncol = palette_colours(f);
-	if (f->collect[0]) {         /* every page into one histogram, nothing out */
-		quant_hist_add(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3);
-		return 0;
-	}
-	quant_hist_clear(f->hist);
+	if (!f->collect[0])          /* collect: every page into one histogram, nothing out */
+		quant_hist_clear(f->hist);
 	quant_hist_add(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3);
+	if (f->dacbits == 8 && ncol && !f->have_pal && quant_hist_exact(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3))
+		return dev_fail(d, META_ENOMEM, "out of memory");
+	if (f->collect[0])
+		return 0;
 	if (ncol == 0) {
 		if (quant_map565(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3, f->dither, f->pix))
 			return dev_fail(d, META_ENOMEM, "out of memory");

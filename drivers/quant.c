@@ -452,6 +452,13 @@ int quant_build(const quant_hist_t *h, int method, unsigned ncolours, quant_pale
 	return quant_build_bits(h, method, ncolours, 6, pal, err, errlen);
 }
 
+/* 1 if the exact colour in slot s is flat: many pixels, and the only colour of its bin. */
+static int exact_flat(const quant_hist_t *h, size_t s, unsigned long thr)
+{
+	uint32_t c = h->xkey[s];
+	return h->xcount[s] >= thr && !(h->bin[quant_key(c >> 16 & 255, c >> 8 & 255, c & 255)].first & QMIXED);
+}
+
 /* 8 bits: 1 if every bin holds one exact colour and there are at most n: the palette is them. */
 static int exact8(const quant_hist_t *h, unsigned n, quant_palette_t *pal)
 {
@@ -497,7 +504,9 @@ int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsig
 		return 0;
 	}
 	unsigned long thr = quant_flat_threshold(h);
-	qcol_t *col = malloc(h->nused * sizeof *col);
+	int exact = pal->bits == 8 && h->xstate == 1;   /* the exact colours, not the bins */
+	size_t ncol = exact ? h->nx : h->nused;
+	qcol_t *col = malloc(ncol * sizeof *col);
 	double (*means)[3] = malloc(QUANT_MAX * sizeof *means);
 	if (!col || !means) {
 		free(col);
@@ -506,21 +515,31 @@ int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsig
 		return -1;
 	}
 	/* the flat colours first (most pixels first), then the rest */
-	size_t nflat = 0, n = 0;
-	for (size_t k = 0; k < h->nused; k++) {
-		const qbin_t *q = &h->bin[h->used[k]];
-		if (quant_bin_flat(h, q, thr))
-			nflat++;
+	size_t nflat = 0, n = ncol;
+	if (exact) {
+		/* flat as with the bins: many pixels, and alone in its DAC bin */
+		for (size_t s = 0; s < QXSLOTS; s++)
+			nflat += h->xkey[s] && exact_flat(h, s, thr);
+		size_t fi = 0, ri = nflat;
+		for (size_t s = 0; s < QXSLOTS; s++) {
+			if (!h->xkey[s])
+				continue;
+			qcol_t *c = &col[exact_flat(h, s, thr) ? fi++ : ri++];
+			c->c[0] = h->xkey[s] >> 16 & 255, c->c[1] = h->xkey[s] >> 8 & 255, c->c[2] = h->xkey[s] & 255;
+			c->w = h->xcount[s];
+		}
+	} else {
+		for (size_t k = 0; k < h->nused; k++)
+			nflat += quant_bin_flat(h, &h->bin[h->used[k]], thr);
+		size_t fi = 0, ri = nflat;
+		for (size_t k = 0; k < h->nused; k++) {
+			const qbin_t *q = &h->bin[h->used[k]];
+			qcol_t *c = &col[quant_bin_flat(h, q, thr) ? fi++ : ri++];
+			for (int i = 0; i < 3; i++)
+				c->c[i] = mean_of(q, i);
+			c->w = q->count;
+		}
 	}
-	size_t fi = 0, ri = nflat;
-	for (size_t k = 0; k < h->nused; k++) {
-		const qbin_t *q = &h->bin[h->used[k]];
-		qcol_t *c = &col[quant_bin_flat(h, q, thr) ? fi++ : ri++];
-		for (int i = 0; i < 3; i++)
-			c->c[i] = mean_of(q, i);
-		c->w = q->count;
-	}
-	n = h->nused;
 	qsort(col, nflat, sizeof *col, by_weight_desc);
 	size_t keep = nflat < ncolours / 2 ? nflat : ncolours / 2;
 	for (size_t k = 0; k < keep; k++)

@@ -61,6 +61,10 @@ void quant_hist_free(quant_hist_t *h);
 void quant_hist_clear(quant_hist_t *h);
 /* Count w x h pixels of 24-bit RGB, row k at rgb + k * stride. */
 void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride);
+/* Also count the exact 24-bit colours of the same pixels (call with every quant_hist_add),
+ * up to 65,536 of them: 8-bit palettes are then made from the exact colours rather than the
+ * DAC bins. More colours than that: the bins are used. 0, or <0 when out of memory. */
+int quant_hist_exact(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride);
 /* Number of distinct DAC colours counted. */
 size_t quant_hist_colours(const quant_hist_t *h);
 /* Pixels a bin must hold in one exact colour to count as flat, for the pixels counted so far. */

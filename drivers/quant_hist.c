@@ -25,7 +25,46 @@ void quant_hist_free(quant_hist_t *h)
 		return;
 	free(h->bin);
 	free(h->used);
+	free(h->xkey);
+	free(h->xcount);
 	free(h);
+}
+
+int quant_hist_exact(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride)
+{
+	if (h->xstate < 0)
+		return 0;
+	if (!h->xkey) {
+		h->xkey = calloc(QXSLOTS, sizeof *h->xkey);
+		h->xcount = calloc(QXSLOTS, sizeof *h->xcount);
+		if (!h->xkey || !h->xcount)
+			return -1;
+	}
+	if (h->xstate == 0) {
+		memset(h->xkey, 0, QXSLOTS * sizeof *h->xkey);
+		h->nx = 0;
+		h->xstate = 1;
+	}
+	for (unsigned y = 0; y < hgt; y++) {
+		const uint8_t *p = rgb + y * stride;
+		for (unsigned x = 0; x < w; x++, p += 3) {
+			uint32_t c = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2], k = QMIXED | c;
+			uint32_t s = (c * 2654435761u) >> 15;   /* 17 bits */
+			while (h->xkey[s] && h->xkey[s] != k)
+				s = (s + 1) & (QXSLOTS - 1);
+			if (!h->xkey[s]) {
+				if (h->nx == QXMAX) {
+					h->xstate = -1;
+					return 0;
+				}
+				h->xkey[s] = k;
+				h->xcount[s] = 0;
+				h->nx++;
+			}
+			h->xcount[s]++;
+		}
+	}
+	return 0;
 }
 
 void quant_hist_clear(quant_hist_t *h)
@@ -34,6 +73,7 @@ void quant_hist_clear(quant_hist_t *h)
 		memset(&h->bin[h->used[k]], 0, sizeof h->bin[0]);
 	h->nused = 0;
 	h->npix = 0;
+	h->xstate = 0;
 }
 
 void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride)

@@ -14,11 +14,18 @@ typedef struct {
 	uint64_t sum[3];            /* exact 8-bit values summed */
 } qbin_t;
 
+#define QXSLOTS (1u << 17)      /* the exact-colour table: open addressing ... */
+#define QXMAX (1u << 16)        /* ... for at most this many colours */
+
 struct quant_hist {
 	qbin_t *bin;                /* QBINS */
 	uint32_t *used;             /* keys of the bins in use, in the order first seen */
 	size_t nused;
 	unsigned long npix;
+	/* quant_hist_exact(): the exact 24-bit colours (| QMIXED marks a used slot) and counts */
+	uint32_t *xkey, *xcount;
+	size_t nx;
+	int xstate;                 /* 0 none counted, 1 valid, -1 too many colours */
 };
 
 /* The bin of an 8-bit colour. */

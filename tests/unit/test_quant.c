@@ -274,6 +274,34 @@ static void test_dither(void)
 	free(pic);
 }
 
+/* 8-bit palettes made from the exact colours (quant_hist_exact) beat those made from the DAC
+ * bins when colours share bins: 240 colours, four to a bin, with 256 entries come back exact;
+ * from the 60 bins only their means would. */
+static void test_exact_colours(void)
+{
+	unsigned w = 240, h = 20;
+	uint8_t *pic = picture(w, h);
+	for (unsigned x = 0; x < w; x++) {
+		unsigned base = (x / 4) * 4, d = x % 4;   /* 0..3 apart: one 6-bit bin */
+		for (unsigned y = 0; y < h; y++)
+			put(pic, w, x, y, base + (d & 1), (base * 3 + (d >> 1)) & 255, 200 - base / 2);
+	}
+	char err[200];
+	quant_hist_t *bins = quant_hist_new(), *ex = quant_hist_new();
+	quant_hist_add(bins, pic, w, h, 3 * (size_t)w);
+	quant_hist_add(ex, pic, w, h, 3 * (size_t)w);
+	int rc = quant_hist_exact(ex, pic, w, h, 3 * (size_t)w);
+	quant_palette_t pb, pe;
+	rc |= quant_build_bits(bins, QUANT_BEST, 256, 8, &pb, err, sizeof err);
+	rc |= quant_build_bits(ex, QUANT_BEST, 256, 8, &pe, err, sizeof err);
+	double b = psnr_of(&pb, bins, pic, w, h, QUANT_DITHER_NONE), e = psnr_of(&pe, ex, pic, w, h, QUANT_DITHER_NONE);
+	CHECK(rc == 0 && e == 99 && b < 99, "8-bit palette from exact colours: exact (%.0f dB); from the DAC bins %.2f dB",
+		e, b);
+	free(pic);
+	quant_hist_free(bins);
+	quant_hist_free(ex);
+}
+
 static void test_fixed_and_files(void)
 {
 	quant_palette_t pal;
@@ -317,6 +345,7 @@ int main(void)
 	test_hand_worked();
 	test_flat();
 	test_dither();
+	test_exact_colours();
 	test_fixed_and_files();
 	return UNIT_DONE();
 }
