@@ -1,7 +1,7 @@
 #!/bin/sh
 # t_fbdev.sh: locus-vga -o fb:/dev/fb0 through the real open, ioctl and mmap path, on fake
 # framebuffers under umockdev (tests/fbdev/fbharness.c): 32-bit true colour with unusual bit
-# fields, 16-bit 5-6-5, 8-bit pseudo-colour with FBIOPUTCMAP, padded lines; the node's memory
+# fields, 24-bit packed, 16-bit 5-6-5, 8-bit pseudo-colour with FBIOPUTCMAP, padded lines; the node's memory
 # read back and compared with the dump of the same picture; --hold restores screen and colour map.
 . tests/lib.sh
 : "${TESTBIN:=build/native/tests}"
@@ -27,6 +27,7 @@ fb() {   # fb DESC BPP XRES YRES WMM HMM LINE_LENGTH DUMP MODE -- ARGS (of $PROG
 }
 fb "13h on a 32-bit screen" 32 320 200 200 150 1344 "$T/f13.dump" 13h -- $F -o fb:/dev/fb0
 grep -q FBIOGET_FSCREENINFO "$T/o.log" && ok "32-bit: screen queried by ioctl" || notok "32-bit: no FBIOGET_FSCREENINFO"
+fb "13h on a 24-bit screen" 24 320 200 200 150 968 "$T/f13.dump" 13h -- $F -o fb:/dev/fb0
 fb "13h on a 16-bit screen" 16 320 200 200 150 704 "$T/f13.dump" 13h -- $F -o fb:/dev/fb0
 fb "13h on an 8-bit screen" 8 320 200 200 150 352 "$T/f13.dump" 13h -- $F -o fb:/dev/fb0
 fb "12h on an 8-bit screen" 8 640 480 320 240 672 "$T/f12.dump" 12h -- --mode 12h $F -o fb:/dev/fb0

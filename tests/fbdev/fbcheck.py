@@ -167,6 +167,9 @@ def fbmem(mem, bpp, xres, yres, ll, dump, mode, cmap, what):
             if bpp == 32:
                 got = (px[0], px[1], px[2])        # red at bit 0, green 8, blue 16
                 bad += got != rgb[k] or px[3] != 0
+            elif bpp == 24:
+                got = (px[2], px[1], px[0])        # red at bit 16: bytes B, G, R
+                bad += got != rgb[k]
             elif bpp == 16:
                 v = px[0] | px[1] << 8
                 r, g, b = rgb[k]

@@ -10,7 +10,8 @@
  * program wrote through its mmap), OUT.cmap (one line "index red green blue" per entry of the
  * last FBIOPUTCMAP, 16-bit values) and OUT.log (one line per ioctl). Screens: BPP 32 is
  * true colour with red at bit 0, green 8, blue 16 (the reverse of the usual order, so that a
- * program ignoring the bit fields shows); 16 is 5-6-5; 8 is pseudo-colour.
+ * program ignoring the bit fields shows); 24 is packed B, G, R bytes (red at bit 16); 16 is
+ * 5-6-5; 8 is pseudo-colour.
  * Exits with the program's status (or 70 when the harness itself fails).
  */
 #include <errno.h>
@@ -108,6 +109,10 @@ static void setup_screen(int bpp, unsigned xres, unsigned yres, unsigned wmm, un
 		var.green = (struct fb_bitfield){ 8, 8, 0 };
 		var.blue = (struct fb_bitfield){ 16, 8, 0 };
 		var.transp = (struct fb_bitfield){ 24, 8, 0 };
+	} else if (bpp == 24) {
+		var.red = (struct fb_bitfield){ 16, 8, 0 };
+		var.green = (struct fb_bitfield){ 8, 8, 0 };
+		var.blue = (struct fb_bitfield){ 0, 8, 0 };
 	} else if (bpp == 16) {
 		var.red = (struct fb_bitfield){ 11, 5, 0 };
 		var.green = (struct fb_bitfield){ 5, 6, 0 };
