@@ -78,12 +78,20 @@ void quant_hist_clear(quant_hist_t *h)
 
 void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt, size_t stride)
 {
+	uint32_t last = ~0u;
+	qbin_t *q = NULL;
 	for (unsigned y = 0; y < hgt; y++) {
 		const uint8_t *p = rgb + y * stride;
 		for (unsigned x = 0; x < w; x++, p += 3) {
-			uint32_t key = quant_key(p[0], p[1], p[2]);
 			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-			qbin_t *q = &h->bin[key];
+			if (c24 == last) {   /* a run of one colour: same bin, nothing new */
+				q->count++;
+				q->sum[0] += p[0], q->sum[1] += p[1], q->sum[2] += p[2];
+				continue;
+			}
+			last = c24;
+			uint32_t key = quant_key(p[0], p[1], p[2]);
+			q = &h->bin[key];
 			if (q->count++ == 0) {
 				h->used[h->nused++] = key;
 				q->first = c24;

@@ -425,6 +425,8 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			spread = n > 1 ? d[n / 2] : 0;
 		}
 	}
+	uint32_t last_c24 = ~0u;
+	int last_fe = -1;
 	for (unsigned y = 0; y < hgt; y++) {
 		const uint8_t *row = rgb + y * stride;
 		int rtl = dither == QUANT_DITHER_FS && (y & 1);   /* serpentine */
@@ -435,7 +437,10 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			const uint8_t *p = row + 3 * x;
 			int shown[3];
 			unsigned v;
-			int fe = flat_entry(m, h, thr, p);
+			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
+			if (c24 != last_c24)     /* runs of one colour: ask once */
+				last_fe = flat_entry(m, h, thr, p), last_c24 = c24;
+			int fe = last_fe;
 			if (fe >= 0) {
 				v = (unsigned)fe;    /* flat: no error taken, none given */
 			} else if (err0) {
