@@ -11,9 +11,9 @@
 #include "render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)
-/* Memory guard: a path's points after flattening (16 bytes each). The meta-language limits the
- * points as written (1,000,000); one arc of the largest radius flattens to about 8,900. */
-#define DEV_MAX_FLAT_POINTS (1 << 25)
+/* Memory guard: a path's points after flattening (16 bytes each): the spec's limit (§6), which
+ * the reader already checks; kept here for paths built by the framework itself. */
+#define DEV_MAX_FLAT_POINTS META_MAX_FLAT_POINTS
 
 dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out)
 {
@@ -120,6 +120,14 @@ static int emit_band(void *user, const dev_band_t *b)
 static int nomem(play_t *p)
 {
 	return dev_fail(p->d, META_ENOMEM, "out of memory");
+}
+
+/* A failure of the page renderer: its own message (the band spool, naming the file's directory
+ * and the cause) when it has one, else out of memory. */
+static int render_fail(play_t *p, int rc)
+{
+	const char *m = p->rr ? dev_render_error(p->rr) : "";
+	return dev_fail(p->d, rc, "%s", m[0] ? m : "out of memory while rendering");
 }
 
 /* A filled rectangle of pixels for vector devices without put_span. */
@@ -240,13 +248,13 @@ static int paint_path(play_t *p, int kind, int text)
 			scan_style_t ms = st;
 			ms.width = p->st.width;   /* the model width: the pieces are scaled by sy */
 			rc = devres_stroke_aniso(&p->map, p->rr, p->sctx, path, &ms, p->st.colour, &p->iso, &p->outline);
-			return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
+			return rc ? render_fail(p, rc) : 0;
 		}
 		if (p->mapped)
 			devres_path(&p->map, path);
 		rc = kind == META_FILL ? dev_render_fill(p->rr, path, p->st.rule, p->st.colour)
 			: dev_render_stroke(p->rr, path, &st, p->st.colour);
-		return rc ? dev_fail(d, rc, "out of memory or spool failure while rendering") : 0;
+		return rc ? render_fail(p, rc) : 0;
 	}
 	/* text has no raw elements of its own: NULL makes them from its strokes */
 	const dev_elem_t *el = text ? NULL : p->elems;
@@ -338,11 +346,11 @@ static int end_page(play_t *p)
 	devres_image_free(p->img);
 	p->img = NULL;
 	if (!rc && p->mapped && (rc = devres_bars(&p->map, p->rr, d->letterbox)) != 0)
-		dev_fail(d, rc, "out of memory or spool failure while rendering");
+		render_fail(p, rc);
 	if (!rc && is_raster(d)) {
 		rc = dev_render_finish(p->rr, emit_band, p);
 		if (rc && !d->err[0])
-			dev_fail(d, rc, "rendering failed (spool I/O)");
+			render_fail(p, rc);
 		dev_render_free(p->rr);
 		p->rr = NULL;
 	}

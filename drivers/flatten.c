@@ -89,13 +89,7 @@ int scan_path_has_current(const scan_path_t *p)
 
 int scan_circle_chords(int64_t r)
 {
-	double rp = (double)r / 1000.0;
-	if (!(rp > 0.25))
-		return 8;
-	double m = ceil(2.0 * M_PI / acos(1.0 - 0.25 / rp));
-	if (!(m < 1e7))
-		m = 1e7;
-	return m < 8 ? 8 : (int)m;
+	return meta_circle_chords(r);   /* §5.4: one formula, shared with the reader's limit check */
 }
 
 static void arc_point(int64_t cx, int64_t cy, int64_t r, int64_t start, int64_t sweep, int64_t k,
