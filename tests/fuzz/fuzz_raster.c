@@ -86,6 +86,13 @@ static double work(const uint8_t *data, size_t size)
 			len += 2 * M_PI * rr;
 			break;
 		}
+		case META_TEXT:   /* glyphs are stroked with the dash in force: about 4 sizes of path each */
+			w += 20.0 * c.len;
+#if FUZZ_GUARDS
+			if (period > 0)
+				w += 4.0 * c.len * (c.f[2] / 1000.0) / period * 2;
+#endif
+			break;
 		case META_END:
 #if FUZZ_GUARDS
 			/* pending (w-fw): dash pieces are not yet bounded by the pixels a path touches */
