@@ -49,6 +49,20 @@ awk 'BEGIN { print "LOCUS-META 1"; for (p = 0; p < 2; p++) { print "page 64 48\n
 "$BIN/locus-raster" "$D/job.meta" -o "$D/job.png"
 cp fixtures/fuzz/scene/default.scene "$D/job.scene"
 
+# the library itself: cat (coreutils, which handles both) writing into a pipe sees the failure,
+# and writes on after the short write
+{ LD_PRELOAD=$LIB LOCUS_FAULT_WRITE=1:ENOSPC cat "$D/job.meta" 2> "$D/cat.err"; echo $? > "$D/cat.rc"; } | cat > /dev/null
+rc=$(cat "$D/cat.rc")
+if [ "$rc" != 0 ] && grep -q "No space left" "$D/cat.err"; then ok "fault library: write 1 fails with ENOSPC (cat exits $rc)"
+else notok "fault library: cat exit $rc: $(cat "$D/cat.err")"; fi
+LD_PRELOAD=$LIB LOCUS_FAULT_WRITE=1:SHORT cat "$D/job.meta" | cat > "$D/cat.out"
+same_file "fault library: a short write 1, written on by cat, gives the same bytes" "$D/cat.out" "$D/job.meta"
+rm -f "$D/cat.count"
+LD_PRELOAD=$LIB LOCUS_FAULT_COUNT=$D/cat.count cat "$D/job.meta" | cat > /dev/null
+set -- $(cat "$D/cat.count" 2>/dev/null)
+if [ "${4:-0}" -ge 1 ] && [ "${2:-0}" -ge 1 ]; then ok "fault library: counts cat's calls ($2 allocations, $4 writes)"
+else notok "fault library: counts of cat: $*"; fi
+
 # feed KEY OUTDIR: the job of program KEY writing into OUTDIR (stdout is captured separately)
 feed() {
 	case $1 in
