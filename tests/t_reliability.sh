@@ -86,6 +86,16 @@ for p in "$BIN"/locus-*; do
 	case " $KEYS " in *" $n "*) ;; *) case $n in meta|render|raster|play|diff) ;; *) KEYS="$KEYS $n" ;; esac ;; esac
 done
 
+# ---- every program answers --help, --version and refuses an unknown option (64) ------------
+for p in "$BIN"/locus-*; do
+	n=${p##*/}
+	"$p" --help > "$D/help" 2>&1; a=$?
+	v=$("$p" --version 2>&1); b=$?
+	"$p" --no-such-option > /dev/null 2>&1; c=$?
+	[ "$a" = 0 ] && [ -s "$D/help" ] && [ "$b" = 0 ] && [ "$c" = 64 ] && case $v in "$n "*) true ;; *) false ;; esac
+	res "${n#locus-}:options" $((1 - $?)) "--help $a, --version $b ('$v'), an unknown option $c"
+done
+
 # ---- inputs ----------------------------------------------------------------------------------
 I=$D/in
 printf 'LOCUS-META 1\npage 32 24\ncolour #ff0000\nwidth 3\nstroke\nmove 2 2\ndraw 30 20\nend\nend-page\n' > "$I/good.meta"
