@@ -7,6 +7,7 @@
 # A failing check whose name matches a PENDING pattern is reported "ok ... # TODO" (the fix is in
 # another branch); the coordinator empties the list when the fixes are merged.
 PENDING="
+raster:stdout-full play:stdout-full meta-fmt:stdout-full meta-convert:stdout-full
 *:devnode-kept *:devnode-full *:devnode-fifo *:mode-kept
 meta-fmt:planted-tmp-kept meta-convert:planted-tmp-kept meta-fmt:planted-link-safe meta-convert:planted-link-safe
 *:sigterm-clean
@@ -22,6 +23,7 @@ pending_reason() {
 	*:devnode-*) echo "w-io: a device node or FIFO given as -o is replaced by a regular file" ;;
 	*:planted-*) echo "w-io: locus-meta writes a fixed OUT.tmp (O_TRUNC, no O_EXCL, follows symlinks)" ;;
 	*:sigterm-clean) echo "w-io: SIGTERM leaves the temporary behind" ;;
+	*:stdout-full) echo "w-io: a write error on standard output does not give its cause (strerror)" ;;
 	*:full-message) echo "w-io: a write error on standard output is silent" ;;
 	render:hex-number|render:huge-constant) echo "w-bounds: scene numbers not checked against docs/scene-language.md" ;;
 	render:nesting-*) echo "w-bounds: no limit on shape nesting depth or evaluation cost" ;;
@@ -249,6 +251,11 @@ for k in $KEYS; do
 		[ "$rc" = 74 ] && one_line "$o.err"; res "$k:full-message" $((1 - $?)) "stdout on /dev/full: exit $rc, $(wc -l < "$o.err") lines: $(head -c 100 "$o.err")"
 		continue
 	fi
+	# standard output on /dev/full: 74 and one line giving the cause
+	$(feed "$k" "$g" -) > /dev/full 2> "$o.err"
+	rc=$?
+	[ "$rc" = 74 ] && one_line "$o.err" && grep -q "No space left on device" "$o.err"
+	res "$k:stdout-full" $((1 - $?)) "-o - on /dev/full: exit $rc, $(wc -l < "$o.err") lines: $(head -c 100 "$o.err")"
 	# a copy of /dev/null and of /dev/full made in the scratch directory (never the system's)
 	if [ "$MKNOD" = 1 ]; then
 		mknod "$o/null" c 1 3 && $(feed "$k" "$g" "$o/null") > /dev/null 2> "$o.err"
