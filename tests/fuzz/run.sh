@@ -1,10 +1,11 @@
 #!/bin/sh
 # run.sh: run each libFuzzer harness of build/fuzz/ for FUZZ_SECONDS (default 60) over its seed
 # corpora; new inputs go to build/fuzz/corpus/HARNESS, a crash or hang to build/fuzz/crash/.
-# Exits non-zero when any harness found something (libFuzzer's own status). FUZZ_ONLY=NAME runs one.
+# Exits non-zero when any harness found something (libFuzzer's own status). FUZZ_ONLY=NAME runs one;
+# FUZZ_B=DIR runs the harnesses built there (e.g. without the guards, see tests/mk/fuzz.mk).
 set -u
 : "${FUZZ_SECONDS:=60}" "${FUZZ_ONLY:=}"
-B=build/fuzz
+B=${FUZZ_B:-build/fuzz}
 seeds() {
 	case $1 in
 	meta_text) echo fixtures/meta fixtures/bad fixtures/raster/inputs fixtures/fuzz/meta_text fixtures/fuzz/raster ;;

@@ -4,7 +4,9 @@ FUZZ_HARNESSES := meta_text meta_binary raster scene image
 FUZZ_CC     ?= clang
 FUZZ_B      := build/fuzz
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
-FUZZ_CFLAGS  = $(STDFLAGS) $(WARNFLAGS) -O1 -g $(MATHFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer-no-link \
+# FUZZ_DEFS=-DFUZZ_GUARDS=0 FUZZ_B=build/fuzz-noguard: the harnesses without the pending-fix guards
+FUZZ_DEFS   ?=
+FUZZ_CFLAGS  = $(STDFLAGS) $(WARNFLAGS) -O1 -g $(MATHFLAGS) $(FUZZ_SAN) -fsanitize=fuzzer-no-link $(FUZZ_DEFS) \
 	-Imeta -Idrivers -Icore -Itests/fuzz $(PKG_CFLAGS)
 FUZZ_LIBSRC := $(META_SRCS) $(DRV_SRCS) $(CORE_SRCS)
 FUZZ_PROGS  := $(FUZZ_HARNESSES:%=$(FUZZ_B)/fuzz_%)
