@@ -31,7 +31,7 @@ MAXN=${FAULT_SAMPLES:-40}     # at most this many N per program and fault kind
 D=$T/fault
 mkdir -p "$D"
 
-in_pending() { for p in $PENDING; do case $1 in $p) return 0 ;; esac; done; return 1; }
+in_pending() { set -f; for p in $PENDING; do case $1 in $p) set +f; return 0 ;; esac; done; set +f; return 1; }
 res() {
 	n=$1 pass=$2; shift 2
 	if [ "$pass" = 1 ]; then ok "$n: $*"

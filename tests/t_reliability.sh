@@ -48,7 +48,7 @@ if [ "${SANITIZE:-}" = 1 ]; then
 else
 	LIMIT="ulimit -v $MEM_KB"
 fi
-in_pending() { for p in $PENDING; do case $1 in $p) return 0 ;; esac; done; return 1; }
+in_pending() { set -f; for p in $PENDING; do case $1 in $p) set +f; return 0 ;; esac; done; set +f; return 1; }
 # res NAME PASS DESC: one line, honouring PENDING
 res() {
 	n=$1 pass=$2; shift 2
