@@ -35,7 +35,7 @@ in_pending() { set -f; for p in $PENDING; do case $1 in $p) set +f; return 0 ;; 
 res() {
 	n=$1 pass=$2; shift 2
 	if [ "$pass" = 1 ]; then ok "$n: $*"
-	elif in_pending "$n"; then ok "$n: $* # TODO pending fix in another branch: $(pending_reason "$n")"
+	elif in_pending "$n"; then ok "$n # TODO pending fix in another branch: $(pending_reason "$n") (now: $*)"
 	else notok "$n: $*"; fi
 }
 
