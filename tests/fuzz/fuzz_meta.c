@@ -6,12 +6,33 @@
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput
 #endif
 
-/* Read all of buf, re-writing every statement into a text and a binary writer. Returns the
- * reader's result (0 clean end, <0 error); *text and *bin hold the output (freed by the caller). */
-static int rewrite(const void *buf, size_t n, fuzz_buf_t *text, fuzz_buf_t *bin, char *err, size_t errlen,
-		long *count)
+/* A stream that hands out its bytes a few at a time (the reader's refills at every boundary). */
+typedef struct {
+	const uint8_t *p;
+	size_t n, at, chunk;
+} trickle_t;
+
+static long trickle_read(void *user, void *buf, size_t n)
 {
-	meta_reader_t *r = meta_reader_mem(buf, n, "in");
+	trickle_t *t = user;
+	size_t k = t->n - t->at;
+	if (k > t->chunk)
+		k = t->chunk;
+	if (k > n)
+		k = n;
+	memcpy(buf, t->p + t->at, k);
+	t->at += k;
+	return (long)k;
+}
+
+/* Read all of buf (from memory, or through a stream of chunk bytes a read when chunk > 0),
+ * re-writing every statement into a text and a binary writer. Returns the reader's result (0
+ * clean end, <0 error); *text and *bin hold the output (freed by the caller). */
+static int rewrite_by(const void *buf, size_t n, size_t chunk, fuzz_buf_t *text, fuzz_buf_t *bin, char *err,
+		size_t errlen, long *count)
+{
+	trickle_t tr = { buf, n, 0, chunk };
+	meta_reader_t *r = chunk ? meta_reader_new(trickle_read, &tr, "in") : meta_reader_mem(buf, n, "in");
 	meta_writer_t *wt = meta_writer_new(fuzz_buf_write, text, META_ENC_TEXT);
 	meta_writer_t *wb = meta_writer_new(fuzz_buf_write, bin, META_ENC_BINARY);
 	meta_cmd_t c;
@@ -39,6 +60,12 @@ static int rewrite(const void *buf, size_t n, fuzz_buf_t *text, fuzz_buf_t *bin,
 	return rc;
 }
 
+static int rewrite(const void *buf, size_t n, fuzz_buf_t *text, fuzz_buf_t *bin, char *err, size_t errlen,
+		long *count)
+{
+	return rewrite_by(buf, n, 0, text, bin, err, errlen, count);
+}
+
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
 int FUZZ_ENTRY(const uint8_t *data, size_t size)
 {
@@ -64,7 +91,22 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 #endif
 	if (size > 1 << 20)  /* the reader streams; a bigger input finds nothing a smaller one does not */
 		goto done;
-	if (rewrite(in, size, &t1, &b1, err, sizeof err, &n1) == 0) {
+	int r1 = rewrite(in, size, &t1, &b1, err, sizeof err, &n1);
+	if (size <= 65536) {
+		/* a stream of 1 to 8 bytes a read (by the input's first byte) reads the same statements
+		 * with the same message as the whole buffer */
+		fuzz_buf_t ts = { 0 }, bs = { 0 };
+		char errs[1024];
+		long ns;
+		size_t chunk = 1 + (size ? data[0] % 8 : 0);
+		int rs = rewrite_by(in, size, chunk, &ts, &bs, errs, sizeof errs, &ns);
+		FUZZ_ASSERT(rs == r1 && ns == n1, "streamed %zu bytes a read: %d after %ld statements; from memory %d after %ld",
+				chunk, rs, ns, r1, n1);
+		FUZZ_ASSERT(!strcmp(errs, err), "streamed: '%s'; from memory: '%s'", errs, err);
+		FUZZ_ASSERT(ts.n == t1.n && (!t1.n || !memcmp(ts.p, t1.p, t1.n)), "streamed input gives other statements");
+		free(ts.p), free(bs.p);
+	}
+	if (r1 == 0) {
 		/* canonical text and binary read back to the same statements (the same bytes again) */
 		int r2 = rewrite(t1.p, t1.n, &t2, &b2, err, sizeof err, &n2);
 		FUZZ_ASSERT(r2 == 0, "canonical text of an accepted file is refused: %s", err);
