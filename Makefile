@@ -6,6 +6,7 @@
 #   make check      unit, golden, round-trip and bad-input tests (SANITIZE=1: under ASan+UBSan)
 #   make bench      benchmarks against the anchors; BENCH lines also go to out/bench.txt
 #   make install    PREFIX=/usr/local DESTDIR=
+#   make fuzz       build the libFuzzer harnesses with clang, run each FUZZ_SECONDS (60) seconds
 
 VERSION    := 0.1.0
 PREFIX     ?= /usr/local
@@ -83,6 +84,15 @@ install: all
 	install -m 644 meta/locus_meta.h meta/opcodes.def $(DESTDIR)$(PREFIX)/include/locus/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' meta/locus-meta.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/locus-meta.pc
 	install -m 644 docs/man/*.1 $(DESTDIR)$(PREFIX)/share/man/man1/
+
+# The harnesses and their rules are in tests/mk/fuzz.mk, the runner in tests/fuzz/run.sh.
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz
+fuzz: deps-ok
+	@scripts/deps.sh fuzz
+	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "make fuzz: $(FUZZ_CC) not found (Debian: apt-get install clang libclang-rt-14-dev)" >&2; exit 69; }
+	@$(MAKE) --no-print-directory fuzz-programs
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run.sh
 
 clean:
 	rm -rf build bin out

@@ -8,6 +8,7 @@ case $purpose in
 build) pkgs="gcc make pkg-config libpng-dev zlib1g-dev" ;;
 check) pkgs="libpng-dev zlib1g-dev python3 time plotutils" ;;
 bench) pkgs="plotutils povray python3-contourpy python3-numpy time imagemagick qhull-bin" ;;
+fuzz) pkgs="clang libclang-rt-14-dev" ;;
 *) echo "deps.sh: unknown purpose '$purpose'" >&2; exit 64 ;;
 esac
 # Each part of the project may list more packages in scripts/deps.d/PART.txt, one line per
