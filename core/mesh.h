@@ -39,6 +39,7 @@
 #include "camera.h"
 #include "locus_meta.h"
 #include "model.h"
+#include "scene.h"
 
 /* Finest octree depth accepted: 2^10 cells a side. */
 #define MESH_MAX_DEPTH 10
@@ -108,5 +109,17 @@ int mesh_write(const mesh_t *m, int format, const char *name, mesh_write_fn wr, 
  * Adds the drawn segments to *segments. Returns 0, or -1 with a message (write error). */
 int mesh_draw(meta_writer_t *w, const cam_t *cam, const mesh_t *m, int hidden, double width,
               meta_rgb_t colour, double xoff, uint64_t *segments, char *err, size_t errlen);
+
+/* The mesh of a scene: every drawn object polygonised at the depth of the scene's first
+ * `render mesh` block (6 without one), appended into m; *block receives that block (NULL:
+ * none). Returns 0, -1 with "FILE:LINE:COL: ..." (the object or block at fault; the whole
+ * mesh empty is an error too) or SCENE_ENOMEM. */
+int mesh_scene(const scene_t *s, mesh_t *m, mesh_stats_t *st, const scene_render_t **block,
+               char *err, size_t errlen);
+
+/* A `render mesh` block drawn as a wireframe page through cam (scene_render's part).
+ * Returns 0 or -1 with a message. */
+int mesh_scene_draw(scene_t *s, const scene_render_t *r, const cam_t *cam, meta_writer_t *w,
+                    double xoff, uint64_t *segments, char *err, size_t errlen);
 
 #endif
