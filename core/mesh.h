@@ -99,7 +99,8 @@ int mesh_format_of(const char *name);
 typedef int (*mesh_write_fn)(void *user, const void *buf, size_t n);
 
 /* Write m as binary STL (float vertices, one normal per facet), binary little-endian PLY
- * (float x y z, int vertex lists) or Wavefront OBJ (v and f lines, %.9g) through wr.
+ * (float x y z, int vertex lists) or Wavefront OBJ (v and f lines) through wr; all three hold
+ * the same single-precision vertices (OBJ prints each float exactly, in 9 digits).
  * `name` goes into the STL header and the comments. Returns 0, or -1 with a message. */
 int mesh_write(const mesh_t *m, int format, const char *name, mesh_write_fn wr, void *user,
                char *err, size_t errlen);

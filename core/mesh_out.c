@@ -85,9 +85,11 @@ static void write_stl(out_t *o, const mesh_t *m, const char *name)
 	put(o, head, sizeof head);
 	put_u32(o, (uint32_t)m->nt);
 	for (size_t i = 0; i < m->nt; i++) {
-		const double *p[3];
+		/* the normal of the facet as readers see it: from the single-precision vertices */
+		double p[3][3];
 		for (int j = 0; j < 3; j++)
-			p[j] = m->v + 3 * m->t[3 * i + j];
+			for (int k = 0; k < 3; k++)
+				p[j][k] = (float)m->v[3 * m->t[3 * i + j] + k];
 		double u[3], w[3], n[3];
 		for (int j = 0; j < 3; j++) {
 			u[j] = p[1][j] - p[0][j];
@@ -133,7 +135,7 @@ static void write_obj(out_t *o, const mesh_t *m, const char *name)
 		"counter-clockwise seen from outside\n", name, m->nv, m->nt);
 	put(o, head, (size_t)n);
 	for (size_t i = 0; i < m->nv; i++)
-		printf_out(o, "v %.9g %.9g %.9g\n", m->v[3 * i], m->v[3 * i + 1], m->v[3 * i + 2]);
+		printf_out(o, "v %.9g %.9g %.9g\n", (float)m->v[3 * i], (float)m->v[3 * i + 1], (float)m->v[3 * i + 2]);
 	for (size_t i = 0; i < m->nt; i++)
 		printf_out(o, "f %.0f %.0f %.0f\n", m->t[3 * i] + 1.0, m->t[3 * i + 1] + 1.0, m->t[3 * i + 2] + 1.0);
 }
