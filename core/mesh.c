@@ -144,47 +144,60 @@ static double corner(ext_t *x, const uint64_t g[3])
 	return f;
 }
 
+#define REFINE_TOL 1e-7   /* bracket width to reach, in edge lengths */
+
+/* F at a + t d, sorted into the bracket [lo, hi] (F(lo) < 0 <= F(hi)); 1 when it moved lo. */
+static int probe(ext_t *x, const double a[3], const double d[3], double t, double *lo, double *flo,
+                 double *hi, double *fhi)
+{
+	double q[3] = {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, f = eval_f(x, q);
+	if (f < 0) {
+		*lo = t;
+		*flo = f;
+		return 1;
+	}
+	*hi = t;
+	*fhi = f;
+	return 0;
+}
+
 /* The zero of F on the segment from a (F = fa < 0) to b (F = fb >= 0), written to p. */
 static void refine(ext_t *x, const double a[3], const double b[3], double fa, double fb, double p[3])
 {
 	double d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
 	double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), step = 1 / (x->lip * len);
-	double lo = 0, hi = 1, flo = fa, fhi = fb, t = 0.5;
-	int side = 0;
+	double lo = 0, hi = 1, flo = fa, fhi = fb, width = 2;
+	int last = -1, again = 0;
 	for (int it = 0; it < 100; it++) {
-		/* no zero within |F| / L of either end: the narrowed bracket [l, h] */
+		/* no zero within |F| / L of either end: the narrowed bracket [l, h] holds every zero */
 		double l = fmin(lo - flo * step, hi), h = fmax(hi - fhi * step, l);
-		if (h - l <= 1e-9 || fhi == 0) {
+		if (h - l <= REFINE_TOL || fhi == 0) {
 			lo = l;
 			hi = h;
 			break;
 		}
-		/* a secant step (Illinois: the end kept twice has its value halved), inside [l, h] */
+		/* a secant step inside [l, h] (Illinois: the end kept twice counts half), bisection
+		 * when it falls outside or the bracket did not halve */
 		double wl = flo, wh = fhi;
-		if (side == 1)
-			wh /= 2;
-		else if (side == -1)
-			wl /= 2;
-		t = lo + (hi - lo) * (-wl) / (wh - wl);
-		if (!(t > l && t < h) || it % 4 == 3)
+		if (again)
+			*(last ? &wh : &wl) /= 2;
+		double t = lo + (hi - lo) * (-wl) / (wh - wl);
+		if (!(t > l && t < h) || (it >= 3 && h - l > width / 2))
 			t = (l + h) / 2;
-		double q[3] = {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, f = eval_f(x, q);
-		if (f < 0) {
-			side = side == -1 ? -2 : -1;
-			lo = t;
-			flo = f;
-		} else {
-			side = side == 1 ? 2 : 1;
-			hi = t;
-			fhi = f;
-		}
-		if (side == -2 || side == 2)
-			side = 0;
+		width = h - l;
+		int moved = probe(x, a, d, t, &lo, &flo, &hi, &fhi);
+		again = moved == last;
+		last = moved;
+		/* when the secant puts the zero within the tolerance of t, test just across it: the
+		 * bracket then closes in one evaluation instead of creeping up from one side */
+		double s = lo + (hi - lo) * (-flo) / (fhi - flo), u = s + (moved ? 0.4 : -0.4) * REFINE_TOL;
+		if (fabs(s - t) < 0.4 * REFINE_TOL && u > lo && u < hi)
+			probe(x, a, d, u, &lo, &flo, &hi, &fhi);
 	}
 	double bracket = (hi - lo) * len;
 	if (bracket > x->st->max_bracket)
 		x->st->max_bracket = bracket;
-	t = fhi == 0 ? hi : (lo + hi) / 2;
+	double t = fhi == 0 ? hi : (lo + hi) / 2;
 	t = fmin(fmax(t, 1e-4), 1 - 1e-4);
 	for (int i = 0; i < 3; i++)
 		p[i] = a[i] + t * d[i];

@@ -24,7 +24,7 @@
  *     the bracket between the inside and the outside end, and the Lipschitz
  *     bound narrows it from both ends without evaluating (no zero within
  *     |F(end)| / L of an end); secant steps inside the narrowed bracket, with
- *     bisection as the fallback, until it is below 1e-9 of the edge. The
+ *     bisection as the fallback, until it is below 1e-7 of the edge. The
  *     bracket's width is a proven bound on the vertex's distance to the
  *     surface (stats.max_bracket). A vertex is kept at least 1e-4 of its edge
  *     away from a grid corner, so that no two vertices coincide, even in the
