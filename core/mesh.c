@@ -9,7 +9,11 @@
 /* ---- a hash table from 64-bit keys to 64-bit values (open addressing) ---- */
 
 typedef struct {
-	uint64_t *key, *val;     /* key 0 is free: stored keys are offset by one */
+	uint64_t key, val;       /* key 0 is free: stored keys are offset by one */
+} entry_t;
+
+typedef struct {
+	entry_t *e;
 	size_t n, cap;
 } table_t;
 
@@ -24,8 +28,7 @@ static uint64_t mix(uint64_t k)
 
 static void table_free(table_t *t)
 {
-	free(t->key);
-	free(t->val);
+	free(t->e);
 	memset(t, 0, sizeof *t);
 }
 
@@ -33,7 +36,7 @@ static void table_free(table_t *t)
 static size_t slot(const table_t *t, uint64_t k)
 {
 	size_t i = mix(k) & (t->cap - 1);
-	while (t->key[i] && t->key[i] != k)
+	while (t->e[i].key && t->e[i].key != k)
 		i = (i + 1) & (t->cap - 1);
 	return i;
 }
@@ -41,20 +44,13 @@ static size_t slot(const table_t *t, uint64_t k)
 static int table_grow(table_t *t)
 {
 	size_t cap = t->cap ? 2 * t->cap : 4096;
-	table_t g = {calloc(cap, sizeof *g.key), malloc(cap * sizeof *g.val), t->n, cap};
-	if (!g.key || !g.val) {
-		free(g.key);
-		free(g.val);
+	table_t g = {calloc(cap, sizeof *g.e), t->n, cap};
+	if (!g.e)
 		return -1;
-	}
 	for (size_t i = 0; i < t->cap; i++)
-		if (t->key[i]) {
-			size_t j = slot(&g, t->key[i]);
-			g.key[j] = t->key[i];
-			g.val[j] = t->val[i];
-		}
-	free(t->key);
-	free(t->val);
+		if (t->e[i].key)
+			g.e[slot(&g, t->e[i].key)] = t->e[i];
+	free(t->e);
 	*t = g;
 	return 0;
 }
@@ -65,18 +61,18 @@ static int table_get(table_t *t, uint64_t k, uint64_t *val, size_t *at)
 	if (2 * (t->n + 1) > t->cap && table_grow(t) < 0)
 		return -1;
 	size_t i = slot(t, k + 1);
-	if (t->key[i]) {
-		*val = t->val[i];
+	*at = i;
+	if (t->e[i].key) {
+		*val = t->e[i].val;
 		return 1;
 	}
-	*at = i;
 	return 0;
 }
 
 static void table_put(table_t *t, size_t at, uint64_t k, uint64_t val)
 {
-	t->key[at] = k + 1;
-	t->val[at] = val;
+	t->e[at].key = k + 1;
+	t->e[at].val = val;
 	t->n++;
 }
 
@@ -90,7 +86,6 @@ typedef struct {
 	uint64_t n1;             /* grid points a side: 2^depth + 1 */
 	double lo[3], cell;      /* root cube corner and the finest cell's side */
 	double lip;
-	table_t corners;         /* grid point index -> F (double bits) */
 	table_t verts;           /* edge key -> vertex index */
 	int oom, too_many;
 } ext_t;
@@ -105,14 +100,15 @@ static double eval_f(ext_t *x, const double p[3])
 		double q = fabs(p[i] - c) - h;
 		if (q > 0)
 			out += q * q;
-		in = fmax(in, q);
+		in = q > in ? q : in;
 	}
-	double bd = out > 0 ? sqrt(out) : fmin(in, 0);
+	double bd = out > 0 ? sqrt(out) : in < 0 ? in : 0;
 	x->st->evals++;
 	double f = model_eval(x->s, p);
 	if (!(f == f))
 		f = INFINITY;   /* an undefined value counts as outside */
-	return fmax(f, x->lip * bd);
+	bd *= x->lip;
+	return f > bd ? f : bd;
 }
 
 static void grid_point(const ext_t *x, const uint64_t g[3], double p[3])
@@ -121,27 +117,13 @@ static void grid_point(const ext_t *x, const uint64_t g[3], double p[3])
 		p[i] = x->lo[i] + (double)g[i] * x->cell;
 }
 
-/* F at grid point g, evaluated once. */
+/* F at grid point g (always the same value for the same point: no cache is needed for the
+ * corners' signs to agree between the cells that share them) */
 static double corner(ext_t *x, const uint64_t g[3])
 {
-	uint64_t k = (g[2] * x->n1 + g[1]) * x->n1 + g[0], bits;
-	size_t at;
-	int r = table_get(&x->corners, k, &bits, &at);
-	if (r < 0) {
-		x->oom = 1;
-		return 1;
-	}
-	double f;
-	if (r) {
-		memcpy(&f, &bits, sizeof f);
-		return f;
-	}
 	double p[3];
 	grid_point(x, g, p);
-	f = eval_f(x, p);
-	memcpy(&bits, &f, sizeof f);
-	table_put(&x->corners, at, k, bits);
-	return f;
+	return eval_f(x, p);
 }
 
 #define REFINE_TOL 1e-7   /* bracket width to reach, in edge lengths */
@@ -309,6 +291,8 @@ static void leaf(ext_t *x, const uint64_t g[3])
 	}
 	if (!any_in || !any_out || x->oom)
 		return;
+	uint32_t cache[64];      /* the cell's 19 edges (corner a * 8 + corner b): their vertices */
+	memset(cache, 0xff, sizeof cache);
 	for (int k = 0; k < 6 && !x->oom && !x->too_many; k++) {
 		const int *q = kuhn[k];
 		int in[4], nin = 0, ni = 0, no = 0, ins[4], outs[4];
@@ -337,7 +321,9 @@ static void leaf(ext_t *x, const uint64_t g[3])
 		for (int i = 0; i < ni; i++)
 			for (int j = 0; j < no; j++) {
 				int a = ins[i], b = outs[j], lo = a < b ? a : b, hi = a < b ? b : a;
-				v[ne] = vertex(x, cg[lo], cg[hi], cf[lo], cf[hi]);
+				if (cache[lo * 8 + hi] == UINT32_MAX)
+					cache[lo * 8 + hi] = vertex(x, cg[lo], cg[hi], cf[lo], cf[hi]);
+				v[ne] = cache[lo * 8 + hi];
 				for (int c = 0; c < 3; c++)
 					mid[ne][c] = (cp[a][c] + cp[b][c]) / 2;
 				ne++;
@@ -427,7 +413,6 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	size_t nv0 = m->nv;
 	uint64_t g0[3] = {0, 0, 0};
 	visit(&x, g0, 0);
-	table_free(&x.corners);
 	table_free(&x.verts);
 	if (x.oom) {
 		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
@@ -461,7 +446,7 @@ void mesh_measure(const mesh_t *m, double *area, double *volume)
 int mesh_check(const mesh_t *m, mesh_check_t *out)
 {
 	memset(out, 0, sizeof *out);
-	table_t e = {0};
+	table_t e = {NULL, 0, 0};
 	/* per undirected edge: count of uses a->b with a < b (low 32 bits) and b->a (high) */
 	for (size_t i = 0; i < m->nt; i++) {
 		const uint32_t *t = m->t + 3 * i;
@@ -480,16 +465,16 @@ int mesh_check(const mesh_t *m, mesh_check_t *out)
 			}
 			uint64_t inc = a < b ? 1 : (uint64_t)1 << 32;
 			if (r) {
-				e.val[slot(&e, k + 1)] = c + inc;
+				e.e[at].val = c + inc;
 			} else {
 				table_put(&e, at, k, inc);
 			}
 		}
 	}
 	for (size_t i = 0; i < e.cap; i++) {
-		if (!e.key[i])
+		if (!e.e[i].key)
 			continue;
-		uint64_t fw = e.val[i] & 0xffffffffu, bw = e.val[i] >> 32;
+		uint64_t fw = e.e[i].val & 0xffffffffu, bw = e.e[i].val >> 32;
 		out->edges++;
 		if (fw + bw == 1)
 			out->open_edges++;
