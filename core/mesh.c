@@ -1,5 +1,6 @@
 /* mesh.c: marching tetrahedra through the octree: closed, outward-wound triangle meshes of shapes (mesh.h). */
 #include "mesh.h"
+#include "mesh_int.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -90,25 +91,55 @@ typedef struct {
 	int oom, too_many;
 } ext_t;
 
-/* F: the shape clipped by its box (mesh.h). */
-static double eval_f(ext_t *x, const double p[3])
+/* The signed distance to the box b (negative inside) and, when g is not NULL, its gradient. */
+static double box_distance(const double *b, const double p[3], double g[3])
 {
-	const double *b = x->s->box;
-	double out = 0, in = -INFINITY;
+	double out = 0, in = -INFINITY, q[3];
+	int arg = 0;
 	for (int i = 0; i < 3; i++) {
 		double c = (b[i] + b[3 + i]) / 2, h = (b[3 + i] - b[i]) / 2;
-		double q = fabs(p[i] - c) - h;
-		if (q > 0)
-			out += q * q;
-		in = q > in ? q : in;
+		q[i] = fabs(p[i] - c) - h;
+		if (q[i] > 0)
+			out += q[i] * q[i];
+		if (q[i] > in) {
+			in = q[i];
+			arg = i;
+		}
 	}
-	double bd = out > 0 ? sqrt(out) : in < 0 ? in : 0;
-	x->st->evals++;
-	double f = model_eval(x->s, p);
+	double d = out > 0 ? sqrt(out) : in < 0 ? in : 0;
+	if (g) {
+		for (int i = 0; i < 3; i++) {
+			double sg = p[i] < (b[i] + b[3 + i]) / 2 ? -1 : 1;
+			g[i] = out > 0 ? (q[i] > 0 ? sg * q[i] / d : 0) : (i == arg ? sg : 0);
+		}
+	}
+	return d;
+}
+
+double mesh_field(const model_shape_t *s, const double p[3])
+{
+	double f = model_eval(s, p), bd = s->lip * box_distance(s->box, p, NULL);
 	if (!(f == f))
 		f = INFINITY;   /* an undefined value counts as outside */
-	bd *= x->lip;
 	return f > bd ? f : bd;
+}
+
+void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3])
+{
+	double f = model_eval(s, p), gb[3], bd = s->lip * box_distance(s->box, p, gb);
+	if (f == f && f >= bd) {
+		model_grad(s, p, g);
+		return;
+	}
+	for (int i = 0; i < 3; i++)
+		g[i] = s->lip * gb[i];
+}
+
+/* F, counted. */
+static double eval_f(ext_t *x, const double p[3])
+{
+	x->st->evals++;
+	return mesh_field(x->s, p);
 }
 
 static void grid_point(const ext_t *x, const uint64_t g[3], double p[3])
