@@ -81,6 +81,20 @@ void mesh_free(mesh_t *m);
  * range, too many triangles, out of memory (the message then says "out of memory"). */
 int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
 
+/* Coarsen the part of m from vertex v0 and triangle t0 on (one closed mesh of s, as
+ * mesh_extract appended it) where the surface allows: edges are collapsed shortest first into
+ * their midpoint moved onto the surface (two Newton steps along grad F), each collapse only
+ * when it keeps the mesh closed and manifold (the link condition: the two ends share no
+ * neighbour but the two opposite vertices), turns no triangle by more than 60 degrees (no
+ * fold, the winding stays right) and leaves the centre of every moved triangle within tol of
+ * the surface (first order: |F| / |grad F|). Flat parts coarsen, curved ones keep their
+ * triangles: the mesh becomes adaptive, and the slivers of marching tetrahedra (the shortest
+ * edges) go first. Up to 4 passes, until one collapses under 1% of the vertices. Adds the
+ * evaluations of F to *evals (a gradient counts as one). Returns 0, or -1 when out of memory
+ * (the mesh is then unusable). */
+int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
+                  uint64_t *evals, char *err, size_t errlen);
+
 /* Surface area and enclosed volume (divergence theorem; positive for outward normals). */
 void mesh_measure(const mesh_t *m, double *area, double *volume);
 

@@ -5,7 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Polygonise the drawn objects at the block's depth; -1/SCENE_ENOMEM with "FILE:L:C: ..." */
+/* Polygonise the drawn objects at the block's depth (coarsened within its tolerance);
+ * -1/SCENE_ENOMEM with "FILE:L:C: ..." */
 static int extract(const scene_t *s, const scene_render_t *r, mesh_t *m, mesh_stats_t *st,
                    char *err, size_t errlen)
 {
@@ -16,7 +17,11 @@ static int extract(const scene_t *s, const scene_render_t *r, mesh_t *m, mesh_st
 		if (!o->drawn)
 			continue;
 		any = 1;
-		if (mesh_extract(o->shape, depth, m, st, e, sizeof e) < 0) {
+		size_t v0 = m->nv, t0 = m->nt;
+		int rc = mesh_extract(o->shape, depth, m, st, e, sizeof e);
+		if (rc == 0 && r && r->tolerance > 0)
+			rc = mesh_simplify(m, o->shape, v0, t0, r->tolerance, st ? &st->evals : NULL, e, sizeof e);
+		if (rc < 0) {
 			unsigned line = r && !strstr(e, "Lipschitz") ? r->line : o->line;
 			unsigned col = r && !strstr(e, "Lipschitz") ? r->col : o->col;
 			snprintf(err, errlen, "%.200s:%u:%u: %s (object '%s')", s->name, line, col, e, o->name);

@@ -43,6 +43,7 @@ typedef struct {
 	/* wireframe */
 	int slices, axis, resolution;
 	int hidden;                /* mesh: draw only the edges of faces turned to the eye (core/mesh.h) */
+	double tolerance;          /* mesh: coarsen within this distance of the surface (0: off) */
 	double line_width;
 	double line_colour[3];
 	/* contour */

@@ -229,6 +229,10 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = yes_no(lx, &r->draw);
 		} else if (scene_tok_is(&t, "hidden") && kind == SCENE_MESH) {
 			rc = yes_no(lx, &r->hidden);
+		} else if (scene_tok_is(&t, "tolerance") && kind == SCENE_MESH) {
+			rc = scene_lex_number(lx, &r->tolerance, "a distance to the surface");
+			if (!rc && !(r->tolerance >= 0 && r->tolerance <= 1e6))
+				rc = scene_lex_error(lx, t.line, t.col, "expected a tolerance of 0 (no coarsening) or a positive distance");
 		} else if (scene_tok_is(&t, "bands")) {
 			rc = yes_no(lx, &r->bands);
 		} else if (scene_tok_is(&t, "metric")) {
