@@ -13,7 +13,8 @@ within() { awk -v a="$1" -v b="$2" -v p="$3" 'BEGIN {d = a - b; if (d < 0) d = -
 stat() { grep -o -E "(^| )$1=[^ ]+" "$2" | head -1 | sed 's/.*=//'; }
 
 # 1. sphere and ellipsoid through admesh: closed, no wrongly oriented facet, the analytic volume
-for c in "sphere 4.18879020 12.5663706" "ellipsoid 4.02123859 12.4082835"; do
+# (the capsule coarsened within 0.001: `tolerance`, the adaptive mesh)
+for c in "sphere 4.18879020 12.5663706" "ellipsoid 4.02123859 12.4082835" "capsule 2.56563400 11.3097336"; do
 	set -- $c
 	n=$1 vol=$2 area=$3
 	if ! "$R" "fixtures/mesh/$n.scene" -o "$T/$n.stl" --stats 2> "$T/$n.stats"; then
@@ -40,6 +41,14 @@ for c in "sphere 4.18879020 12.5663706" "ellipsoid 4.02123859 12.4082835"; do
 	a=$(stat area "$T/$n.stats")
 	within "$a" "$area" 0.5 && ok "$n: area $a within 0.5% of $area" || notok "$n: area '$a', exact $area"
 done
+
+# 1b. coarsening keeps the capsule's round caps fine and makes its cylinder coarse: far fewer
+# triangles than the same depth without a tolerance
+sed '/tolerance/d' fixtures/mesh/capsule.scene > "$T/cap0.scene"
+"$R" "$T/cap0.scene" -o "$T/cap0.stl" --stats 2> "$T/cap0.stats"
+t0=$(stat triangles "$T/cap0.stats") t1=$(stat triangles "$T/capsule.stats")
+[ -n "$t0" ] && [ -n "$t1" ] && [ $((t1 * 4)) -lt "$t0" ] && ok "tolerance 0.001 coarsens the capsule from $t0 to $t1 triangles" \
+	|| notok "capsule coarsening: $t0 -> $t1 triangles"
 
 # 2. the same mesh as PLY and OBJ: their headers, counts and indices, and the STL's facets
 "$R" fixtures/mesh/ellipsoid.scene -o "$T/e.ply" && "$R" fixtures/mesh/ellipsoid.scene -o "$T/E.OBJ" \
@@ -140,6 +149,10 @@ end'
 bad "hidden takes yes or no" 65 "bad.scene:6:10: expected yes or no" "$OBJ
 render mesh
   hidden maybe
+end"
+bad "negative tolerance" 65 "bad.scene:6:3: expected a tolerance of 0" "$OBJ
+render mesh
+  tolerance -1
 end"
 bad "hidden only in a mesh block" 65 "bad.scene:6:3: expected a render option" "$OBJ
 render wireframe
