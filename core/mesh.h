@@ -89,7 +89,7 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
  * fold, the winding stays right) and leaves the centre of every moved triangle within tol of
  * the surface (first order: |F| / |grad F|). Flat parts coarsen, curved ones keep their
  * triangles: the mesh becomes adaptive, and the slivers of marching tetrahedra (the shortest
- * edges) go first. Up to 4 passes, until one collapses under 1% of the vertices. Adds the
+ * edges) go first. Up to 4 passes, until one collapses under 5% of the vertices. Adds the
  * evaluations of F to *evals (a gradient counts as one). Returns 0, or -1 when out of memory
  * (the mesh is then unusable). */
 int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
