@@ -87,6 +87,22 @@ PYEOF
 then ok "PLY and OBJ hold the STL's triangles in the same order and winding ($(cat "$T/fmt.out"))"
 else notok "PLY/OBJ against STL: $(tail -1 "$T/fmt.out")"; fi
 
+# 2b. the bench's Hausdorff measure (tests/bench/skimage_mc.py) on a mesh worked out by hand: the
+# octahedron of the unit points on the axes, inscribed in the unit sphere, is 1 - 1/sqrt(3) =
+# 0.42265 from it both ways (at the face centres, and the sphere points above them)
+$PY - "$T/octa.ply" <<'PYEOF'
+import struct, sys
+v = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+f = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+h = ("ply\nformat binary_little_endian 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+     "property float z\nelement face 8\nproperty list uchar int vertex_indices\nend_header\n").encode()
+open(sys.argv[1], "wb").write(h + b"".join(struct.pack("<3f", *p) for p in v) + b"".join(struct.pack("<B3i", 3, *t) for t in f))
+PYEOF
+$PY tests/bench/skimage_mc.py hausdorff sphere "$T/octa.ply" > "$T/octa.h" 2>&1
+hd=$(stat hausdorff "$T/octa.h") hm=$(stat h_mesh_to_surface "$T/octa.h") hs=$(stat h_surface_to_mesh "$T/octa.h")
+within "$hd" 0.422650 0.1 && within "$hm" 0.422650 0.1 && within "$hs" 0.422650 0.1 \
+	&& ok "Hausdorff measure of the inscribed octahedron: $hd ($hm, $hs; exact 0.42265)" || notok "octahedron Hausdorff: $(cat "$T/octa.h")"
+
 # 3. the wireframe page: valid meta, its ink on the ray-traced silhouette of the same object
 S=fixtures/mesh/mesh-trifocal.scene
 if "$R" "$S" -o "$T/w.meta" --quiet && "$BIN/locus-meta" check "$T/w.meta" > /dev/null 2>&1 \

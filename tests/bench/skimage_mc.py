@@ -21,7 +21,7 @@ spheroid); surface to mesh, the exact point-to-triangle distance from 200,000 po
 over the surface to the triangles owning the 24 nearest of 7 samples per triangle (centroid,
 edge midpoints, points towards the corners), then exactly (every triangle near enough) for the
 points whose bound may be the largest.
-Needs Debian python3-skimage and python3-scipy (run by /usr/bin/python3).
+Needs Debian python3-scipy, and python3-skimage for `anchor` (run by /usr/bin/python3).
 """
 import os
 import struct
@@ -31,7 +31,8 @@ import time
 try:
     import numpy as np
     from scipy.spatial import cKDTree
-    from skimage.measure import marching_cubes
+    if len(sys.argv) > 1 and sys.argv[1] == "anchor":
+        from skimage.measure import marching_cubes
 except ImportError:
     if os.path.realpath(sys.executable) != os.path.realpath("/usr/bin/python3") and \
             os.path.exists("/usr/bin/python3"):
