@@ -3,7 +3,9 @@
 # coarsened within 1e-4, against
 # scikit-image's marching_cubes on the same grid (tests/bench/skimage_mc.py, Debian
 # python3-skimage run by /usr/bin/python3). One BENCH line per shape and tolerance: the in-process times of both
-# (field evaluation plus extraction; Locus' from --stats mesh_ms, medians), triangle counts and the
+# (field evaluation plus extraction; Locus' from --stats mesh_ms, medians), the whole commands'
+# wall times (locus-render writing the PLY; python3 starting, importing, evaluating, extracting),
+# triangle counts and the
 # Hausdorff distance of each mesh to the exact surface, measured by the same script
 # (docs/benchmarks.md, docs/mesh.md).
 
@@ -28,6 +30,11 @@ bench_mesh() {
 		a_s=$(awk -v s="$O_S" 'BEGIN {printf "%.4f", s}')
 		a_kv=$(echo "$O_KV" | sed 's/\([a-z_]*\)=/anchor_\1=/g')
 		a_mib=$M_MIB
+		# the whole command, as a user runs it: interpreter start-up, imports, field, extraction
+		if ! SKIMAGE_MC_ONCE=1 measure "$SLOW_RUNS" /dev/null "$MESH_PY" tests/bench/skimage_mc.py anchor "$shape" 7; then
+			fail "$n" "skimage_mc.py once: $M_ERR"; continue
+		fi
+		a_wall=$M_S
 		# Locus as extracted, and coarsened within 1e-4 (about the chord error of this grid)
 		for tol in 0 1e-4; do
 			ln=$n
@@ -46,7 +53,8 @@ bench_mesh() {
 				fail "$ln" "skimage_mc.py hausdorff: $(tail -1 "$W/$ln.h")"; continue
 			fi
 			line "$ln" "$l_s" skimage-marching_cubes "$a_s" "$l_mib" "$a_mib" \
-				"grid=129 tolerance=$tol locus_wall_s=$l_wall locus_triangles=$l_tri locus_evals=$l_evals" \
+				"grid=129 tolerance=$tol locus_wall_s=$l_wall anchor_wall_s=$a_wall ratio_wall=$(ratio "$a_wall" "$l_wall")" \
+				"locus_triangles=$l_tri locus_evals=$l_evals" \
 				"locus_hausdorff=$(stat hausdorff "$W/$ln.h") locus_h_mesh_to_surface=$(stat h_mesh_to_surface "$W/$ln.h")" \
 				"locus_h_surface_to_mesh=$(stat h_surface_to_mesh "$W/$ln.h") $a_kv" \
 				"rss_note=whole_process time_note=in_process_field_and_extraction"

@@ -12,6 +12,8 @@ polygonises at DEPTH: 2^DEPTH + 1 samples a side over the cube [-1.25, 1.25]^3 (
 scikit-image's marching_cubes at level 0, median of RUNS (default 3) runs of both, and prints
   BENCH mesh-skimage-SHAPE SECONDS s eval_s=... mc_s=... triangles=... vertices=...
           hausdorff=... h_mesh_to_surface=... h_surface_to_mesh=...
+With SKIMAGE_MC_ONCE=1 in the environment, `anchor SHAPE DEPTH` only evaluates and extracts
+once (the bench times the whole command: start-up, imports, field, marching cubes).
 `hausdorff` reads a binary little-endian PLY (locus-render -o NAME.ply) and prints
   HAUSDORFF hausdorff=... h_mesh_to_surface=... h_surface_to_mesh=... triangles=...
 The Hausdorff distance to the exact surface is the larger of two one-sided distances:
@@ -189,6 +191,14 @@ def main(argv):
         return 0
     if len(argv) > 1 and argv[1] == "--version":
         print("skimage_mc.py 1")
+        return 0
+    if len(argv) == 4 and argv[1] == "anchor" and argv[2] in ("sphere", "ellipsoid") and os.environ.get("SKIMAGE_MC_ONCE"):
+        # one field and extraction, nothing measured: the whole command's wall time is the figure
+        n = 2 ** int(argv[3]) + 1
+        g = np.linspace(-HALF, HALF, n)
+        x, y, z = np.meshgrid(g, g, g, indexing="ij")
+        verts, faces, _, _ = marching_cubes(field(argv[2], x, y, z), level=0.0)
+        print("%d triangles" % len(faces))
         return 0
     if len(argv) >= 4 and argv[1] == "anchor" and argv[2] in ("sphere", "ellipsoid"):
         runs = int(argv[5]) if len(argv) == 6 and argv[4] == "-n" else 3
