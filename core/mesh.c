@@ -387,8 +387,8 @@ static void visit(ext_t *x, const uint64_t g[3], int level)
 		c[i] = x->lo[i] + ((double)g[i] + size / 2.0) * x->cell;
 	x->st->cells++;
 	double f = eval_f(x, c), r = sqrt(3.0) / 2 * (double)size * x->cell;
-	if (fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12)
-		return;   /* no zero of F in the cell's circumscribed sphere */
+	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12)
+		return;   /* no zero of F in the cell's circumscribed sphere (an undefined f: kept) */
 	if (level == x->depth) {
 		x->st->leaves++;
 		leaf(x, g);
@@ -425,7 +425,7 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 		return -1;
 	}
 	if (!s->has_lip) {
-		snprintf(err, errlen, "the mesh needs a Lipschitz bound, and this shape's defining parameter has none (a mandelbrot parameter: draw it with raytrace)");
+		snprintf(err, errlen, "the mesh needs a Lipschitz bound, and this shape's defining parameter has none (draw it with raytrace, which brackets)");
 		return -1;
 	}
 	ext_t x;
