@@ -184,7 +184,11 @@ static void refine(ext_t *x, const double a[3], const double b[3], double fa, do
 	for (int it = 0; it < 100; it++) {
 		/* no zero within |F| / L of either end: the narrowed bracket [l, h] holds every zero */
 		double l = fmin(lo - flo * step, hi), h = fmax(hi - fhi * step, l);
-		if (h - l <= REFINE_TOL || fhi == 0) {
+		if (fhi == 0) {
+			lo = hi;   /* an exact zero (a corner on the box, or one probe) */
+			break;
+		}
+		if (h - l <= REFINE_TOL) {
 			lo = l;
 			hi = h;
 			break;
@@ -210,7 +214,7 @@ static void refine(ext_t *x, const double a[3], const double b[3], double fa, do
 	double bracket = (hi - lo) * len;
 	if (bracket > x->st->max_bracket)
 		x->st->max_bracket = bracket;
-	double t = fhi == 0 ? hi : (lo + hi) / 2;
+	double t = (lo + hi) / 2;
 	t = fmin(fmax(t, 1e-4), 1 - 1e-4);
 	for (int i = 0; i < 3; i++)
 		p[i] = a[i] + t * d[i];
