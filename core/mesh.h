@@ -18,8 +18,9 @@
  *     (two and two, split along the shorter diagonal). A vertex belongs to a
  *     grid edge and is shared by every tetrahedron around it, so the surface
  *     is closed; triangles are wound counter-clockwise seen from outside
- *     (normals point out of the solid), decided from the tetrahedron's
- *     corners, never from the refined vertices, so the order is consistent.
+ *     (normals point out of the solid), decided on the midpoints of the
+ *     crossed edges (never degenerate), never on the refined vertices, so the
+ *     order is consistent.
  *   - A vertex is refined onto the surface along its edge: the zero lies in
  *     the bracket between the inside and the outside end, and the Lipschitz
  *     bound narrows it from both ends without evaluating (no zero within
