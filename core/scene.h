@@ -14,7 +14,7 @@
 #define SCENE_MAX_WARNINGS 16
 
 /* Visualisations. */
-enum { SCENE_RAYTRACE, SCENE_OCTREE, SCENE_CONTOUR, SCENE_VORONOI, SCENE_WIREFRAME };
+enum { SCENE_RAYTRACE, SCENE_OCTREE, SCENE_CONTOUR, SCENE_VORONOI, SCENE_WIREFRAME, SCENE_MESH };
 /* Stereo layouts. */
 enum { SCENE_MONO, SCENE_STEREO_PAGES, SCENE_STEREO_SIDE };
 /* Octree cell tests. */
@@ -42,6 +42,8 @@ typedef struct {
 	int draw;                  /* octree: 0 = count cells only, draw nothing */
 	/* wireframe */
 	int slices, axis, resolution;
+	int hidden;                /* mesh: draw only the edges of faces turned to the eye (core/mesh.h) */
+	double tolerance;          /* mesh: coarsen within this distance of the surface (0: off) */
 	double line_width;
 	double line_colour[3];
 	/* contour */

@@ -1,6 +1,7 @@
 /* scene_render.c: render blocks of the scene language, and rendering a scene's pages to a meta writer. */
 #include "scene_int.h"
 #include "contour.h"
+#include "mesh.h"
 #include "oct.h"
 #include "wire.h"
 
@@ -82,14 +83,14 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 {
 	tok_t t;
-	static const char *kinds[] = {"raytrace", "octree", "contour", "voronoi", "wireframe"};
+	static const char *kinds[] = {"raytrace", "octree", "contour", "voronoi", "wireframe", "mesh"};
 	scene_lex_tok(lx, &t);
 	int kind = -1;
-	for (int i = 0; i < 5; i++)
+	for (int i = 0; i < 6; i++)
 		if (scene_tok_is(&t, kinds[i]))
 			kind = i;
 	if (kind < 0)
-		return scene_lex_expected(lx, &t, "raytrace, octree, contour, voronoi or wireframe");
+		return scene_lex_expected(lx, &t, "raytrace, octree, contour, voronoi, wireframe or mesh");
 	if (scene_lex_eol(lx) < 0)
 		return -1;
 	if (sc->nrenders == sc->rcap) {
@@ -122,6 +123,7 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 	r->level_to = 10;
 	r->cells = r->boundaries = 1;
 	r->draw = 1;
+	r->hidden = 1;
 	while (scene_lex_line(lx)) {
 		scene_lex_tok(lx, &t);
 		if (scene_tok_is(&t, "end"))
@@ -225,6 +227,12 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = yes_no(lx, &r->refine);
 		} else if (scene_tok_is(&t, "draw")) {
 			rc = yes_no(lx, &r->draw);
+		} else if (scene_tok_is(&t, "hidden") && kind == SCENE_MESH) {
+			rc = yes_no(lx, &r->hidden);
+		} else if (scene_tok_is(&t, "tolerance") && kind == SCENE_MESH) {
+			rc = scene_lex_number(lx, &r->tolerance, "a distance to the surface");
+			if (!rc && !(r->tolerance >= 0 && r->tolerance <= 1e6))
+				rc = scene_lex_error(lx, t.line, t.col, "expected a tolerance of 0 (no coarsening) or a positive distance");
 		} else if (scene_tok_is(&t, "bands")) {
 			rc = yes_no(lx, &r->bands);
 		} else if (scene_tok_is(&t, "metric")) {
@@ -363,6 +371,9 @@ static int render_view(scene_t *s, const scene_render_t *r, const cam_t *cam, un
 		if (rc == 0 && oct_draw(w, faces, nf, xoff) < 0)
 			rc = write_failed(w, err, errlen);
 		free(faces);
+	} else if (r->kind == SCENE_MESH) {
+		rc = mesh_scene_draw(s, r, cam, w, xoff, &st->wire_segments, err, errlen);
+		st->seconds_trace += scene_now() - t0;
 	} else {
 		meta_rgb_t c = scene_rgb(r->line_colour);
 		for (int i = 0; i < nobj && rc == 0; i++)

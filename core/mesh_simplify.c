@@ -1,0 +1,276 @@
+/* mesh_simplify.c: adaptive coarsening of a closed mesh by edge collapses that keep it closed, oriented and near the surface. */
+#include "mesh.h"
+#include "mesh_int.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define DEAD UINT32_MAX
+
+/* The triangles around a vertex. */
+typedef struct {
+	uint32_t *t;
+	uint32_t n, cap;
+} ring_t;
+
+typedef struct {
+	mesh_t *m;
+	const model_shape_t *s;
+	double tol;
+	size_t v0, t0;           /* the part of m being simplified: vertices >= v0, triangles >= t0 */
+	ring_t *ring;            /* per vertex (index - v0) */
+	unsigned char *alive;
+	uint32_t *mark, stamp;   /* per vertex: the stamp of the last link test that saw it */
+	uint64_t evals;
+	int oom;
+} simp_t;
+
+static ring_t *ring_of(simp_t *x, uint32_t v) { return &x->ring[v - x->v0]; }
+
+static int ring_add(ring_t *r, uint32_t t)
+{
+	if (r->n == r->cap) {
+		uint32_t cap = r->cap ? 2 * r->cap : 8;
+		uint32_t *q = realloc(r->t, cap * sizeof *q);
+		if (!q)
+			return -1;
+		r->t = q;
+		r->cap = cap;
+	}
+	r->t[r->n++] = t;
+	return 0;
+}
+
+static void ring_remove(ring_t *r, uint32_t t)
+{
+	for (uint32_t i = 0; i < r->n; i++)
+		if (r->t[i] == t) {
+			r->t[i] = r->t[--r->n];
+			return;
+		}
+}
+
+static void normal(const double *p, const double *q, const double *r, double n[3])
+{
+	double u[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]}, w[3] = {r[0] - p[0], r[1] - p[1], r[2] - p[2]};
+	n[0] = u[1] * w[2] - u[2] * w[1];
+	n[1] = u[2] * w[0] - u[0] * w[2];
+	n[2] = u[0] * w[1] - u[1] * w[0];
+}
+
+static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static int has(const uint32_t *t, uint32_t v) { return t[0] == v || t[1] == v || t[2] == v; }
+
+/* Try to collapse the edge a-b into one vertex on the surface; 1 when done. */
+static int collapse(simp_t *x, uint32_t a, uint32_t b)
+{
+	mesh_t *m = x->m;
+	ring_t *ra = ring_of(x, a), *rb = ring_of(x, b);
+	uint32_t shared[2], opp[2];
+	int ns = 0;
+	for (uint32_t i = 0; i < ra->n; i++) {
+		const uint32_t *t = m->t + 3 * ra->t[i];
+		if (has(t, b)) {
+			if (ns == 2)
+				return 0;
+			shared[ns] = ra->t[i];
+			opp[ns++] = t[0] != a && t[0] != b ? t[0] : t[1] != a && t[1] != b ? t[1] : t[2];
+		}
+	}
+	if (ns != 2 || opp[0] == opp[1])
+		return 0;
+	/* the link condition: a and b have no neighbour in common but the two opposite vertices
+	 * (a's neighbours stamped, b's looked up); on a closed manifold a vertex has as many
+	 * neighbours as triangles, and one of fewer than 4 would leave a pinched mesh */
+	if (ra->n < 4 || rb->n < 4)
+		return 0;
+	uint32_t stamp = ++x->stamp;
+	for (uint32_t i = 0; i < ra->n; i++)
+		for (int j = 0; j < 3; j++)
+			x->mark[m->t[3 * ra->t[i] + j] - x->v0] = stamp;
+	for (uint32_t i = 0; i < rb->n; i++)
+		for (int j = 0; j < 3; j++) {
+			uint32_t w = m->t[3 * rb->t[i] + j];
+			if (w != a && w != b && w != opp[0] && w != opp[1] && x->mark[w - x->v0] == stamp)
+				return 0;
+		}
+	/* the new place: the midpoint, moved onto the surface by a Newton step along grad F */
+	double *pa = m->v + 3 * a, *pb = m->v + 3 * b, p[3], g[3];
+	for (int i = 0; i < 3; i++)
+		p[i] = (pa[i] + pb[i]) / 2;
+	for (int it = 0; it < 2; it++) {
+		double f = mesh_field(x->s, p);
+		mesh_field_grad(x->s, p, g);
+		x->evals += 2;
+		double gg = dot(g, g);
+		if (!(gg > 0) || !(f == f))
+			return 0;
+		for (int i = 0; i < 3; i++)
+			p[i] -= f * g[i] / gg;
+	}
+	double glen = sqrt(dot(g, g));
+	/* every triangle that moves: it must keep its side (no fold) and stay within the tolerance */
+	for (int side = 0; side < 2; side++) {
+		ring_t *r = side ? rb : ra;
+		uint32_t v = side ? b : a;
+		for (uint32_t i = 0; i < r->n; i++) {
+			uint32_t ti = r->t[i];
+			if (ti == shared[0] || ti == shared[1])
+				continue;
+			const uint32_t *t = m->t + 3 * ti;
+			const double *q[3], *nq[3];
+			for (int j = 0; j < 3; j++) {
+				q[j] = m->v + 3 * t[j];
+				nq[j] = t[j] == v ? p : q[j];
+			}
+			double n0[3], n1[3];
+			normal(q[0], q[1], q[2], n0);
+			normal(nq[0], nq[1], nq[2], n1);
+			double l0 = sqrt(dot(n0, n0)), l1 = sqrt(dot(n1, n1));
+			if (!(l1 > 0) || dot(n0, n1) < 0.5 * l0 * l1)
+				return 0;   /* folds over, or turns by more than 60 degrees */
+			double c[3];
+			for (int j = 0; j < 3; j++)
+				c[j] = (nq[0][j] + nq[1][j] + nq[2][j]) / 3;
+			x->evals++;
+			if (fabs(mesh_field(x->s, c)) > x->tol * glen)
+				return 0;   /* its centre would lie farther than the tolerance (first order) */
+		}
+	}
+	/* collapse: b's triangles move to a; the two shared ones go */
+	memcpy(pa, p, sizeof p);
+	for (int k = 0; k < 2; k++) {
+		uint32_t *t = m->t + 3 * shared[k];
+		ring_remove(ra, shared[k]);
+		ring_remove(rb, shared[k]);
+		ring_remove(ring_of(x, opp[k]), shared[k]);
+		t[0] = t[1] = t[2] = DEAD;
+	}
+	for (uint32_t i = 0; i < rb->n; i++) {
+		uint32_t *t = m->t + 3 * rb->t[i];
+		for (int j = 0; j < 3; j++)
+			if (t[j] == b)
+				t[j] = a;
+		if (ring_add(ra, rb->t[i]) < 0) {
+			x->oom = 1;
+			return 0;
+		}
+	}
+	rb->n = 0;
+	x->alive[b - x->v0] = 0;
+	return 1;
+}
+
+typedef struct {
+	double len;
+	uint32_t a, b;
+} edge_t;
+
+static int by_length(const void *p, const void *q)
+{
+	const edge_t *e = p, *f = q;
+	if (e->len != f->len)
+		return e->len < f->len ? -1 : 1;
+	return e->a != f->a ? (e->a < f->a ? -1 : 1) : (e->b < f->b ? -1 : e->b > f->b);
+}
+
+/* One pass over the edges, shortest first; the number of collapses, or -1 (out of memory). */
+static long pass(simp_t *x)
+{
+	mesh_t *m = x->m;
+	size_t n = 0;
+	edge_t *e = malloc((3 * (m->nt - x->t0) + 1) * sizeof *e);
+	if (!e)
+		return -1;
+	for (size_t i = x->t0; i < m->nt; i++) {
+		const uint32_t *t = m->t + 3 * i;
+		if (t[0] == DEAD)
+			continue;
+		for (int j = 0; j < 3; j++) {
+			uint32_t a = t[j], b = t[(j + 1) % 3];
+			if (a < b) {   /* each edge of a closed mesh once */
+				const double *p = m->v + 3 * a, *q = m->v + 3 * b;
+				double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+				e[n++] = (edge_t){sqrt(dot(d, d)), a, b};
+			}
+		}
+	}
+	qsort(e, n, sizeof *e, by_length);
+	long done = 0;
+	for (size_t i = 0; i < n && !x->oom; i++)
+		if (x->alive[e[i].a - x->v0] && x->alive[e[i].b - x->v0])
+			done += collapse(x, e[i].a, e[i].b);
+	free(e);
+	return x->oom ? -1 : done;
+}
+
+int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
+                  uint64_t *evals, char *err, size_t errlen)
+{
+	simp_t x;
+	memset(&x, 0, sizeof x);
+	x.m = m;
+	x.s = s;
+	x.tol = tol;
+	x.v0 = v0;
+	x.t0 = t0;
+	size_t nv = m->nv - v0;
+	x.ring = calloc(nv + 1, sizeof *x.ring);
+	x.alive = malloc(nv + 1);
+	x.mark = calloc(nv + 1, sizeof *x.mark);
+	uint32_t *map = NULL;
+	int rc = -1;
+	if (!x.ring || !x.alive || !x.mark)
+		goto done;
+	memset(x.alive, 1, nv);
+	for (size_t i = t0; i < m->nt; i++)
+		for (int j = 0; j < 3; j++)
+			if (ring_add(ring_of(&x, m->t[3 * i + j]), (uint32_t)i) < 0)
+				goto done;
+	for (int k = 0; k < 4; k++) {
+		long c = pass(&x);
+		if (c < 0)
+			goto done;
+		if ((size_t)c * 20 < nv)
+			break;   /* under 5% more: done (the first pass does nearly all) */
+	}
+	/* compact: live vertices renumbered in order, dead triangles dropped */
+	map = malloc((nv + 1) * sizeof *map);
+	if (!map)
+		goto done;
+	size_t w = v0;
+	for (size_t i = 0; i < nv; i++)
+		if (x.alive[i]) {
+			map[i] = (uint32_t)w;
+			memmove(m->v + 3 * w, m->v + 3 * (v0 + i), 3 * sizeof *m->v);
+			w++;
+		}
+	m->nv = w;
+	w = t0;
+	for (size_t i = t0; i < m->nt; i++) {
+		const uint32_t *t = m->t + 3 * i;
+		if (t[0] == DEAD)
+			continue;
+		for (int j = 0; j < 3; j++)
+			m->t[3 * w + j] = map[t[j] - v0];
+		w++;
+	}
+	m->nt = w;
+	rc = 0;
+done:
+	if (rc < 0)
+		snprintf(err, errlen, "out of memory simplifying the mesh");
+	if (x.ring)
+		for (size_t i = 0; i < nv; i++)
+			free(x.ring[i].t);
+	free(x.ring);
+	free(x.alive);
+	free(x.mark);
+	free(map);
+	if (evals)
+		*evals += x.evals;
+	return rc;
+}

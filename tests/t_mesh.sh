@@ -1,0 +1,182 @@
+#!/bin/sh
+# t_mesh.sh: polygonisation end to end: admesh (Debian) finds the STL closed and consistently
+# oriented with the analytic volume, the PLY and OBJ hold the same mesh, the wireframe page lies
+# on the ray-traced silhouette, and bad mesh scenes fail with one located line and no output.
+. tests/lib.sh
+R="$BIN/locus-render"
+PY=python3
+
+# admesh_field FILE LABEL: the number after "LABEL :" in admesh's report
+admesh_field() { sed -n "s/^$2 *: *\([-0-9.]*\).*/\1/p" "$1" | head -1; }
+# within A B PCT: |A - B| <= PCT% of B
+within() { awk -v a="$1" -v b="$2" -v p="$3" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= p / 100 * b)}'; }
+stat() { grep -o -E "(^| )$1=[^ ]+" "$2" | head -1 | sed 's/.*=//'; }
+
+# 1. sphere and ellipsoid through admesh: closed, no wrongly oriented facet, the analytic volume
+# (the capsule coarsened within 0.001: `tolerance`, the adaptive mesh)
+for c in "sphere 4.18879020 12.5663706" "ellipsoid 4.02123859 12.4082835" "capsule 2.56563400 11.3097336"; do
+	set -- $c
+	n=$1 vol=$2 area=$3
+	if ! "$R" "fixtures/mesh/$n.scene" -o "$T/$n.stl" --stats 2> "$T/$n.stats"; then
+		notok "$n: locus-render -o $n.stl: $(tail -1 "$T/$n.stats")"; continue
+	fi
+	if ! command -v admesh > /dev/null; then notok "admesh missing (Debian admesh)"; continue; fi
+	admesh "$T/$n.stl" > "$T/$n.admesh" 2>&1
+	tri=$(stat triangles "$T/$n.stats")
+	facets=$(sed -n 's/^Number of facets *: *\([0-9]*\).*/\1/p' "$T/$n.admesh")
+	grep -q "Binary STL" "$T/$n.admesh" && [ "$facets" = "$tri" ] && ok "$n: admesh reads $tri facets of binary STL" \
+		|| notok "$n: admesh facets '$facets', locus-render says $tri"
+	bad=""
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$T/$n.admesh" "$f")
+		[ "$v" = 0 ] || bad="$bad $f=$v"
+	done
+	grep -q "No holes need to be filled" "$T/$n.admesh" || bad="$bad holes"
+	[ -z "$bad" ] && [ "$(admesh_field "$T/$n.admesh" "Number of parts")" = 1 ] \
+		&& ok "$n: admesh: one part, no open edge, no wrongly oriented facet, no degenerate facet" \
+		|| notok "$n: admesh:$bad parts=$(admesh_field "$T/$n.admesh" "Number of parts")"
+	v=$(sed -n 's/.*Volume *: *\([0-9.]*\).*/\1/p' "$T/$n.admesh")
+	within "$v" "$vol" 0.5 && ok "$n: admesh volume $v within 0.5% of $vol" || notok "$n: admesh volume '$v', exact $vol"
+	a=$(stat area "$T/$n.stats")
+	within "$a" "$area" 0.5 && ok "$n: area $a within 0.5% of $area" || notok "$n: area '$a', exact $area"
+done
+
+# 1b. coarsening keeps the capsule's round caps fine and makes its cylinder coarse: far fewer
+# triangles than the same depth without a tolerance
+sed '/tolerance/d' fixtures/mesh/capsule.scene > "$T/cap0.scene"
+"$R" "$T/cap0.scene" -o "$T/cap0.stl" --stats 2> "$T/cap0.stats"
+t0=$(stat triangles "$T/cap0.stats") t1=$(stat triangles "$T/capsule.stats")
+[ -n "$t0" ] && [ -n "$t1" ] && [ $((t1 * 4)) -lt "$t0" ] && ok "tolerance 0.001 coarsens the capsule from $t0 to $t1 triangles" \
+	|| notok "capsule coarsening: $t0 -> $t1 triangles"
+
+# 2. the same mesh as PLY and OBJ: their headers, counts and indices, and the STL's facets
+"$R" fixtures/mesh/ellipsoid.scene -o "$T/e.ply" && "$R" fixtures/mesh/ellipsoid.scene -o "$T/E.OBJ" \
+	&& ok "PLY and OBJ (any case of suffix) written" || notok "PLY/OBJ"
+if $PY - "$T/ellipsoid.stl" "$T/e.ply" "$T/E.OBJ" > "$T/fmt.out" 2>&1 <<'PYEOF'
+import struct, sys
+stl, ply, obj = (open(p, 'rb').read() for p in sys.argv[1:4])
+n = struct.unpack_from('<I', stl, 80)[0]
+assert len(stl) == 84 + 50 * n, 'STL size'
+tri_stl = [struct.unpack_from('<9f', stl, 84 + 50 * i + 12) for i in range(n)]
+end = ply.index(b'end_header\n') + 11
+head = ply[:end].decode().split('\n')
+assert head[0] == 'ply' and head[1] == 'format binary_little_endian 1.0', head[:2]
+nv = int([l for l in head if l.startswith('element vertex')][0].split()[2])
+nf = int([l for l in head if l.startswith('element face')][0].split()[2])
+assert nf == n, 'PLY faces %d, STL %d' % (nf, n)
+v = struct.unpack_from('<%df' % (3 * nv), ply, end)
+off = end + 12 * nv
+assert len(ply) == off + 13 * nf, 'PLY size'
+tri_ply = []
+for i in range(nf):
+    k, a, b, c = struct.unpack_from('<B3i', ply, off + 13 * i)
+    assert k == 3 and 0 <= min(a, b, c) and max(a, b, c) < nv
+    tri_ply.append(tuple(v[3 * a:3 * a + 3] + v[3 * b:3 * b + 3] + v[3 * c:3 * c + 3]))
+assert tri_ply == tri_stl, 'PLY and STL triangles differ'
+ov, of = [], []
+for line in obj.decode().split('\n'):
+    w = line.split()
+    if w and w[0] == 'v': ov.append(tuple(struct.unpack('<f', struct.pack('<f', float(x)))[0] for x in w[1:4]))
+    elif w and w[0] == 'f': of.append(tuple(int(x) - 1 for x in w[1:4]))
+assert len(ov) == nv and len(of) == nf, 'OBJ counts'
+tri_obj = [ov[a] + ov[b] + ov[c] for a, b, c in of]
+assert tri_obj == tri_stl, 'OBJ and STL triangles differ'
+print('same %d triangles, %d vertices' % (n, nv))
+PYEOF
+then ok "PLY and OBJ hold the STL's triangles in the same order and winding ($(cat "$T/fmt.out"))"
+else notok "PLY/OBJ against STL: $(tail -1 "$T/fmt.out")"; fi
+
+# 2b. the bench's Hausdorff measure (tests/bench/skimage_mc.py) on a mesh worked out by hand: the
+# octahedron of the unit points on the axes, inscribed in the unit sphere, is 1 - 1/sqrt(3) =
+# 0.42265 from it both ways (at the face centres, and the sphere points above them)
+$PY - "$T/octa.ply" <<'PYEOF'
+import struct, sys
+v = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+f = [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)]
+h = ("ply\nformat binary_little_endian 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+     "property float z\nelement face 8\nproperty list uchar int vertex_indices\nend_header\n").encode()
+open(sys.argv[1], "wb").write(h + b"".join(struct.pack("<3f", *p) for p in v) + b"".join(struct.pack("<B3i", 3, *t) for t in f))
+PYEOF
+$PY tests/bench/skimage_mc.py hausdorff sphere "$T/octa.ply" > "$T/octa.h" 2>&1
+hd=$(stat hausdorff "$T/octa.h") hm=$(stat h_mesh_to_surface "$T/octa.h") hs=$(stat h_surface_to_mesh "$T/octa.h")
+within "$hd" 0.422650 0.1 && within "$hm" 0.422650 0.1 && within "$hs" 0.422650 0.1 \
+	&& ok "Hausdorff measure of the inscribed octahedron: $hd ($hm, $hs; exact 0.42265)" || notok "octahedron Hausdorff: $(cat "$T/octa.h")"
+
+# 3. the wireframe page: valid meta, its ink on the ray-traced silhouette of the same object
+S=fixtures/mesh/mesh-trifocal.scene
+if "$R" "$S" -o "$T/w.meta" --quiet && "$BIN/locus-meta" check "$T/w.meta" > /dev/null 2>&1 \
+	&& "$BIN/locus-raster" "$T/w.meta" -o "$T/w.ppm"; then
+	ok "mesh wireframe renders and passes locus-meta check"
+	$PY - "$T/w-001.ppm" "$T/w-002.ppm" > "$T/sil.out" 2>&1 <<'PYEOF'
+import sys
+def ppm(p):
+    d = open(p, 'rb').read().split(b'\n', 3)
+    w, h = map(int, d[1].split())
+    return w, h, d[3]
+w, h, wire = ppm(sys.argv[1])
+_, _, rt = ppm(sys.argv[2])
+ink = {(i % w, i // w) for i in range(w * h) if wire[3 * i:3 * i + 3] != b'\xff\xff\xff'}
+sil = {(i % w, i // w) for i in range(w * h) if rt[3 * i:3 * i + 3] != b'\xff\xff\xff'}
+near = {(x + dx, y + dy) for x, y in sil for dx in (-2, -1, 0, 1, 2) for dy in (-2, -1, 0, 1, 2)}
+outside = len(ink - near)
+box = lambda s: (min(p[0] for p in s), min(p[1] for p in s), max(p[0] for p in s), max(p[1] for p in s))
+bi, bs = box(ink), box(sil)
+d = max(abs(a - b) for a, b in zip(bi, bs))
+print('ink %d px, %d outside the silhouette, bounding boxes %s %s' % (len(ink), outside, bi, bs))
+sys.exit(0 if outside == 0 and d <= 2 and len(ink) > 5000 else 1)
+PYEOF
+	[ $? = 0 ] && ok "wireframe lies on the ray-traced silhouette: $(cat "$T/sil.out")" || notok "wireframe vs silhouette: $(cat "$T/sil.out")"
+else
+	notok "mesh wireframe scene"
+fi
+
+# 4. bad input: one located line, exit 65 (74 for I/O), no output file
+bad() {   # bad DESC EXIT PATTERN SCENE-TEXT
+	printf '%s\n' "$4" > "$T/bad.scene"
+	rm -f "$T/bad.stl"
+	"$R" "$T/bad.scene" -o "$T/bad.stl" --quiet 2> "$T/bad.err"
+	r=$?
+	if [ "$r" = "$2" ] && [ "$(wc -l < "$T/bad.err")" = 1 ] && grep -q "$3" "$T/bad.err" && [ ! -e "$T/bad.stl" ]; then
+		ok "$1: $(cat "$T/bad.err")"
+	else
+		notok "$1: exit $r, $(cat "$T/bad.err"), output $(ls "$T/bad.stl" 2>/dev/null)"
+	fi
+}
+OBJ='object b
+  point 0 0 0
+  c 1
+end'
+bad "mesh depth 11" 65 "bad.scene:5:1: expected a mesh depth from 1 to 10" "$OBJ
+render mesh
+  depth 11
+end"
+bad "nothing drawn" 65 "bad.scene:1:1: the mesh is empty: the scene draws no object" 'shape b
+  point 0 0 0
+  c 1
+end'
+bad "empty shape" 65 "bad.scene:6:1: the mesh is empty: no drawn object" 'object b
+  point 1 0 0
+  point -1 0 0
+  c 1.5
+end
+render mesh
+end'
+bad "hidden takes yes or no" 65 "bad.scene:6:10: expected yes or no" "$OBJ
+render mesh
+  hidden maybe
+end"
+bad "negative tolerance" 65 "bad.scene:6:3: expected a tolerance of 0" "$OBJ
+render mesh
+  tolerance -1
+end"
+bad "hidden only in a mesh block" 65 "bad.scene:6:3: expected a render option" "$OBJ
+render wireframe
+  hidden no
+end"
+"$R" fixtures/mesh/sphere.scene -o "$T/no/such/dir/x.stl" 2> "$T/io.err"
+[ $? = 74 ] && [ "$(wc -l < "$T/io.err")" = 1 ] && ok "unwritable mesh output: exit 74, $(cat "$T/io.err")" \
+	|| notok "unwritable mesh output: $(cat "$T/io.err")"
+"$R" fixtures/mesh/sphere.scene -o /dev/full 2> "$T/full.err"
+[ $? = 74 ] && ok "mesh to /dev/full: exit 74" || notok "mesh to /dev/full: $(cat "$T/full.err")"
+done_tests
