@@ -3,12 +3,14 @@
 #include "device.h"
 
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops, dev_null_ops;
+extern const dev_ops_t dev_hpgl_ops;
 
 const dev_ops_t *const dev_registry[] = {
 	&dev_png_ops,
 	&dev_ppm_ops,
 	&dev_rle_ops,
 	&dev_null_ops,
+	&dev_hpgl_ops,
 	NULL
 };
 
