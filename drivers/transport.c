@@ -1,13 +1,14 @@
 /* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
- * files (tr-file.c) and device links (the io_link_t table; none implemented yet). */
+ * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
-#include "transport_int.h"
+#include "tr_link.h"
 
 #define IOBUF (1 << 16)
 
@@ -19,12 +20,61 @@ int io_set_err(io_transport_t *t, const char *what)
 	return -1;
 }
 
-/* The device links; a later issue fills in their open, write, read and close. */
+int io_link_fail(io_transport_t *t, const char *fmt, ...)
+{
+	va_list ap;
+	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
+	va_start(ap, fmt);
+	if (n > 0 && (size_t)n < sizeof t->err)
+		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	va_end(ap);
+	t->failed = 1;
+	errno = EIO;
+	return -1;
+}
+
+/* The device links (a NULL open: reserved, "not supported yet"). */
 static const io_link_t links[] = {
-	{ "serial:", NULL, NULL, NULL, NULL },
+	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close },
+	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close },
 	{ "usb:", NULL, NULL, NULL, NULL },
 	{ "hid:", NULL, NULL, NULL, NULL },
 };
+
+int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen)
+{
+	const char *s = *p;
+	if (!*s)
+		return 0;
+	const char *amp = strchr(s, '&'), *end = amp ? amp : s + strlen(s);
+	const char *eq = memchr(s, '=', (size_t)(end - s));
+	*p = amp ? amp + 1 : end;
+	if (!eq || eq == s || (size_t)(eq - s) >= klen || (size_t)(end - eq - 1) >= vlen)
+		return -1;
+	memcpy(key, s, (size_t)(eq - s));
+	key[eq - s] = 0;
+	memcpy(val, eq + 1, (size_t)(end - eq - 1));
+	val[end - eq - 1] = 0;
+	return 1;
+}
+
+int tr_parse_long(const char *s, long lo, long hi, long *out)
+{
+	char *e;
+	errno = 0;
+	long v = strtol(s, &e, 10);
+	if (!*s || *e || errno || v < lo || v > hi)
+		return -1;
+	*out = v;
+	return 0;
+}
+
+long long tr_now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
 
 static const io_link_t *link_of(const char *name)
 {
@@ -136,6 +186,8 @@ int io_flush(io_transport_t *t)
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
+			if (t->link && t->failed)
+				return -1;   /* the link said it in its own words */
 			return io_set_err(t, "write failed");
 		}
 		if (w == 0) {
@@ -211,6 +263,8 @@ long io_read(io_transport_t *t, void *buf, size_t n)
 		ssize_t r = t->link ? t->link->read(t, buf, n) : read(t->fd, buf, n);
 		if (r >= 0)
 			return (long)r;
+		if (t->link && t->failed)
+			return -1;
 		if (errno != EINTR)
 			return io_set_err(t, "read failed");
 	}
@@ -225,7 +279,7 @@ static int finish_fd(io_transport_t *t, int how)
 		rc = io_flush(t);
 	if (t->link) {
 		if (t->link->close(t) < 0 && rc == 0 && how != IO_ABORT)
-			rc = io_set_err(t, "close failed");
+			rc = t->failed ? -1 : io_set_err(t, "close failed");
 		t->link = NULL;
 		return rc;
 	}
