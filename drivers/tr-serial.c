@@ -19,6 +19,7 @@ static const char *const flow_names[] = { "none", "xonxoff", "rtscts", "escb" };
 
 typedef struct {
 	int fd;
+	struct termios saved;  /* the line as we found it: put back at close */
 	int flow;
 	long timeout_ms;      /* no progress for this long: the write fails */
 	long bufsize;         /* escb: the plotter's buffer (ESC.L) */
@@ -117,6 +118,27 @@ static int ask_number(io_transport_t *t, serial_t *s, const char *q, const char 
 	if (e == rep)
 		return io_link_fail(t, "the answer to %s is no number: '%s'", what, rep);
 	return 0;
+}
+
+/* 1 when path is the system console (/dev/console, /dev/tty, or a line the kernel writes its
+ * console to, /sys/class/tty/console/active): a job is never sent there. */
+static int is_console(const char *path)
+{
+	char real[4096], act[256];
+	if (!realpath(path, real))
+		return 0;
+	const char *b = strrchr(real, '/') ? strrchr(real, '/') + 1 : real;
+	if (!strcmp(b, "console") || !strcmp(b, "tty"))
+		return 1;
+	FILE *f = fopen("/sys/class/tty/console/active", "r");
+	if (!f)
+		return 0;
+	int hit = 0;
+	while (fscanf(f, "%255s", act) == 1)
+		if (!strcmp(act, b))
+			hit = 1;
+	fclose(f);
+	return hit;
 }
 
 static int open_fail(char *err, size_t errlen, const char *path, int e)
@@ -238,6 +260,12 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 		free(s);
 		return -1;
 	}
+	if (is_console(path)) {
+		snprintf(err, errlen, "%s: %s is the system console (/sys/class/tty/console/active): "
+			"a job is never sent there; name the plotter's own line", t->name, path);
+		free(s);
+		return -1;
+	}
 	s->fd = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
 	if (s->fd < 0) {
 		int e = errno;
@@ -250,6 +278,7 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 		goto fail;
 	}
 	tio.c_line = old.c_line;
+	s->saved = old;
 	if (tcsetattr(s->fd, TCSANOW, &tio) < 0) {
 		snprintf(err, errlen, "%s: cannot set the line up: %s", t->name, strerror(errno));
 		goto fail;
@@ -279,6 +308,7 @@ fail_t:
 	snprintf(err, errlen, "%s", t->err);
 	t->link_state = NULL;
 	t->failed = 0;
+	tcsetattr(s->fd, TCSANOW, &s->saved);
 fail:
 	close(s->fd);
 	free(s);
@@ -342,6 +372,7 @@ int tr_serial_close(io_transport_t *t)
 		while (ioctl(s->fd, TIOCOUTQ, &q) == 0 && q > 0 && tr_now_ms() < end)
 			sleep_ms(5);
 	}
+	tcsetattr(s->fd, TCSANOW, &s->saved);
 	if (close(s->fd) < 0 && rc == 0)
 		rc = -1;
 	free(s);

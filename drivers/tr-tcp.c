@@ -176,8 +176,8 @@ int tr_tcp_close(io_transport_t *t)
 				break;
 			if (r < 0 && errno != EAGAIN && errno != EINTR) {
 				if (errno == ECONNRESET)
-					rc = io_link_fail(t, "the printer dropped the connection at the end of the job: "
-						"it may be incomplete");
+					rc = io_link_fail(t, "the printer dropped the connection before it confirmed "
+						"the end of the job: send it again");
 				break;
 			}
 		}
