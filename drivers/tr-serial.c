@@ -19,7 +19,7 @@ static const char *const flow_names[] = { "none", "xonxoff", "rtscts", "escb" };
 
 typedef struct {
 	int fd;
-	struct termios saved;  /* the line as we found it: put back at close */
+	struct termios saved;  /* the line as we found it: put back when the open fails */
 	int flow;
 	long timeout_ms;      /* no progress for this long: the write fails */
 	long bufsize;         /* escb: the plotter's buffer (ESC.L) */
@@ -372,7 +372,6 @@ int tr_serial_close(io_transport_t *t)
 		while (ioctl(s->fd, TIOCOUTQ, &q) == 0 && q > 0 && tr_now_ms() < end)
 			sleep_ms(5);
 	}
-	tcsetattr(s->fd, TCSANOW, &s->saved);
 	if (close(s->fd) < 0 && rc == 0)
 		rc = -1;
 	free(s);
