@@ -37,7 +37,7 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 static const io_link_t links[] = {
 	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close },
 	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close },
-	{ "usb:", NULL, NULL, NULL, NULL },
+	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close },
 	{ "hid:", NULL, NULL, NULL, NULL },
 };
 
