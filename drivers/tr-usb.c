@@ -254,16 +254,16 @@ long tr_usb_write(io_transport_t *t, const void *buf, size_t n)
 	for (;;) {
 		int sent = 0;
 		int r = libusb_bulk_transfer(s->h, s->ep_out, (unsigned char *)buf, len, &sent, 1000);
+		if (r == LIBUSB_ERROR_PIPE)
+			libusb_clear_halt(s->h, s->ep_out);   /* a stalled endpoint takes nothing until cleared */
 		if (sent > 0) {   /* what went, went: a timeout or a stall keeps its partial count */
 			s->sent += sent;
 			return sent;
 		}
 		if (r == 0)
 			r = LIBUSB_ERROR_TIMEOUT;   /* nothing taken: busy */
-		if (r == LIBUSB_ERROR_PIPE && stalls++ == 0) {
-			libusb_clear_halt(s->h, s->ep_out);   /* a stall: clear it, try once more */
-			continue;
-		}
+		if (r == LIBUSB_ERROR_PIPE && stalls++ == 0)
+			continue;   /* a stall with nothing sent: try once more */
 		if (r == LIBUSB_ERROR_NO_DEVICE || r == LIBUSB_ERROR_IO)
 			return io_link_fail(t, "the printer went away after %lld bytes (unplugged or off): %s",
 				s->sent, libusb_strerror(r));

@@ -4,3 +4,9 @@ TESTPROGS += $(B)/tests/emu-plotter
 $(B)/tests/emu-plotter: $(B)/tests/emu/plotemu.o $(B)/libdrivers.a $(B)/libmeta.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(LDLIBS_ALL)
+# The USB printer emulator: a libumockdev testbed with a usbdevfs ioctl handler (glib).
+TESTPROGS += $(B)/tests/emu-usb
+$(B)/tests/emu/usbemu.o: CFLAGS += $(shell pkg-config --cflags umockdev-1.0 2>/dev/null)
+$(B)/tests/emu-usb: $(B)/tests/emu/usbemu.o
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(shell pkg-config --libs umockdev-1.0 2>/dev/null)
