@@ -69,6 +69,29 @@ job unplug --unplug-at 6000 -- usb:03f0:0107
 	&& [ "$(word received "$T/unplug")" = 6000 ] && ok "unplugged at byte 6000: one line naming how far it got, exit 74" \
 	|| notok "unplug: $(cat "$T/unplug" "$T/unplug.err")"
 
+# Unplugged mid-number with a journal, then resumed on a fresh device: the two parts hold every
+# pen-down segment of the job once (through the HP-GL reader), none redrawn, none skipped.
+SEG=$TESTBIN/hpgl-segments
+rm -f "$T/j"
+"$EMU" --unplug-at 6003 --record "$T/part1" -- "$H" "$META" -o "usb:03f0:0107?journal=$T/j" > "$T/u1" 2> "$T/u1.all"
+grep -v warning "$T/u1.all" > "$T/u1.err"
+safe=$(sed -n 's/^safe //p' "$T/j")
+[ "$(word child "$T/u1")" = 74 ] && [ "$(wc -l < "$T/u1.err")" = 1 ] && grep -q "page 1, command [0-9]* (byte $safe of the job) reached; resume with -o 'usb:03f0:0107?resume=$T/j'" "$T/u1.err" 	&& [ "$safe" -le 6003 ] && [ "$safe" -gt 5900 ] 	&& ok "unplugged with journal=: one line with the page, command and byte reached (boundary $safe of 6003 sent) and the resume name" 	|| notok "journal: $(cat "$T/u1" "$T/u1.err" "$T/j")"
+"$EMU" --record "$T/part2" -- "$H" "$META" -o "usb:03f0:0107?resume=$T/j" > "$T/u2" 2> "$T/u2.all"
+head -c "$safe" "$T/part1" > "$T/part1.cut"
+"$SEG" "$T/job.hpgl" | sort > "$T/seg.job"
+"$SEG" "$T/part1.cut" "$T/part2" | sort > "$T/seg.parts"
+[ "$(word child "$T/u2")" = 0 ] && [ -s "$T/seg.job" ] && cmp -s "$T/seg.job" "$T/seg.parts" 	&& ok "resume=: the rest with the modal state restored; the parts draw each of the $(wc -l < "$T/seg.job") segments once" 	|| notok "resume: $(cat "$T/u2" "$T/u2.all"; diff "$T/seg.job" "$T/seg.parts" | head -5)"
+"$SEG" "$T/part1.cut" "$T/part2" "$T/part2" | sort > "$T/seg.twice"
+cmp -s "$T/seg.job" "$T/seg.twice" && notok "control: a part sent twice should show as doubled" || ok "control: a part sent twice shows as doubled segments"
+grep -q "^state done" "$T/j" && ok "the journal says done after the resumed job" || notok "journal state: $(cat "$T/j")"
+"$EMU" -- "$H" "$META" -o "usb:03f0:0107?resume=$T/j" > "$T/u3" 2> "$T/u3.all"
+grep -q "delivered whole: nothing to resume" "$T/u3.all" && [ "$(word received "$T/u3")" = 0 ] 	&& ok "resuming a finished job: one line, nothing sent" || notok "resume done: $(cat "$T/u3" "$T/u3.all")"
+rm -f "$T/j2"
+"$EMU" --unplug-at 3000 -- "$H" "$META" -o "usb:03f0:0107?journal=$T/j2" > /dev/null 2>&1
+"$EMU" -- "$H" fixtures/meta/f-test.meta -o "usb:03f0:0107?resume=$T/j2" > "$T/u4" 2> "$T/u4.all"
+grep -Eq "the job differs from the journaled one|the job ended before the point the journal reached" "$T/u4.all" && [ "$(word received "$T/u4")" = 0 ] 	&& ok "resuming with another job: refused in one line, nothing sent" || notok "other job: $(cat "$T/u4" "$T/u4.all")"
+
 # No such device (no emulator at all), bad names.
 bad() {
 	desc=$1 name=$2 words=$3

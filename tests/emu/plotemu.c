@@ -636,5 +636,9 @@ int main(int argc, char **argv)
 	free(job);
 	free(e.rec);
 	free(e.ring);
+	for (int k = 0; cv[k]; k++)
+		if (cv[k] != argv[i + 1 + k])
+			free(cv[k]);
+	free(cv);
 	return bad ? 1 : 0;
 }

@@ -381,7 +381,8 @@ int main(int argc, char **argv)
 	if (rec_path) {
 		FILE *f = fopen(rec_path, "wb");
 		if (f) {
-			fwrite(d.rec, 1, d.nrec, f);
+			if (d.nrec)
+				fwrite(d.rec, 1, d.nrec, f);
 			fclose(f);
 		}
 	}
@@ -391,7 +392,7 @@ int main(int argc, char **argv)
 		if (!g_file_get_contents(expect, &want, &nw, NULL)) {
 			printf(" expect=unreadable");
 			bad = 1;
-		} else if (nw == d.nrec && !memcmp(want, d.rec, nw)) {
+		} else if (nw == d.nrec && (nw == 0 || !memcmp(want, d.rec, nw))) {
 			printf(" bytes=same");
 		} else {
 			size_t k = 0;

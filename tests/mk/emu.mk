@@ -10,3 +10,8 @@ $(B)/tests/emu/usbemu.o: CFLAGS += $(shell pkg-config --cflags umockdev-1.0 2>/d
 $(B)/tests/emu-usb: $(B)/tests/emu/usbemu.o
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(shell pkg-config --libs umockdev-1.0 2>/dev/null)
+# Pen-down segments of HP-GL files (through the HP-GL reader), for the resume tests.
+TESTPROGS += $(B)/tests/hpgl-segments
+$(B)/tests/hpgl-segments: $(B)/tests/emu/hpglseg.o $(B)/libdrivers.a $(B)/libmeta.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(LDLIBS_ALL)
