@@ -31,6 +31,13 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
+/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts" (a CP2110
+ * HID UART bridge through hidapi). */
+int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
+long tr_hid_read(io_transport_t *t, void *buf, size_t n);
+int tr_hid_close(io_transport_t *t);
+
 /* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
  * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);

@@ -39,7 +39,7 @@ static const io_link_t links[] = {
 	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close },
 	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close },
 	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close },
-	{ "hid:", NULL, NULL, NULL, NULL },
+	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close },
 };
 
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen)

@@ -11,6 +11,8 @@
  *   --unplug-at N    the device is gone from byte N on (every URB fails with ENODEV)
  *   --status B       the port status byte (0x18: selected, no error; 0x38 adds paper empty)
  *   --id-le          send the device ID length little-endian
+ *   --cp2110         be a Silicon Labs CP2110 HID UART bridge (10c4:ea80) instead: feature
+ *                    reports 0x41/0x50/0x43 set up its UART, interrupt OUT reports carry data
  *   --record FILE, --expect FILE   as emu-plotter
  * Prints one line "child=S received=N stalls=N clears=N detached=N attached=N ... bytes=same";
  * exits 0 when the child exited 0 and what arrived is what was expected. */
@@ -28,6 +30,11 @@
 #include <unistd.h>
 
 #define DEVNODE "/dev/bus/usb/001/002"
+/* CP2110 mode: a vendor-defined report descriptor, 63-byte input and output reports. */
+static const unsigned char report_desc[] = {
+	0x06, 0x00, 0xFF, 0x09, 0x01, 0xA1, 0x01, 0x85, 0x01, 0x95, 0x3F, 0x75, 0x08, 0x15, 0x00,
+	0x26, 0xFF, 0x00, 0x09, 0x01, 0x81, 0x02, 0x09, 0x01, 0x91, 0x02, 0xC0,
+};
 static const char device_id_str[] = "MFG:Locus;MDL:Emulated 7475A;CMD:HPGL;CLS:PRINTER;DES:Locus test plotter;";
 
 typedef struct {
@@ -40,7 +47,8 @@ typedef struct {
 	int stalled, shorted, driver_bound, halted;
 	double hold_until;
 	long stalls, clears, detaches, attaches, claims, releases, setconfigs, idreads, statusreads, resets;
-	GList *done;   /* completed URBs (UMockdevIoctlData of the urb) waiting to be reaped */
+	int cp2110, uart_on, purges;
+	unsigned char uart[9];    /* the last 0x50 configuration report */
 } dev_t_;
 
 static double now_s(void)
@@ -67,8 +75,29 @@ static int control(dev_t_ *d, const unsigned char *s, unsigned char *out, int ca
 {
 	int type = s[0], req = s[1], value = s[2] | s[3] << 8, len = s[6] | s[7] << 8;
 	(void)value;
+	if (d->cp2110 && type == 0x81 && req == 6 && s[3] == 0x22) {   /* the HID report descriptor */
+		int n = (int)sizeof report_desc;
+		memcpy(out, report_desc, sizeof report_desc);
+		return n < len ? n : len;
+	}
+	if (d->cp2110 && type == 0x21 && req == 0x09) {   /* SET_REPORT (feature) */
+		const unsigned char *p = s + 8;
+		if (p[0] == 0x41)
+			d->uart_on = p[1];
+		else if (p[0] == 0x50 && len >= 9)
+			memcpy(d->uart, p, 9);
+		else if (p[0] == 0x43)
+			d->purges++;
+		else
+			return -1;
+		return 0;
+	}
+	if (d->cp2110 && type == 0x21 && req == 0x0A)   /* SET_IDLE */
+		return 0;
 	if (type == 0x80 && req == 6 && s[3] == 3) {   /* string descriptors */
-		static const char *const str[] = { NULL, "Locus", "Emulated 7475A", "LT0001" };
+		static const char *const pstr[] = { NULL, "Locus", "Emulated 7475A", "LT0001" };
+		static const char *const hstr[] = { NULL, "Silicon Labs", "CP2110 HID USB-to-UART Bridge", "0001ABCD" };
+		const char *const *str = d->cp2110 ? hstr : pstr;
 		int idx = s[2], n;
 		if (idx == 0) {
 			n = 4;
@@ -241,8 +270,16 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 				f->actual = k;
 				f->status = st;
 			}
+		} else if (d->cp2110 && urb->type == USBDEVFS_URB_TYPE_INTERRUPT && !(urb->endpoint & 0x80)) {
+			const unsigned char *p = b->data;   /* report ID = count, then the data */
+			int k = urb->buffer_length > 0 ? p[0] : 0;
+			if (k > urb->buffer_length - 1 || !d->uart_on)
+				f->status = -EPIPE;   /* a bad report, or data before the UART is enabled */
+			else
+				take(d, p + 1, (size_t)k);
+			f->actual = urb->buffer_length;
 		} else {
-			f->held = 1;   /* bulk IN: the back-channel has nothing to say; it times out */
+			f->held = 1;   /* IN: nothing to say; it times out or is discarded at close */
 		}
 		umockdev_ioctl_data_unref(b);
 		flying = g_list_append(flying, f);
@@ -298,6 +335,16 @@ static const char descriptors[] =
 	/* bulk OUT 0x01 and bulk IN 0x82, 512 bytes */
 	"0705010200020007058202000200";
 
+static const char hid_descriptors[] =
+	/* device 10c4:ea80, strings 1 2 3 */
+	"1201000200000040C41080EA0001010203" "01"
+	/* configuration: 41 bytes, one interface, bus-powered 100 mA */
+	"0902290001010080" "32"
+	/* interface 0: class 3 (HID), two endpoints; HID descriptor with a 27-byte report descriptor */
+	"090400000203000000" "092111010001221B00"
+	/* interrupt IN 0x81 and OUT 0x02, 64 bytes, every frame */
+	"07058103400001" "07050203400001";
+
 int main(int argc, char **argv)
 {
 	dev_t_ d;
@@ -315,6 +362,7 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--hold-at") && i + 2 < argc) d.hold_at = atoll(v), d.hold_ms = atol(argv[i + 2]), i += 2;
 		else if (!strcmp(a, "--status")) d.status = (int)strtol(v, NULL, 0), i++;
 		else if (!strcmp(a, "--id-le")) d.id_le = 1;
+		else if (!strcmp(a, "--cp2110")) d.cp2110 = 1;
 		else if (!strcmp(a, "--record")) rec_path = v, i++;
 		else if (!strcmp(a, "--expect")) expect = v, i++;
 		else {
@@ -340,8 +388,9 @@ int main(int argc, char **argv)
 		"E: DEVNAME=" DEVNODE "\nE: DEVTYPE=usb_device\nE: DRIVER=usb\nE: SUBSYSTEM=usb\n"
 		"E: BUSNUM=001\nE: DEVNUM=002\nE: MAJOR=189\nE: MINOR=1\n"
 		"A: busnum=1\\n\nA: devnum=2\\n\nA: bConfigurationValue=1\\n\nA: speed=480\\n\n"
-		"A: idVendor=03f0\\n\nA: idProduct=0107\\n\n"
-		"H: descriptors=%s\n", descriptors, descriptors);
+		"A: idVendor=%s\\n\nA: idProduct=%s\\n\n"
+		"H: descriptors=%s\n", d.cp2110 ? hid_descriptors : descriptors, d.cp2110 ? "10c4" : "03f0",
+		d.cp2110 ? "ea80" : "0107", d.cp2110 ? hid_descriptors : descriptors);
 	if (!umockdev_testbed_add_from_string(tb, desc, &err)) {
 		fprintf(stderr, "emu-usb: add device: %s\n", err ? err->message : "?");
 		return 70;
@@ -376,7 +425,11 @@ int main(int argc, char **argv)
 	printf("child=%d received=%zu stalls=%ld clears=%ld detached=%ld attached=%ld claims=%ld releases=%ld "
 		"setconfig=%ld idreads=%ld statusreads=%ld resets=%ld driver=%s", code, d.nrec, d.stalls, d.clears,
 		d.detaches, d.attaches, d.claims, d.releases, d.setconfigs, d.idreads, d.statusreads, d.resets,
-		d.driver_bound ? "usblp" : "none");
+		d.driver_bound ? (d.cp2110 ? "usbhid" : "usblp") : "none");
+	if (d.cp2110)
+		printf(" uart=%s baud=%ld parity=%d flow=%d bits=%d stop=%d purges=%d", d.uart_on ? "on" : "off",
+			(long)d.uart[1] << 24 | (long)d.uart[2] << 16 | (long)d.uart[3] << 8 | d.uart[4], d.uart[5],
+			d.uart[6], d.uart[7] + 5, d.uart[8] + 1, d.purges);
 	int bad = code != 0;
 	if (rec_path) {
 		FILE *f = fopen(rec_path, "wb");
