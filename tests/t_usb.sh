@@ -92,6 +92,18 @@ rm -f "$T/j2"
 "$EMU" -- "$H" fixtures/meta/f-test.meta -o "usb:03f0:0107?resume=$T/j2" > "$T/u4" 2> "$T/u4.all"
 grep -Eq "the job differs from the journaled one|the job ended before the point the journal reached" "$T/u4.all" && [ "$(word received "$T/u4")" = 0 ] 	&& ok "resuming with another job: refused in one line, nothing sent" || notok "other job: $(cat "$T/u4" "$T/u4.all")"
 
+# Recorded sessions (fixtures/usb/*.pcap, usbmon link type 220) replayed by umockdev-run -p: the
+# replay completes only if the program makes the same transfers with the same bytes, in order.
+SYS=/sys/devices/pci0000:00/0000:00:14.0/usb1/1-1
+replay() { umockdev-run -d fixtures/usb/plotter.umockdev -p "$SYS=fixtures/usb/$1" -- "$H" "$2" -o "usb:03f0:0107?timeout=2"; }
+replay f-test-job.pcap fixtures/meta/f-test.meta > /dev/null 2> "$T/r1" && ok "recorded session f-test-job.pcap replays: device ID, then the job's bulk transfers as recorded" \
+	|| notok "replay job: $(tail -3 "$T/r1")"
+replay f-test-stall.pcap fixtures/meta/f-test.meta > /dev/null 2> "$T/r2" && ok "recorded session with a stall replays: the rest after the halt is cleared, as recorded" \
+	|| notok "replay stall: $(tail -3 "$T/r2")"
+replay f-test-job.pcap fixtures/meta/strokes.meta > /dev/null 2> "$T/r3"; rc=$?
+[ $rc = 74 ] && grep -q "Replay may be stuck" "$T/r3" && ok "control: another job against the recording gets stuck and fails (exit 74)" \
+	|| notok "replay control: exit $rc, $(tail -2 "$T/r3")"
+
 # No such device (no emulator at all), bad names.
 bad() {
 	desc=$1 name=$2 words=$3

@@ -14,6 +14,8 @@
  *   --cp2110         be a Silicon Labs CP2110 HID UART bridge (10c4:ea80) instead: feature
  *                    reports 0x41/0x50/0x43 set up its UART, interrupt OUT reports carry data
  *   --record FILE, --expect FILE   as emu-plotter
+ *   --pcap FILE      write the session as a usbmon capture (link type 220, as Wireshark or
+ *                    usbmon record it), for umockdev-run -p to replay
  * Prints one line "child=S received=N stalls=N clears=N detached=N attached=N ... bytes=same";
  * exits 0 when the child exited 0 and what arrived is what was expected. */
 #include <errno.h>
@@ -174,9 +176,51 @@ static int bulk_out(dev_t_ *d, const unsigned char *p, int n, int *st)
 	return n;
 }
 
+/* The usbmon capture being written (--pcap), or NULL. */
+static FILE *pcap;
+
+/* One usbmon record: 'S' (submit) or 'C' (complete) of urb u; data of len bytes (may be 0). */
+static void pcap_rec(char what, const struct usbdevfs_urb *u, gulong id, const unsigned char *setup,
+		int status, unsigned length, const unsigned char *data, unsigned len)
+{
+	if (!pcap)
+		return;
+	unsigned char h[64];
+	memset(h, 0, sizeof h);
+	struct timespec ts;
+	clock_gettime(CLOCK_REALTIME, &ts);
+	guint64 id64 = id;
+	memcpy(h, &id64, 8);
+	h[8] = (unsigned char)what;
+	h[9] = u->type == USBDEVFS_URB_TYPE_CONTROL ? 2 : u->type == USBDEVFS_URB_TYPE_BULK ? 3
+		: u->type == USBDEVFS_URB_TYPE_INTERRUPT ? 1 : 0;
+	h[10] = u->endpoint;
+	h[11] = 2;                          /* devnum */
+	guint16 bus = 1;
+	memcpy(h + 12, &bus, 2);
+	h[14] = setup ? 0 : '-';            /* flag_setup */
+	h[15] = len ? 0 : (what == 'S' ? '<' : '>');
+	gint64 sec = ts.tv_sec;
+	gint32 usec = (gint32)(ts.tv_nsec / 1000);
+	memcpy(h + 16, &sec, 8);
+	memcpy(h + 24, &usec, 4);
+	memcpy(h + 28, &status, 4);
+	memcpy(h + 32, &length, 4);
+	memcpy(h + 36, &len, 4);
+	if (setup)
+		memcpy(h + 40, setup, 8);
+	guint32 rec[4] = { (guint32)sec, (guint32)usec, 64 + len, 64 + len };
+	fwrite(rec, 4, 4, pcap);
+	fwrite(h, 1, 64, pcap);
+	if (len)
+		fwrite(data, 1, len, pcap);
+}
+
 typedef struct {
 	UMockdevIoctlData *urb;   /* the submitted urb (its buffer a child of it) */
 	int actual, status, held;
+	unsigned char reply[1100];   /* control IN: the reply, for the capture */
+	int in;                      /* a control IN request */
 	double ready_at;
 } flying_t;
 
@@ -251,8 +295,21 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 		flying_t *f = g_new0(flying_t, 1);
 		f->urb = u;
 		if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
+			const unsigned char *st = b->data;
+			int in = st[0] & 0x80;
+			f->in = in != 0;
+			unsigned wl = (unsigned)(st[6] | st[7] << 8);
+			pcap_rec('S', urb, u->client_addr, st, -EINPROGRESS, wl, st + 8, in ? 0 : wl);
+		} else {
+			int in = urb->endpoint & 0x80;
+			pcap_rec('S', urb, u->client_addr, NULL, -EINPROGRESS, (unsigned)urb->buffer_length, b->data,
+				in ? 0 : (unsigned)urb->buffer_length);
+		}
+		if (urb->type == USBDEVFS_URB_TYPE_CONTROL) {
 			int r = control(d, b->data, b->data + 8, urb->buffer_length - 8);
 			f->actual = r < 0 ? 0 : r;
+			if (r > 0 && (size_t)r <= sizeof f->reply && (((unsigned char *)b->data)[0] & 0x80))
+				memcpy(f->reply, (unsigned char *)b->data + 8, (size_t)r);
 			f->status = r < 0 ? -EPIPE : 0;
 		} else if (urb->type == USBDEVFS_URB_TYPE_BULK && !(urb->endpoint & 0x80)) {
 			if (d->unplug_at >= 0 && (long long)d->nrec >= d->unplug_at) {
@@ -308,6 +365,8 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 			struct usbdevfs_urb *urb = (void *)f->urb->data;
 			urb->actual_length = f->actual;
 			urb->status = f->status;
+			pcap_rec('C', urb, f->urb->client_addr, NULL, f->status, (unsigned)f->actual, f->reply,
+				f->in ? (unsigned)f->actual : 0);
 			UMockdevIoctlData *p = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), NULL);
 			umockdev_ioctl_data_set_ptr(p, 0, f->urb);
 			umockdev_ioctl_data_unref(p);
@@ -363,6 +422,15 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--status")) d.status = (int)strtol(v, NULL, 0), i++;
 		else if (!strcmp(a, "--id-le")) d.id_le = 1;
 		else if (!strcmp(a, "--cp2110")) d.cp2110 = 1;
+		else if (!strcmp(a, "--pcap")) {
+			pcap = fopen(v, "wb");
+			i++;
+			guint32 gh[6] = { 0xa1b2c3d4, 0x00040002, 0, 0, 65535, 220 };
+			if (!pcap || fwrite(gh, 4, 6, pcap) != 6) {
+				perror(v);
+				return 74;
+			}
+		}
 		else if (!strcmp(a, "--record")) rec_path = v, i++;
 		else if (!strcmp(a, "--expect")) expect = v, i++;
 		else {
@@ -457,6 +525,8 @@ int main(int argc, char **argv)
 		g_free(want);
 	}
 	printf("\n");
+	if (pcap)
+		fclose(pcap);
 	g_object_unref(handler);
 	g_object_unref(tb);
 	free(d.rec);
