@@ -23,6 +23,7 @@ typedef struct {
 	int flow;
 	long timeout_ms;      /* no progress for this long: the write fails */
 	long bufsize;         /* escb: the plotter's buffer (ESC.L) */
+	long space;           /* escb: free space in the last ESC.B answer, -1 when used */
 	char ident[64];       /* escb: OI's answer */
 } serial_t;
 
@@ -253,6 +254,7 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 		return -1;
 	}
 	s->flow = FLOW_XONXOFF;
+	s->space = -1;
 	s->timeout_ms = 30000;
 	struct termios tio;
 	memset(&tio, 0, sizeof tio);
@@ -320,22 +322,29 @@ long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 	serial_t *s = t->link_state;
 	if (s->flow != FLOW_ESCB)
 		return put_all(t, s, buf, n) ? -1 : (long)n;
-	/* ESC.B before each chunk of at most half the buffer; wait while there is no room. */
+	/* ESC.B before each chunk of at most half the buffer; wait while there is no room. The
+	 * answer after a chunk also confirms that the chunk reached the plotter (it answers when the
+	 * query arrives, behind the chunk), so what this returns is in the plotter's buffer: the job
+	 * journal counts it as acknowledged; the answer serves as the next chunk's free space. */
 	size_t chunk = (size_t)s->bufsize / 2;
 	size_t want = n < chunk ? n : chunk;
 	long long start = tr_now_ms();
-	long space;
+	long space = s->space;
+	s->space = -1;
 	for (;;) {
-		if (ask_number(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &space))
+		if (space < 0 && ask_number(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &space))
 			return -1;
 		if (space >= (long)want)
 			break;
+		space = -1;
 		if (tr_now_ms() - start > s->timeout_ms)
 			return io_link_fail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
 				"of paper?)", s->timeout_ms / 1000);
 		sleep_ms(20);
 	}
-	return put_all(t, s, buf, want) ? -1 : (long)want;
+	if (put_all(t, s, buf, want) || ask_number(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &s->space))
+		return -1;
+	return (long)want;
 }
 
 long tr_serial_read(io_transport_t *t, void *buf, size_t n)

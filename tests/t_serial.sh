@@ -72,6 +72,25 @@ sh tests/emu/bigjob.sh 6000 > "$T/big.meta"
 [ "$(word child "$T/mute")" = 74 ] && grep -q "no answer to ESC.L" "$T/mute.err" && [ "$(word accepted "$T/mute")" = 0 ] \
 	&& ok "flow=escb on a cable without replies: one line, exit 74, nothing sent" || notok "mute: $(cat "$T/mute" "$T/mute.err")"
 
+# The cable is pulled at byte 5000 of a flow=escb job with a journal; the job resumes on a new
+# line from the last point an ESC.B answer confirmed. Cut there, the two parts draw every segment
+# of the job once; what the plotter had beyond it, unconfirmed, is counted (drawn again).
+SEG=$TESTBIN/hpgl-segments
+rm -f "$T/j"
+"$EMU" --handshake n --pen-scale 4 --hangup-after 5000 --record "$T/p1" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&journal=$T/j" > "$T/h1" 2> "$T/h1.all"
+safe=$(sed -n 's/^safe //p' "$T/j")
+grep -v warning "$T/h1.all" > "$T/h1.err"
+[ "$(word child "$T/h1")" = 74 ] && [ "$(wc -l < "$T/h1.err")" = 1 ] && grep -q "(byte $safe of the job) reached; resume with -o 'serial:.*resume=$T/j'" "$T/h1.err" \
+	&& ok "cable pulled mid-job: one line with the byte reached ($safe, confirmed by ESC.B) and the resume name" || notok "hangup: $(cat "$T/h1" "$T/h1.err" "$T/j")"
+"$EMU" --handshake n --pen-scale 4 --record "$T/p2" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&resume=$T/j" > "$T/h2" 2>&1
+head -c "$safe" "$T/p1" > "$T/p1.cut"
+"$SEG" "$T/job.hpgl" | sort > "$T/seg.job"
+"$SEG" "$T/p1.cut" "$T/p2" | sort > "$T/seg.parts"
+dup=$("$SEG" "$T/p1" "$T/p2" 2>/dev/null | sort | uniq -d | wc -l)
+[ "$(word child "$T/h2")" = 0 ] && cmp -s "$T/seg.job" "$T/seg.parts" \
+	&& ok "resumed over serial: the parts cut at the confirmed point draw all $(wc -l < "$T/seg.job") segments once ($dup more were sent but unconfirmed)" \
+	|| notok "serial resume: $(cat "$T/h2"; diff "$T/seg.job" "$T/seg.parts" | head -3)"
+
 # Bad names, absent devices, no terminal, no permission: one line that says what to do.
 bad() {
 	want=$1 desc=$2 name=$3 words=$4

@@ -14,6 +14,7 @@
  *   --deadline S    kill the command after S seconds (60)
  *   --tcp           listen on 127.0.0.1 instead; --drop-after N: close the first connection
  *                   after N bytes; --rate B/S: the network's byte rate
+ *   --hangup-after N  the line goes away (the pseudo-terminal closes) after N accepted bytes
  *   --record FILE   the HP-GL received (escapes and output instructions left out)
  *   --expect FILE   compare with this HP-GL: bytes, and strokes through the HP-GL reader
  * Prints one line "child=S received=N accepted=N dropped=N ... strokes=same|differ ...";
@@ -444,7 +445,7 @@ int main(int argc, char **argv)
 	e.speed = e.top = 15240;   /* 38.1 cm/s, the 7475A's top speed */
 	const char *rec_path = NULL, *expect = NULL;
 	int tcp = 0;
-	long long drop_after = -1;
+	long long drop_after = -1, hangup_after = -1;
 	double deadline = 60;
 	int i;
 	for (i = 1; i < argc && strcmp(argv[i], "--"); i++) {
@@ -457,6 +458,7 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--record")) rec_path = v, i++;
 		else if (!strcmp(a, "--expect")) expect = v, i++;
 		else if (!strcmp(a, "--drop-after")) drop_after = atoll(v), i++;
+		else if (!strcmp(a, "--hangup-after")) hangup_after = atoll(v), i++;
 		else if (!strcmp(a, "--pen-change")) e.pen_change = atof(v), i++;
 		else if (!strcmp(a, "--mute")) e.mute = 1;
 		else if (!strcmp(a, "--pen-scale")) e.scale = atof(v), i++;
@@ -567,6 +569,13 @@ int main(int argc, char **argv)
 				conn_bytes += r;
 				if (e.stopped && e.honours)
 					e.stop_budget -= r;
+				if (!tcp && hangup_after >= 0 && (long long)e.nrec >= hangup_after) {
+					close(master);   /* the cable is pulled: the sender's writes fail */
+					close(slave);
+					waitpid(pid, &status, 0);
+					exited = 1;
+					break;
+				}
 				if (tcp && drop_after >= 0 && connections == 1 && conn_bytes >= drop_after) {
 					close(conn);   /* the printer drops the first job once */
 					conn = -1;
