@@ -2,8 +2,9 @@
  *
  * Names: "-" is stdout (stdin for reading); device links (docs/transports.md):
  *   serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2&flow=xonxoff|rtscts|escb|none
- *   tcp:HOST[:PORT] (raw, port 9100), usb:VID:PID[:SERIAL] or usb:any (USB printer class);
- *   hid: is reserved (not supported yet: a clear error);
+ *   tcp:HOST[:PORT] (raw, port 9100), usb:VID:PID[:SERIAL] or usb:any (USB printer class),
+ *   hid:VID:PID[:SERIAL]?baud=... (CP2110 HID UART bridge); each also takes journal=FILE or
+ *   resume=FILE (journal.h: resumable jobs);
  * anything else is a path, and what it names decides how it is written:
  *   - a regular file, or a name that does not exist yet, is written to a new temporary beside
  *     it, TARGET.PID-K.tmp, created with O_EXCL|O_NOFOLLOW (an existing name, a symlink above
