@@ -339,5 +339,6 @@ int io_list_devices(io_transport_t *out, char *err, size_t errlen)
 	if (n >= 0)
 		libusb_free_device_list(list, 1);
 	libusb_exit(ctx);
+	tr_hid_list(out);
 	return 0;
 }

@@ -37,6 +37,8 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
 long tr_hid_read(io_transport_t *t, void *buf, size_t n);
 int tr_hid_close(io_transport_t *t);
+/* One line per attached CP2110 bridge, as --list-devices prints them. */
+void tr_hid_list(io_transport_t *out);
 
 /* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
  * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */

@@ -73,7 +73,8 @@ const char *io_name(const io_transport_t *t);
 /* 1 if this transport is standard output/input. */
 int io_is_std(const io_transport_t *t);
 /* Write one line per attached USB printer-class device to out: its output name
- * (usb:VID:PID[:SERIAL]), one-way or bidirectional, and its IEEE-1284 device ID. 0, or -1. */
+ * (usb:VID:PID[:SERIAL]), one-way or bidirectional, and its IEEE-1284 device ID; then one per
+ * CP2110 HID UART bridge (hid:VID:PID[:SERIAL], maker and product). 0, or -1. */
 int io_list_devices(io_transport_t *out, char *err, size_t errlen);
 /* 1 if it is written in place (stdout, a device, pipe, socket, terminal): one transport then
  * takes every page of a job, as there is no file per page to rename. */

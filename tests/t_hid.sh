@@ -29,6 +29,9 @@ word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
 "$EMU" --cp2110 -- "$H" "$META" -o "hid:10c4:ea80:FFFF" > "$T/nosn" 2> "$T/nosn.err"
 [ "$(word child "$T/nosn")" = 74 ] && [ "$(word received "$T/nosn")" = 0 ] && grep -q "no such serial number" "$T/nosn.err" \
 	&& ok "another serial number: one line, nothing sent" || notok "bad serial: $(cat "$T/nosn" "$T/nosn.err")"
+"$EMU" --cp2110 -- "$BIN/locus-play" --list-devices > "$T/list" 2>&1
+grep -qxF "hid:10c4:ea80:0001ABCD  HID UART bridge  Silicon Labs CP2110 HID USB-to-UART Bridge" "$T/list" \
+	&& ok "--list-devices names the bridge as -o takes it, with maker and product" || notok "list: $(cat "$T/list")"
 bad() {
 	desc=$1 name=$2 words=$3
 	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e.all"; rc=$?
