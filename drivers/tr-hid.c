@@ -126,7 +126,7 @@ long tr_hid_write(io_transport_t *t, const void *buf, size_t n)
 	rep[0] = (unsigned char)k;   /* the report ID is the byte count */
 	memcpy(rep + 1, buf, k);
 	if (hid_write(s->dev, rep, k + 1) < 0)
-		return io_link_fail(t, "the bridge went away after %lld bytes (unplugged?)", s->sent);
+		return io_link_tempfail(t, "the bridge went away after %lld bytes (unplugged?)", s->sent);
 	s->sent += (long long)k;
 	return (long)k;
 }
@@ -138,9 +138,9 @@ long tr_hid_read(io_transport_t *t, void *buf, size_t n)
 		unsigned char rep[64];
 		int r = hid_read_timeout(s->dev, rep, sizeof rep, (int)s->timeout_ms);
 		if (r < 0)
-			return io_link_fail(t, "reading from the bridge failed (unplugged?)");
+			return io_link_tempfail(t, "reading from the bridge failed (unplugged?)");
 		if (r == 0)
-			return io_link_fail(t, "no reply within %ld s", s->timeout_ms / 1000);
+			return io_link_tempfail(t, "no reply within %ld s", s->timeout_ms / 1000);
 		size_t c = rep[0] < (size_t)r ? rep[0] : (size_t)r - 1;
 		memcpy(s->in, rep + 1, c);
 		s->nin = c;

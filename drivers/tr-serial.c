@@ -63,12 +63,12 @@ static int put_all(io_transport_t *t, serial_t *s, const void *buf, size_t n)
 		}
 		if (w < 0 && errno != EAGAIN && errno != EINTR) {
 			if (errno == EIO || errno == ENXIO)
-				return io_link_fail(t, "the line went away mid-job (unplugged?): %s", strerror(errno));
+				return io_link_tempfail(t, "the line went away mid-job (unplugged?): %s", strerror(errno));
 			return io_link_fail(t, "write failed: %s", strerror(errno));
 		}
 		long left = s->timeout_ms - (long)(tr_now_ms() - last);
 		if (left <= 0)
-			return io_link_fail(t, "the device took nothing for %ld s (%s held: is it online "
+			return io_link_tempfail(t, "the device took nothing for %ld s (%s held: is it online "
 				"and the flow control set as on the device?)", s->timeout_ms / 1000,
 				s->flow == FLOW_XONXOFF ? "XOFF" : s->flow == FLOW_RTSCTS ? "CTS" : "the line");
 		struct pollfd pf = { s->fd, POLLOUT, 0 };
@@ -85,7 +85,7 @@ static int get_reply(io_transport_t *t, serial_t *s, const char *what, char *buf
 	for (;;) {
 		long left = (long)(end - tr_now_ms());
 		if (left <= 0)
-			return io_link_fail(t, "no answer to %s within %ld ms: is the plotter on, and "
+			return io_link_tempfail(t, "no answer to %s within %ld ms: is the plotter on, and "
 				"does the cable carry its replies? (flow=xonxoff needs none)", what, ms);
 		struct pollfd pf = { s->fd, POLLIN, 0 };
 		if (poll(&pf, 1, (int)left) <= 0)
@@ -95,7 +95,7 @@ static int get_reply(io_transport_t *t, serial_t *s, const char *what, char *buf
 		if (r < 0 && (errno == EAGAIN || errno == EINTR))
 			continue;
 		if (r <= 0)
-			return io_link_fail(t, "reading the answer to %s: %s", what, r ? strerror(errno) : "end of file");
+			return io_link_tempfail(t, "reading the answer to %s: %s", what, r ? strerror(errno) : "end of file");
 		if (c == '\r' || c == '\n') {
 			if (n == 0)
 				continue;   /* a CR LF pair's second half */
@@ -338,7 +338,7 @@ long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 			break;
 		space = -1;
 		if (tr_now_ms() - start > s->timeout_ms)
-			return io_link_fail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
+			return io_link_tempfail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
 				"of paper?)", s->timeout_ms / 1000);
 		sleep_ms(20);
 	}
@@ -353,7 +353,7 @@ long tr_serial_read(io_transport_t *t, void *buf, size_t n)
 	struct pollfd pf = { s->fd, POLLIN, 0 };
 	int r = poll(&pf, 1, (int)s->timeout_ms);
 	if (r == 0)
-		return io_link_fail(t, "no reply within %ld s", s->timeout_ms / 1000);
+		return io_link_tempfail(t, "no reply within %ld s", s->timeout_ms / 1000);
 	if (r < 0)
 		return -1;
 	ssize_t g = read(s->fd, buf, n);

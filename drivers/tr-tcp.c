@@ -135,14 +135,14 @@ long tr_tcp_write(io_transport_t *t, const void *buf, size_t n)
 		}
 		if (w < 0 && errno != EAGAIN && errno != EINTR) {
 			if (errno == EPIPE || errno == ECONNRESET)
-				return io_link_fail(t, "the printer dropped the connection after %lld bytes: "
+				return io_link_tempfail(t, "the printer dropped the connection after %lld bytes: "
 					"the job is incomplete, send it again", s->sent);
 			return io_link_fail(t, "send failed: %s", strerror(errno));
 		}
 		struct pollfd pf = { s->fd, POLLOUT, 0 };
 		int r = poll(&pf, 1, (int)s->timeout_ms);
 		if (r == 0)
-			return io_link_fail(t, "the printer took nothing for %ld s after %lld bytes (busy or "
+			return io_link_tempfail(t, "the printer took nothing for %ld s after %lld bytes (busy or "
 				"out of paper?)", s->timeout_ms / 1000, s->sent);
 	}
 }
@@ -152,7 +152,7 @@ long tr_tcp_read(io_transport_t *t, void *buf, size_t n)
 	tcp_t *s = t->link_state;
 	struct pollfd pf = { s->fd, POLLIN, 0 };
 	if (poll(&pf, 1, (int)s->timeout_ms) == 0)
-		return io_link_fail(t, "no reply within %ld s", s->timeout_ms / 1000);
+		return io_link_tempfail(t, "no reply within %ld s", s->timeout_ms / 1000);
 	ssize_t r = recv(s->fd, buf, n, 0);
 	return r < 0 && errno == EAGAIN ? 0 : (long)r;
 }
@@ -176,7 +176,7 @@ int tr_tcp_close(io_transport_t *t)
 				break;
 			if (r < 0 && errno != EAGAIN && errno != EINTR) {
 				if (errno == ECONNRESET)
-					rc = io_link_fail(t, "the printer dropped the connection before it confirmed "
+					rc = io_link_tempfail(t, "the printer dropped the connection before it confirmed "
 						"the end of the job: send it again");
 				break;
 			}

@@ -265,12 +265,12 @@ long tr_usb_write(io_transport_t *t, const void *buf, size_t n)
 		if (r == LIBUSB_ERROR_PIPE && stalls++ == 0)
 			continue;   /* a stall with nothing sent: try once more */
 		if (r == LIBUSB_ERROR_NO_DEVICE || r == LIBUSB_ERROR_IO)
-			return io_link_fail(t, "the printer went away after %lld bytes (unplugged or off): %s",
+			return io_link_tempfail(t, "the printer went away after %lld bytes (unplugged or off): %s",
 				s->sent, libusb_strerror(r));
 		if (r == LIBUSB_ERROR_TIMEOUT && tr_now_ms() - start < s->timeout_ms)
 			continue;   /* busy: wait for it */
 		const char *w = port_words(s->h, s->iface);
-		return io_link_fail(t, "the printer took nothing for %ld s after %lld bytes (%s): %s",
+		return io_link_tempfail(t, "the printer took nothing for %ld s after %lld bytes (%s): %s",
 			(long)((tr_now_ms() - start) / 1000), s->sent, w && w[0] ? w : "no status",
 			libusb_strerror(r));
 	}

@@ -40,6 +40,13 @@ int tr_hid_close(io_transport_t *t);
 /* One line per attached CP2110 bridge, as --list-devices prints them. */
 void tr_hid_list(io_transport_t *out);
 
+/* io_link_fail for a failure that may pass (a device unplugged, off, busy, out of paper, a
+ * dropped connection): io_temporary() is 1 afterwards. Returns -1. */
+int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
 /* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
  * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);

@@ -21,6 +21,19 @@ int io_set_err(io_transport_t *t, const char *what)
 	return -1;
 }
 
+int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
+{
+	va_list ap;
+	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
+	va_start(ap, fmt);
+	if (n > 0 && (size_t)n < sizeof t->err)
+		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	va_end(ap);
+	t->failed = t->temporary = 1;
+	errno = EIO;
+	return -1;
+}
+
 int io_link_fail(io_transport_t *t, const char *fmt, ...)
 {
 	va_list ap;
@@ -434,6 +447,11 @@ const char *io_error(const io_transport_t *t)
 int io_failed(const io_transport_t *t)
 {
 	return t->failed;
+}
+
+int io_temporary(const io_transport_t *t)
+{
+	return t->failed && t->temporary;
 }
 
 const char *io_name(const io_transport_t *t)

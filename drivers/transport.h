@@ -68,6 +68,10 @@ int io_finish(io_transport_t *t, int commit, const char *target, char *err, size
 const char *io_error(const io_transport_t *t);
 /* 1 once a write, flush or close has failed. */
 int io_failed(const io_transport_t *t);
+/* 1 when the failure is one a later try may not meet: a device unplugged, off, busy or out of
+ * paper, a line held too long, a dropped connection. A program then exits 75 (EX_TEMPFAIL)
+ * rather than 74, and a job with journal= can be resumed (docs/transports.md). */
+int io_temporary(const io_transport_t *t);
 /* The name the transport was opened with. */
 const char *io_name(const io_transport_t *t);
 /* 1 if this transport is standard output/input. */

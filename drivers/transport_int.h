@@ -36,6 +36,7 @@ struct io_transport {
 	unsigned char *buf;
 	size_t nbuf, cap;
 	int failed;
+	int temporary;      /* the failure may pass: device away, busy, dropped (io_temporary) */
 	char err[512];
 };
 
