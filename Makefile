@@ -71,7 +71,7 @@ demo: all
 
 check: all $(TESTPROGS)
 	@scripts/deps.sh check
-	@BIN=$(BINDIR) TESTBIN=$(B)/tests SANITIZE=$(SANITIZE) tests/run.sh
+	@BIN=$(BINDIR) TESTBIN=$(B)/tests SANITIZE=$(SANITIZE) LOCUS_LDLIBS="$(LDLIBS_ALL)" tests/run.sh
 
 bench: all
 	@scripts/deps.sh bench

@@ -8,12 +8,14 @@
 static const char usage[] =
 	"usage: locus-play -d DEVICE [-o OUT] [-O OPTIONS] [--band-rows N] [--mem-budget MIB] [IN]\n"
 	"       locus-play -l\n"
+	"       locus-play --list-devices\n"
 	"Replay a Locus meta file (IN, default stdin) through DEVICE into OUT (default stdout).\n"
 	"With more than one page and a file OUT, page k goes to OUT with -00k before its suffix.\n"
 	"A file OUT is written to a temporary beside it and renamed only when the whole input\n"
 	"replayed; a device, a pipe or stdout is written in place, pages in a row.\n"
 	"  -d DEVICE        the device (-l lists them)\n"
 	"  -l               list the devices: name, output suffix (- for none), description\n"
+	"  --list-devices   list attached USB printers as -o names, with their IEEE-1284 IDs\n"
 	"  -O OPTIONS       device options, key=value[,key=value...]; unknown keys are refused\n"
 	"  --band-rows N    raster devices: render N rows at a time\n"
 	"  --mem-budget MIB raster devices: page buffer budget for automatic banding (default 64)\n"
@@ -34,9 +36,25 @@ static int list_devices(cli_t *c)
 	return io_close_err(t, IO_COMMIT, err, sizeof err) ? cli_fail(c, 74, "%s", err) : 0;
 }
 
+/* --list-devices: attached USB printer-class devices, in the form -o takes. */
+static int list_links(cli_t *c)
+{
+	char err[600];
+	io_transport_t *t = io_open_write("-", err, sizeof err);
+	if (!t)
+		return cli_fail(c, 74, "%s", err);
+	if (io_list_devices(t, err, sizeof err) < 0) {
+		io_close(t, IO_ABORT);
+		return cli_fail(c, 69, "%s", err);
+	}
+	return io_close_err(t, IO_COMMIT, err, sizeof err) ? cli_fail(c, 74, "%s", err) : 0;
+}
+
 static int on_option(cli_t *c, int key, const char *arg)
 {
 	switch (key) {
+	case 'L':
+		return list_links(c);
 	case 'd':
 		c->user = (void *)arg;
 		return CLI_RUN;
@@ -49,7 +67,8 @@ static int on_option(cli_t *c, int key, const char *arg)
 
 int main(int argc, char **argv)
 {
-	cli_t c = { .prog = "locus-play", .usage = usage, .extra_short = "d:l", .on_option = on_option };
+	static const struct option longs[] = { { "list-devices", no_argument, NULL, 'L' }, { 0, 0, 0, 0 } };
+	cli_t c = { .prog = "locus-play", .usage = usage, .extra = longs, .extra_short = "d:l", .on_option = on_option };
 	int st = cli_parse(&c, argc, argv);
 	if (st != CLI_RUN)
 		return st;

@@ -8,3 +8,5 @@ $(BINDIR)/locus-%: $(B)/drivers/main-%.o $(B)/libdrivers.a $(B)/libmeta.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(LDLIBS_ALL)
 # A driver that needs another library adds "PKGS += NAME" (a pkg-config name) below.
+PKGS += libusb-1.0
+PKGS += hidapi-libusb

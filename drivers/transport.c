@@ -1,13 +1,15 @@
 /* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
- * files (tr-file.c) and device links (the io_link_t table; none implemented yet). */
+ * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c). */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
-#include "transport_int.h"
+#include "journal.h"
+#include "tr_link.h"
 
 #define IOBUF (1 << 16)
 
@@ -19,12 +21,74 @@ int io_set_err(io_transport_t *t, const char *what)
 	return -1;
 }
 
-/* The device links; a later issue fills in their open, write, read and close. */
+int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
+{
+	va_list ap;
+	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
+	va_start(ap, fmt);
+	if (n > 0 && (size_t)n < sizeof t->err)
+		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	va_end(ap);
+	t->failed = t->temporary = 1;
+	errno = EIO;
+	return -1;
+}
+
+int io_link_fail(io_transport_t *t, const char *fmt, ...)
+{
+	va_list ap;
+	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
+	va_start(ap, fmt);
+	if (n > 0 && (size_t)n < sizeof t->err)
+		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	va_end(ap);
+	t->failed = 1;
+	errno = EIO;
+	return -1;
+}
+
+/* The device links (a NULL open: reserved, "not supported yet"). */
 static const io_link_t links[] = {
-	{ "serial:", NULL, NULL, NULL, NULL },
-	{ "usb:", NULL, NULL, NULL, NULL },
-	{ "hid:", NULL, NULL, NULL, NULL },
+	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close },
+	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close },
+	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close },
+	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close },
 };
+
+int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen)
+{
+	const char *s = *p;
+	if (!*s)
+		return 0;
+	const char *amp = strchr(s, '&'), *end = amp ? amp : s + strlen(s);
+	const char *eq = memchr(s, '=', (size_t)(end - s));
+	*p = amp ? amp + 1 : end;
+	if (!eq || eq == s || (size_t)(eq - s) >= klen || (size_t)(end - eq - 1) >= vlen)
+		return -1;
+	memcpy(key, s, (size_t)(eq - s));
+	key[eq - s] = 0;
+	memcpy(val, eq + 1, (size_t)(end - eq - 1));
+	val[end - eq - 1] = 0;
+	return 1;
+}
+
+int tr_parse_long(const char *s, long lo, long hi, long *out)
+{
+	char *e;
+	errno = 0;
+	long v = strtol(s, &e, 10);
+	if (!*s || *e || errno || v < lo || v > hi)
+		return -1;
+	*out = v;
+	return 0;
+}
+
+long long tr_now_ms(void)
+{
+	struct timespec ts;
+	clock_gettime(CLOCK_MONOTONIC, &ts);
+	return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
 
 static const io_link_t *link_of(const char *name)
 {
@@ -75,8 +139,43 @@ static io_transport_t *open_link(const io_link_t *l, const char *name, int writi
 		return NULL;
 	t->link = l;
 	t->in_place = 1;
-	if (l->open(t, name + strlen(l->scheme), writing, err, errlen) < 0) {
+	/* journal=FILE and resume=FILE are the transport's; the rest of the name is the link's. */
+	char rest[1024], key[32], val[512], jpath[512] = "";
+	int resume = 0, r;
+	const char *q = strchr(name, '?');
+	size_t hl = q ? (size_t)(q - name) : strlen(name), n;
+	if (hl >= sizeof rest) {
+		snprintf(err, errlen, "%s: name too long", name);
+		destroy(t);
+		return NULL;
+	}
+	n = (size_t)snprintf(rest, sizeof rest, "%.*s", (int)(hl - strlen(l->scheme)), name + strlen(l->scheme));
+	for (const char *s = q ? q + 1 : "", *pair = s; (r = tr_query_next(&s, key, sizeof key, val, sizeof val)) != 0; pair = s) {
+		if (r > 0 && (!strcmp(key, "journal") || !strcmp(key, "resume"))) {
+			snprintf(jpath, sizeof jpath, "%s", val);
+			resume = key[0] == 'r';
+			continue;
+		}
+		size_t pl = strcspn(pair, "&");
+		n += (size_t)snprintf(rest + n, n < sizeof rest ? sizeof rest - n : 0, "%c%.*s",
+			n > hl - strlen(l->scheme) ? '&' : '?', (int)pl, pair);
+	}
+	if (n >= sizeof rest) {
+		snprintf(err, errlen, "%s: name too long", name);
+		destroy(t);
+		return NULL;
+	}
+	if (jpath[0] && writing) {
+		t->journal = resume ? jn_resume(jpath, name, err, errlen) : jn_create(jpath, name, err, errlen);
+		if (!t->journal) {
+			destroy(t);
+			return NULL;
+		}
+	}
+	if (l->open(t, rest, writing, err, errlen) < 0) {
 		t->link = NULL;   /* nothing to close */
+		jn_close(t->journal, 0);
+		t->journal = NULL;
 		destroy(t);
 		return NULL;
 	}
@@ -125,17 +224,64 @@ io_transport_t *io_open_read(const char *name, char *err, size_t errlen)
 	return t;
 }
 
+/* A link failed mid-job: add where the journal says the job stopped to its line. Returns -1. */
+static int journal_where(io_transport_t *t)
+{
+	if (t->journal) {
+		char where[700];
+		size_t n = strlen(t->err);
+		jn_where(t->journal, where, sizeof where);
+		snprintf(t->err + n, sizeof t->err - n, "; %s", where);
+	}
+	return -1;
+}
+
+/* Send bytes that are no part of the job (a resume's state restore) through the link. */
+static int send_all(io_transport_t *t, const char *p, size_t n)
+{
+	while (n > 0) {
+		long w = t->link->write(t, p, n);
+		if (w <= 0) {
+			if (!t->failed)
+				io_set_err(t, "write failed");
+			return -1;
+		}
+		p += w;
+		n -= (size_t)w;
+	}
+	return 0;
+}
+
 int io_flush(io_transport_t *t)
 {
 	if (!t->writing || t->failed)
 		return t->failed ? -1 : 0;
 	size_t off = 0;
 	while (off < t->nbuf) {
+		if (t->journal && jn_skipping(t->journal)) {
+			/* resuming: the device has these bytes; then the state is restored */
+			const char *restore;
+			long k = jn_skip(t->journal, t->buf + off, t->nbuf - off, &restore, t->err, sizeof t->err);
+			if (k < 0) {
+				t->failed = 1;
+				return -1;
+			}
+			off += (size_t)k;
+			if (restore && send_all(t, restore, strlen(restore)))
+				return -1;
+			continue;
+		}
 		ssize_t w = t->link ? t->link->write(t, t->buf + off, t->nbuf - off)
 			: write(t->fd, t->buf + off, t->nbuf - off);
+		if (w > 0 && t->journal && jn_ack(t->journal, t->buf + off, (size_t)w) < 0) {
+			io_link_fail(t, "cannot write the job journal: %s", strerror(errno));
+			return -1;
+		}
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
+			if (t->link && t->failed)
+				return journal_where(t);   /* the link said it in its own words */
 			return io_set_err(t, "write failed");
 		}
 		if (w == 0) {
@@ -211,6 +357,8 @@ long io_read(io_transport_t *t, void *buf, size_t n)
 		ssize_t r = t->link ? t->link->read(t, buf, n) : read(t->fd, buf, n);
 		if (r >= 0)
 			return (long)r;
+		if (t->link && t->failed)
+			return -1;
 		if (errno != EINTR)
 			return io_set_err(t, "read failed");
 	}
@@ -223,10 +371,16 @@ static int finish_fd(io_transport_t *t, int how)
 	int rc = 0;
 	if (t->writing && how != IO_ABORT)
 		rc = io_flush(t);
+	if (rc == 0 && how != IO_ABORT && t->journal && jn_skipping(t->journal))
+		rc = io_link_fail(t, "the job ended before the point the journal reached: resume with the "
+			"same input and options");
 	if (t->link) {
 		if (t->link->close(t) < 0 && rc == 0 && how != IO_ABORT)
-			rc = io_set_err(t, "close failed");
+			rc = t->failed ? -1 : io_set_err(t, "close failed");
 		t->link = NULL;
+		if (t->journal && jn_close(t->journal, rc == 0 && how != IO_ABORT && !t->failed) < 0 && rc == 0)
+			rc = io_link_fail(t, "cannot write the job journal: %s", strerror(errno));
+		t->journal = NULL;
 		return rc;
 	}
 	if (t->fd < 0)
@@ -293,6 +447,11 @@ const char *io_error(const io_transport_t *t)
 int io_failed(const io_transport_t *t)
 {
 	return t->failed;
+}
+
+int io_temporary(const io_transport_t *t)
+{
+	return t->failed && t->temporary;
 }
 
 const char *io_name(const io_transport_t *t)

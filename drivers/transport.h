@@ -1,8 +1,11 @@
 /* transport.h: where program output goes (and, later, device replies come from), chosen by name.
  *
- * Names: "-" is stdout (stdin for reading); "serial:...", "usb:...", "hid:..." are reserved for
- * device links (not supported yet: a clear error); anything else is a path, and what it names
- * decides how it is written:
+ * Names: "-" is stdout (stdin for reading); device links (docs/transports.md):
+ *   serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2&flow=xonxoff|rtscts|escb|none
+ *   tcp:HOST[:PORT] (raw, port 9100), usb:VID:PID[:SERIAL] or usb:any (USB printer class),
+ *   hid:VID:PID[:SERIAL]?baud=... (CP2110 HID UART bridge); each also takes journal=FILE or
+ *   resume=FILE (journal.h: resumable jobs);
+ * anything else is a path, and what it names decides how it is written:
  *   - a regular file, or a name that does not exist yet, is written to a new temporary beside
  *     it, TARGET.PID-K.tmp, created with O_EXCL|O_NOFOLLOW (an existing name, a symlink above
  *     all, is never opened: the next K is tried), and renamed over the target only when the job
@@ -65,10 +68,18 @@ int io_finish(io_transport_t *t, int commit, const char *target, char *err, size
 const char *io_error(const io_transport_t *t);
 /* 1 once a write, flush or close has failed. */
 int io_failed(const io_transport_t *t);
+/* 1 when the failure is one a later try may not meet: a device unplugged, off, busy or out of
+ * paper, a line held too long, a dropped connection. A program then exits 75 (EX_TEMPFAIL)
+ * rather than 74, and a job with journal= can be resumed (docs/transports.md). */
+int io_temporary(const io_transport_t *t);
 /* The name the transport was opened with. */
 const char *io_name(const io_transport_t *t);
 /* 1 if this transport is standard output/input. */
 int io_is_std(const io_transport_t *t);
+/* Write one line per attached USB printer-class device to out: its output name
+ * (usb:VID:PID[:SERIAL]), one-way or bidirectional, and its IEEE-1284 device ID; then one per
+ * CP2110 HID UART bridge (hid:VID:PID[:SERIAL], maker and product). 0, or -1. */
+int io_list_devices(io_transport_t *out, char *err, size_t errlen);
 /* 1 if it is written in place (stdout, a device, pipe, socket, terminal): one transport then
  * takes every page of a job, as there is no file per page to rename. */
 int io_in_place(const io_transport_t *t);

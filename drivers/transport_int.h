@@ -24,6 +24,7 @@ typedef struct io_link {
 struct io_transport {
 	const io_link_t *link;      /* NULL: a descriptor (stdio, files, devices, pipes, sockets) */
 	void *link_state;           /* the link's own */
+	struct jn *journal;         /* journal=/resume= of a device link (journal.h), or NULL */
 	int fd;
 	int std;            /* standard output or input: never closed */
 	int in_place;       /* written where it is (stdout, devices, pipes, sockets, /dev/fd/N) */
@@ -35,6 +36,7 @@ struct io_transport {
 	unsigned char *buf;
 	size_t nbuf, cap;
 	int failed;
+	int temporary;      /* the failure may pass: device away, busy, dropped (io_temporary) */
 	char err[512];
 };
 

@@ -37,7 +37,7 @@ C
 F="-std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -Imeta -Idrivers $SAN"
 check "the raster example (dev-mine.c) compiles without a warning" $CC $F -c "$T/doc-mine.c" -o "$T/mine.o"
 check "the SVG example compiles without a warning" $CC $F -c "$T/doc-svg.c" -o "$T/svg.o"
-if $CC $F "$T/main.c" "$T/svg.o" "$L/libdrivers.a" "$L/libmeta.a" $(pkg-config --libs libpng zlib) -lpthread -lm -o "$T/docsvg"; then
+if $CC $F "$T/main.c" "$T/svg.o" "$L/libdrivers.a" "$L/libmeta.a" ${LOCUS_LDLIBS:-$(pkg-config --libs libpng zlib) -lpthread -lm} -o "$T/docsvg"; then
 	ok "the SVG example links as a program"
 	"$T/docsvg" fixtures/meta/f-test.meta "$T/f.svg"
 	"$BIN/locus-raster" -o "$T/f.png" fixtures/meta/f-test.meta

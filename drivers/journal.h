@@ -1,0 +1,36 @@
+/* journal.h: the job journal of a device link (journal=FILE, resume=FILE in the output name):
+ * how far the device acknowledged an HP-GL job, at the last point where it can go on without
+ * redrawing or skipping a stroke (after a command, or after a whole coordinate pair of PU, PD,
+ * PA or PR), with the modal state there (pen, velocity, line type, scaling, position), so that
+ * the same job, produced again, resumes from that point. The file is rewritten (through a
+ * temporary and a rename) after every acknowledgement, so it is current after a crash too.
+ */
+#ifndef LOCUS_JOURNAL_H
+#define LOCUS_JOURNAL_H
+
+#include <stddef.h>
+
+typedef struct jn jn_t;
+
+/* A journal for a new job into the device named name; path is created (or replaced).
+ * NULL with one line in err. */
+jn_t *jn_create(const char *path, const char *name, char *err, size_t errlen);
+/* Resume the job journaled in path: the first bytes of the job (as far as the device had them)
+ * are checked and skipped, then the modal state is restored; journaling goes on in path.
+ * NULL with one line in err (missing, malformed, or the job was complete). */
+jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen);
+/* Resume mode: of the job's next n bytes p, how many to skip (the device has them). When the
+ * skip ends, *restore points to the state-restoring HP-GL to send first (else NULL). -1 when
+ * the job differs from the journaled one (message in err). */
+long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, size_t errlen);
+/* 1 while bytes are still to be skipped. */
+int jn_skipping(const jn_t *j);
+/* The device acknowledged the job's next n bytes p. 0, or -1 when the file cannot be written. */
+int jn_ack(jn_t *j, const void *p, size_t n);
+/* Words for where the job stopped: "page P, command C (byte B of the job); resume with -o
+ * 'NAME'" where NAME is the output name with journal= turned into resume=. */
+void jn_where(const jn_t *j, char *buf, size_t len);
+/* End: done (1) marks the journal complete; 0 leaves it resumable. Frees j. 0 or -1. */
+int jn_close(jn_t *j, int done);
+
+#endif

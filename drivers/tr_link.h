@@ -1,0 +1,58 @@
+/* tr_link.h: the device links (serial:, tcp:, usb:, hid:) as transport.c calls them, and the
+ * helpers they share (not public: programs use transport.h). */
+#ifndef LOCUS_TR_LINK_H
+#define LOCUS_TR_LINK_H
+
+#include <stddef.h>
+#include "transport_int.h"
+
+/* tr-serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
+ * &flow=xonxoff|rtscts|escb|none&timeout=S" (termios; escb: HP-GL ESC.B pacing). */
+int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_serial_write(io_transport_t *t, const void *buf, size_t n);
+long tr_serial_read(io_transport_t *t, void *buf, size_t n);
+int tr_serial_close(io_transport_t *t);
+
+/* tr-tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
+int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_tcp_write(io_transport_t *t, const void *buf, size_t n);
+long tr_tcp_read(io_transport_t *t, void *buf, size_t n);
+int tr_tcp_close(io_transport_t *t);
+
+/* tr-usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
+int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_usb_write(io_transport_t *t, const void *buf, size_t n);
+long tr_usb_read(io_transport_t *t, void *buf, size_t n);
+int tr_usb_close(io_transport_t *t);
+
+/* The link's own error line, "NAME: " + the formatted words; sets failed. Returns -1. */
+int io_link_fail(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts" (a CP2110
+ * HID UART bridge through hidapi). */
+int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
+long tr_hid_read(io_transport_t *t, void *buf, size_t n);
+int tr_hid_close(io_transport_t *t);
+/* One line per attached CP2110 bridge, as --list-devices prints them. */
+void tr_hid_list(io_transport_t *out);
+
+/* io_link_fail for a failure that may pass (a device unplugged, off, busy, out of paper, a
+ * dropped connection): io_temporary() is 1 afterwards. Returns -1. */
+int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+/* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
+ * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */
+int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);
+/* Parse a whole decimal number in [lo, hi] into *out: 0, or -1. */
+int tr_parse_long(const char *s, long lo, long hi, long *out);
+/* Milliseconds since an arbitrary start (CLOCK_MONOTONIC). */
+long long tr_now_ms(void);
+
+#endif

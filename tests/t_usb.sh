@@ -1,0 +1,121 @@
+#!/bin/sh
+# t_usb.sh: locus-hpgl -o usb:... through the real libusb-1.0 code into a USB printer-class
+# plotter emulated under umockdev (tests/emu/usbemu.c: a testbed device and a usbdevfs ioctl
+# handler; the program runs under umockdev-wrapper): a whole contour plot, the device ID (and
+# its little-endian variant), the kernel driver detached and given back, a stall, a short write,
+# a busy printer (transfers time out, partial counts kept), paper empty in words, an unplug
+# mid-job, serial-number matching, --list-devices, and bad names in one line.
+. tests/lib.sh
+: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
+: "${TESTBIN:=build/native/tests}"
+EMU=$TESTBIN/emu-usb
+H=$BIN/locus-hpgl
+META=fixtures/contour/trifocal.meta
+if ! command -v umockdev-wrapper > /dev/null || [ ! -x "$EMU" ]; then
+	ok "USB printer class # SKIP umockdev (umockdev-wrapper, libumockdev-dev) is not installed"
+	done_tests
+fi
+"$H" "$META" -o "$T/job.hpgl" 2>/dev/null || notok "locus-hpgl writes the contour plot to a file"
+word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
+# job NAME [EMU OPTIONS...] -- OUTPUT: one job into the emulator; report in $T/NAME, errors in NAME.err
+job() {
+	n=$1; shift
+	opts=
+	while [ "$1" != -- ]; do opts="$opts $1"; shift; done
+	shift
+	# shellcheck disable=SC2086
+	"$EMU" $opts --expect "$T/job.hpgl" -- "$H" "$META" -o "$1" > "$T/$n" 2> "$T/$n.all"
+	grep -v warning "$T/$n.all" > "$T/$n.err"
+}
+
+job plain -- usb:03f0:0107
+[ "$(word child "$T/plain")" = 0 ] && [ "$(word bytes "$T/plain")" = same ] \
+	&& ok "a whole contour plot over USB: $(word received "$T/plain") bytes, as sent" || notok "plain job: $(cat "$T/plain" "$T/plain.err")"
+[ "$(word detached "$T/plain")" = 1 ] && [ "$(word attached "$T/plain")" = 1 ] && [ "$(word driver "$T/plain")" = usblp ] \
+	&& [ "$(word claims "$T/plain")" = 1 ] && [ "$(word releases "$T/plain")" = 1 ] \
+	&& ok "usblp detached, the interface claimed and released, usblp given back at the end" || notok "driver: $(cat "$T/plain")"
+[ "$(word setconfig "$T/plain")" = 0 ] && [ "$(word idreads "$T/plain")" = 1 ] \
+	&& ok "the configuration already in use is not set again; the device ID is read once" || notok "config/id: $(cat "$T/plain")"
+
+job any -- usb:any
+[ "$(word bytes "$T/any")" = same ] && ok "usb:any finds the printer-class device" || notok "usb:any: $(cat "$T/any" "$T/any.err")"
+job sn -- usb:03f0:0107:LT0001
+[ "$(word bytes "$T/sn")" = same ] && ok "usb:VID:PID:SERIAL matches the serial number string" || notok "serial: $(cat "$T/sn" "$T/sn.err")"
+job badsn -- usb:03f0:0107:LT0002
+[ "$(word child "$T/badsn")" = 74 ] && grep -q "no printer with serial number 'LT0002'" "$T/badsn.err" && [ "$(word received "$T/badsn")" = 0 ] \
+	&& ok "another serial number: one line, exit 74, nothing sent" || notok "bad serial: $(cat "$T/badsn" "$T/badsn.err")"
+
+ID="MFG:Locus;MDL:Emulated 7475A;CMD:HPGL;CLS:PRINTER;DES:Locus test plotter;"
+"$EMU" -- "$BIN/locus-play" --list-devices > "$T/list" 2>&1
+grep -qxF "usb:03f0:0107:LT0001  bidirectional  $ID" "$T/list" && ok "--list-devices: the output name, bidirectional, the IEEE-1284 ID" \
+	|| notok "--list-devices: $(cat "$T/list")"
+"$EMU" --id-le -- "$BIN/locus-play" --list-devices > "$T/listle" 2>&1
+grep -qF "  $ID" "$T/listle" && ok "a device ID whose length comes little-endian is read whole" || notok "LE id: $(cat "$T/listle")"
+
+job stall --stall-at 5000 -- usb:03f0:0107
+[ "$(word bytes "$T/stall")" = same ] && [ "$(word stalls "$T/stall")" = 1 ] && [ "$(word clears "$T/stall")" -ge 1 ] \
+	&& ok "a stall at byte 5000: the halt is cleared, the rest follows, nothing lost or doubled" || notok "stall: $(cat "$T/stall" "$T/stall.err")"
+job short --short-at 3000 -- usb:03f0:0107
+[ "$(word bytes "$T/short")" = same ] && ok "a short write at byte 3000: the next write starts where the device stopped" \
+	|| notok "short: $(cat "$T/short" "$T/short.err")"
+job busy --hold-at 4000 2500 -- usb:03f0:0107
+[ "$(word bytes "$T/busy")" = same ] && ok "a printer busy for 2.5 s at byte 4000: timed-out transfers keep their partial count, the job completes" \
+	|| notok "busy: $(cat "$T/busy" "$T/busy.err")"
+job paper --hold-at 4000 9000 --status 0x38 -- "usb:03f0:0107?timeout=2"
+[ "$(word child "$T/paper")" = 74 ] && [ "$(wc -l < "$T/paper.err")" = 1 ] && grep -q "took nothing for 2 s after 4000 bytes (paper empty)" "$T/paper.err" \
+	&& ok "a printer out of paper: after timeout=2 one line with the byte count and the port status in words" || notok "paper: $(cat "$T/paper" "$T/paper.err")"
+job unplug --unplug-at 6000 -- usb:03f0:0107
+[ "$(word child "$T/unplug")" = 74 ] && [ "$(wc -l < "$T/unplug.err")" = 1 ] && grep -q "went away after 6000 bytes" "$T/unplug.err" \
+	&& [ "$(word received "$T/unplug")" = 6000 ] && ok "unplugged at byte 6000: one line naming how far it got, exit 74" \
+	|| notok "unplug: $(cat "$T/unplug" "$T/unplug.err")"
+
+# Unplugged mid-number with a journal, then resumed on a fresh device: the two parts hold every
+# pen-down segment of the job once (through the HP-GL reader), none redrawn, none skipped.
+SEG=$TESTBIN/hpgl-segments
+rm -f "$T/j"
+"$EMU" --unplug-at 6003 --record "$T/part1" -- "$H" "$META" -o "usb:03f0:0107?journal=$T/j" > "$T/u1" 2> "$T/u1.all"
+grep -v warning "$T/u1.all" > "$T/u1.err"
+safe=$(sed -n 's/^safe //p' "$T/j")
+[ "$(word child "$T/u1")" = 74 ] && [ "$(wc -l < "$T/u1.err")" = 1 ] && grep -q "page 1, command [0-9]* (byte $safe of the job) reached; resume with -o 'usb:03f0:0107?resume=$T/j'" "$T/u1.err" 	&& [ "$safe" -le 6003 ] && [ "$safe" -gt 5900 ] 	&& ok "unplugged with journal=: one line with the page, command and byte reached (boundary $safe of 6003 sent) and the resume name" 	|| notok "journal: $(cat "$T/u1" "$T/u1.err" "$T/j")"
+"$EMU" --record "$T/part2" -- "$H" "$META" -o "usb:03f0:0107?resume=$T/j" > "$T/u2" 2> "$T/u2.all"
+head -c "$safe" "$T/part1" > "$T/part1.cut"
+"$SEG" "$T/job.hpgl" | sort > "$T/seg.job"
+"$SEG" "$T/part1.cut" "$T/part2" | sort > "$T/seg.parts"
+[ "$(word child "$T/u2")" = 0 ] && [ -s "$T/seg.job" ] && cmp -s "$T/seg.job" "$T/seg.parts" 	&& ok "resume=: the rest with the modal state restored; the parts draw each of the $(wc -l < "$T/seg.job") segments once" 	|| notok "resume: $(cat "$T/u2" "$T/u2.all"; diff "$T/seg.job" "$T/seg.parts" | head -5)"
+"$SEG" "$T/part1.cut" "$T/part2" "$T/part2" | sort > "$T/seg.twice"
+cmp -s "$T/seg.job" "$T/seg.twice" && notok "control: a part sent twice should show as doubled" || ok "control: a part sent twice shows as doubled segments"
+grep -q "^state done" "$T/j" && ok "the journal says done after the resumed job" || notok "journal state: $(cat "$T/j")"
+"$EMU" -- "$H" "$META" -o "usb:03f0:0107?resume=$T/j" > "$T/u3" 2> "$T/u3.all"
+grep -q "delivered whole: nothing to resume" "$T/u3.all" && [ "$(word received "$T/u3")" = 0 ] 	&& ok "resuming a finished job: one line, nothing sent" || notok "resume done: $(cat "$T/u3" "$T/u3.all")"
+rm -f "$T/j2"
+"$EMU" --unplug-at 3000 -- "$H" "$META" -o "usb:03f0:0107?journal=$T/j2" > /dev/null 2>&1
+"$EMU" -- "$H" fixtures/meta/f-test.meta -o "usb:03f0:0107?resume=$T/j2" > "$T/u4" 2> "$T/u4.all"
+grep -Eq "the job differs from the journaled one|the job ended before the point the journal reached" "$T/u4.all" && [ "$(word received "$T/u4")" = 0 ] 	&& ok "resuming with another job: refused in one line, nothing sent" || notok "other job: $(cat "$T/u4" "$T/u4.all")"
+
+# Recorded sessions (fixtures/usb/*.pcap, usbmon link type 220) replayed by umockdev-run -p: the
+# replay completes only if the program makes the same transfers with the same bytes, in order.
+SYS=/sys/devices/pci0000:00/0000:00:14.0/usb1/1-1
+replay() { umockdev-run -d fixtures/usb/plotter.umockdev -p "$SYS=fixtures/usb/$1" -- "$H" "$2" -o "usb:03f0:0107?timeout=2"; }
+replay f-test-job.pcap fixtures/meta/f-test.meta > /dev/null 2> "$T/r1" && ok "recorded session f-test-job.pcap replays: device ID, then the job's bulk transfers as recorded" \
+	|| notok "replay job: $(tail -3 "$T/r1")"
+replay f-test-stall.pcap fixtures/meta/f-test.meta > /dev/null 2> "$T/r2" && ok "recorded session with a stall replays: the rest after the halt is cleared, as recorded" \
+	|| notok "replay stall: $(tail -3 "$T/r2")"
+replay f-test-job.pcap fixtures/meta/strokes.meta > /dev/null 2> "$T/r3"; rc=$?
+[ $rc = 74 ] && grep -q "Replay may be stuck" "$T/r3" && ok "control: another job against the recording gets stuck and fails (exit 74)" \
+	|| notok "replay control: exit $rc, $(tail -2 "$T/r3")"
+
+# No such device (no emulator at all), bad names.
+bad() {
+	desc=$1 name=$2 words=$3
+	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e.all"; rc=$?
+	grep -v warning "$T/e.all" > "$T/e"
+	[ $rc = 74 ] && [ "$(wc -l < "$T/e")" = 1 ] && grep -qF -- "$words" "$T/e" && [ ! -s "$T/o" ] \
+		&& ok "$desc: exit $rc, one line: $(cat "$T/e")" || notok "$desc: exit $rc: $(cat "$T/e")"
+}
+"$EMU" -- "$H" "$META" -o usb:03f0:0999 > "$T/absent" 2> "$T/absent.all"
+grep -q "no USB printer-class device with that VID:PID: is it plugged in and on?" "$T/absent.all" && [ "$(word child "$T/absent")" = 74 ] \
+	&& ok "an absent VID:PID: one line that says to plug it in, and how to list or wait" || notok "absent: $(cat "$T/absent" "$T/absent.all")"
+bad "a VID that is no hex" "usb:zz:0107" "name the printer as usb:VID:PID"
+bad "no PID" "usb:03f0" "name the printer as usb:VID:PID"
+bad "an unknown setting" "usb:03f0:0107?speed=1" "settings are wait=SECONDS"
+done_tests
