@@ -1,5 +1,6 @@
 /* locus-render.c: render a scene file into a meta file (ray tracing, octree, contours, Voronoi, wireframes). */
 #include "scene.h"
+#include "scene_lex.h"
 #include "transport.h"
 
 #include <errno.h>
@@ -42,6 +43,14 @@ static void progress(void *user, unsigned done, unsigned total)
 	if (done >= total)
 		fputc('\n', stderr);
 	fflush(stderr);
+}
+
+/* One message line on stderr, control bytes escaped (a scene's text never reaches the terminal raw). */
+static void say(const char *msg)
+{
+	char buf[2048];
+	scene_escape(buf, sizeof buf, msg);
+	fprintf(stderr, "%s\n", buf);
 }
 
 static double now(void)
@@ -98,19 +107,19 @@ int main(int argc, char **argv)
 	scene_t *sc;
 	int rc = scene_load(in, &sc, err, sizeof err);
 	if (rc < 0) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		return rc == -2 ? EX_NOINPUT : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (!quiet)
 		for (size_t i = 0; i < sc->nwarnings; i++)
-			fprintf(stderr, "%s\n", sc->warnings[i]);
+			say(sc->warnings[i]);
 	size_t nw0 = sc->nwarnings;
 
 	/* a file via a new temporary renamed on success; a device or a pipe (e.g. /dev/null)
 	 * written in place, never replaced (drivers/transport.h) */
 	io_transport_t *f = io_open_write(out, err, sizeof err);
 	if (!f) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		scene_free(sc);
 		return EX_IOERR;
 	}
@@ -124,7 +133,7 @@ int main(int argc, char **argv)
 		fprintf(stderr, "locus-render: out of memory\n");
 		status = EX_SOFTWARE;
 	} else if ((rc = scene_render(sc, w, &o, &st, err, sizeof err)) < 0) {
-		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : err);
+		say(io_failed(f) ? io_error(f) : err);
 		status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
@@ -132,12 +141,12 @@ int main(int argc, char **argv)
 		status = EX_IOERR;
 	}
 	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		status = EX_IOERR;
 	}
 	if (!status && !quiet)
 		for (size_t i = nw0; i < sc->nwarnings; i++)
-			fprintf(stderr, "%s\n", sc->warnings[i]);
+			say(sc->warnings[i]);
 	if (!status && stats) {
 		double total = now() - t_start;
 		double px = st.pixels ? st.pixels : 1;

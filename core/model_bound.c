@@ -103,6 +103,34 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 
 static void tighten_box(model_shape_t *s);
 
+/* Why setup_sphere found no bounding sphere, in words the user can act on. */
+static const char *unbounded_reason(const model_shape_t *s)
+{
+	double wf = 0;
+	int finite = 0, shapes = 0, infinite = 0, negative = 0;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (e->kind == MODEL_SHAPE)
+			shapes++;
+		else if (elem_finite(e))
+			finite++, wf += e->w;
+		else
+			infinite++;
+		negative |= e->w < 0;
+	}
+	if (s->nel == 0)
+		return "no elements: the solid is wherever the defining parameter is positive";
+	if (!finite && shapes && !infinite)
+		return "its elements are only distance-to other shapes, and Locus does not carry their extent over";
+	if (!finite)
+		return "its only elements are infinite: lines or planes";
+	if (wf == 0 && !negative)
+		return "the weights of its finite elements are all 0";
+	if (!(wf > 0))
+		return "the weights of its finite elements sum to 0 or less (negative weights)";
+	return "its defining parameter has no known maximum over space";
+}
+
 int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 {
 	if (warn)
@@ -113,6 +141,14 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	}
 	if (model_check_nesting(s, err, errlen) < 0)
 		return -1;
+	int nonzero = 0;
+	for (size_t i = 0; i < s->nel; i++)
+		nonzero |= s->el[i].w != 0;
+	if (s->nel > 0 && !nonzero && s->c.kind == MODEL_C_CONST) {
+		snprintf(err, errlen, "expected a non-zero weight: every element has weight 0, so f = -c is the same"
+		         " everywhere and has no surface");
+		return -1;
+	}
 	double C[3], R, lo[3], hi[3];
 	const double *mi = s->minv;
 	s->fast_points = s->c.kind == MODEL_C_CONST && mi[0] == 1 && mi[1] == 0 && mi[2] == 0 && mi[4] == 0
@@ -126,7 +162,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		s->radius = R * s->norm_m;
 	}
 	if (!s->bounded && !s->user_box) {
-		snprintf(err, errlen, "expected a 'bound' box: the shape is unbounded (negative weights, only infinite elements, or a parameter without a known maximum)");
+		snprintf(err, errlen, "expected a 'bound' box: the shape is unbounded (%s); add 'bound X0 Y0 Z0 X1 Y1 Z1'"
+		         " around the part to draw", unbounded_reason(s));
 		return -1;
 	}
 	if (s->user_box) {

@@ -24,7 +24,7 @@ static void warn(scene_t *sc, unsigned line, unsigned col, const char *msg)
 	if (sc->nwarnings >= SCENE_MAX_WARNINGS)
 		return;
 	char *b = sc->warnbuf[sc->nwarnings], tmp[sizeof sc->warnbuf[0]];
-	snprintf(tmp, sizeof tmp, "%.200s:%u:%u: warning: %.250s", sc->name, line, col, msg);
+	snprintf(tmp, sizeof tmp, "%.180s:%u:%u: warning: %.300s", sc->name, line, col, msg);
 	memcpy(b, tmp, sizeof tmp);
 	sc->warnings[sc->nwarnings++] = b;
 }
@@ -355,7 +355,9 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				snprintf(msg, sizeof msg, "%s (in '%s')", e, o->name);
 				return scene_lex_error(lx, o->line, o->col, msg);
 			}
-			if (w && (o->drawn || !strstr(w, "empty"))) {
+			if (w && strstr(w, "empty"))
+				o->empty = 1;   /* warned at the end of the scene, if a 3D picture draws it */
+			else if (w) {
 				snprintf(msg, sizeof msg, "'%s': %s", o->name, w);
 				warn(sc, o->line, o->col, msg);
 			}
@@ -393,6 +395,12 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			if (add_elem(lx, m, MODEL_SHAPE, NULL, 0, 0, other->shape, &n) < 0)
 				return -1;
 		} else if (scene_tok_is(&t, "c")) {
+			if (o->c_line) {
+				snprintf(msg, sizeof msg, "expected one 'c' line per shape: '%s' has its defining parameter from line %u already"
+				         " (delete one of them)", o->name, o->c_line);
+				return scene_lex_error(lx, t.line, t.col, msg);
+			}
+			o->c_line = t.line;
 			if (parse_param(lx, sc, m) < 0)
 				return -1;
 		} else if (scene_tok_is(&t, "translate")) {
@@ -534,6 +542,24 @@ static int parse_light(scene_lex_t *lx, scene_t *sc)
 	return 0;
 }
 
+/* A drawn object whose surface is proved empty is worth a warning only where a 3D picture (ray
+ * tracing, octree, wireframe) would show that surface: a contour map of f (e.g. with c 0) is fine. */
+static void empty_warnings(scene_t *sc)
+{
+	int in3d = sc->nrenders == 0;
+	for (size_t i = 0; i < sc->nrenders; i++)
+		in3d |= sc->renders[i].kind != SCENE_CONTOUR && sc->renders[i].kind != SCENE_VORONOI;
+	for (size_t i = 0; in3d && i < sc->nobjs; i++) {
+		const scene_obj_t *o = &sc->objs[i];
+		if (!o->drawn || !o->empty)
+			continue;
+		char msg[400];
+		snprintf(msg, sizeof msg, "'%s': the shape is empty: f = sum of weighted distances - c stays above 0 (c is below"
+		         " the sum's minimum), so its 3D pictures show nothing of it; raise c to see a surface", o->name);
+		warn(sc, o->line, o->col, msg);
+	}
+}
+
 int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen)
 {
 	scene_lex_t lx;
@@ -582,6 +608,15 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 			scene_lex_error(&lx, view_line, view_col, msg);
 		}
 	}
+	size_t ndrawn = 0;
+	for (size_t i = 0; i < sc->nobjs; i++)
+		ndrawn += sc->objs[i].drawn;
+	if (!lx.failed && ndrawn == 0 && sc->nrenders == 0)
+		scene_lex_error(&lx, 1, 1, sc->nobjs ? "expected an 'object' block or a 'render' block: the scene defines only 'shape' blocks,"
+		                " which are never drawn themselves, so it would render a blank page"
+		                : "expected an 'object' block or a 'render' block: the scene is empty (no statement), so it would render a blank page");
+	if (!lx.failed)
+		empty_warnings(sc);
 	if (lx.failed) {
 		scene_free(sc);
 		return strstr(err, "out of memory") ? SCENE_ENOMEM : -1;

@@ -27,6 +27,8 @@ typedef struct {
 	int drawn;
 	rt_object_t mat;           /* material; mat.shape == shape */
 	unsigned line, col;        /* where it was defined */
+	int empty;                 /* model_prepare proved the surface empty (warned where it is drawn in 3D) */
+	unsigned c_line;           /* the line of its `c` (0: none yet): a second one is refused */
 } scene_obj_t;
 
 /* One `render` block: a page (two for stereo pages) of one visualisation. */

@@ -103,11 +103,35 @@ int scene_tok_is(const scene_tok_t *t, const char *word)
 	return t->len == strlen(word) && !memcmp(t->s, word, t->len);
 }
 
+size_t scene_escape(char *dst, size_t dstlen, const char *src)
+{
+	static const char hex[] = "0123456789abcdef";
+	size_t n = 0;
+	if (!dstlen)
+		return 0;
+	for (const unsigned char *p = (const unsigned char *)src; *p && n + 1 < dstlen; p++) {
+		if (*p >= 0x20 && *p != 0x7f) {
+			dst[n++] = (char)*p;
+			continue;
+		}
+		if (n + 4 >= dstlen)
+			break;
+		dst[n++] = '\\';
+		dst[n++] = 'x';
+		dst[n++] = hex[*p >> 4];
+		dst[n++] = hex[*p & 15];
+	}
+	dst[n] = 0;
+	return n;
+}
+
 int scene_lex_error(scene_lex_t *lx, unsigned line, unsigned col, const char *msg)
 {
 	if (!lx->failed) {
+		char raw[1024];
 		lx->failed = 1;
-		snprintf(lx->err, lx->errlen, "%s:%u:%u: %s", lx->name, line, col, msg);
+		snprintf(raw, sizeof raw, "%s:%u:%u: %s", lx->name, line, col, msg);
+		scene_escape(lx->err, lx->errlen, raw);
 	}
 	return -1;
 }

@@ -34,7 +34,10 @@ void scene_lex_rest(scene_lex_t *lx, scene_tok_t *t);
 int scene_tok_is(const scene_tok_t *t, const char *word);
 /* Record "name:line:col: expected WHAT, found 'TOKEN'" (first error only). Returns -1. */
 int scene_lex_expected(scene_lex_t *lx, const scene_tok_t *t, const char *what);
-/* Record "name:line:col: MESSAGE" (first error only). Returns -1. */
+/* Copy src to dst (NUL-terminated, truncated to dstlen) with every control byte (below 0x20,
+ * and 0x7f) written as \xHH, so that echoed scene text cannot drive a terminal. Returns the length. */
+size_t scene_escape(char *dst, size_t dstlen, const char *src);
+/* Record "name:line:col: MESSAGE" (first error only, control bytes escaped). Returns -1. */
 int scene_lex_error(scene_lex_t *lx, unsigned line, unsigned col, const char *msg);
 /* Read a finite number token (what names it in the message). Returns 0 or -1. */
 int scene_lex_number(scene_lex_t *lx, double *v, const char *what);
