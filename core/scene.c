@@ -91,6 +91,14 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 					sc->stereo = SCENE_STEREO_SIDE;
 			} else
 				return scene_lex_expected(lx, &t, "perspective, orthographic or stereoscopic");
+		} else if (scene_tok_is(&t, "handedness")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "left"))
+				c->handedness = CAM_LEFT_HANDED;
+			else if (scene_tok_is(&t, "right"))
+				c->handedness = CAM_RIGHT_HANDED;
+			else
+				return scene_lex_expected(lx, &t, "left (the thesis' system, the default) or right");
 		} else if (scene_tok_is(&t, "stereo-layout")) {
 			scene_lex_tok(lx, &t);
 			if (scene_tok_is(&t, "side-by-side"))
@@ -100,7 +108,7 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 			else
 				return scene_lex_expected(lx, &t, "side-by-side or pages");
 		} else {
-			return scene_lex_expected(lx, &t, "a view setting (eye, look-at, direction, up, fov, projection, window, size, eye-separation, stereo-layout) or 'end'");
+			return scene_lex_expected(lx, &t, "a view setting (eye, look-at, direction, up, fov, projection, window, size, eye-separation, stereo-layout, handedness) or 'end'");
 		}
 		if (scene_lex_eol(lx) < 0)
 			return -1;
