@@ -128,6 +128,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	clip8(s, pk, ca, cb, con);
 	for (int k = 0; k < RT_LANES; k++) {
 		pk->thit[k] = INFINITY;
+		pk->side[k] = 0;
 		mode[k] = M_DONE;
 		t[k] = f[k] = st[k] = lo[k] = flo[k] = hi[k] = fhi[k] = side[k] = 0;
 		t1[k] = 0;
@@ -170,6 +171,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		v *= sgn[k];
 		if (v == v && (touch || v <= eps * (L > 0 ? L : 1.0f))) {
 			pk->thit[k] = u[k];
+			pk->side[k] = touch ? 1.0f : 0.0f;   /* touching the bounding sphere: entered from outside */
 			mode[k] = M_DONE;
 			n--;
 			continue;
@@ -183,6 +185,9 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		st[k] = L > 0 ? maxf(v * invL, emin) : maxf(pk->step * fp, smin[k]);
 	}
 	int iter = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		if (mode[k] == M_MARCH)
+			pk->side[k] = sgn[k];
 	while (n > 0 && iter++ < 4000) {
 		for (int k = 0; k < RT_LANES; k++) {
 			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
