@@ -82,6 +82,8 @@ typedef struct {
 	int maxit;                 /* mandelbrot iterations */
 	int smooth;                /* mandelbrot: continuous escape count instead of n */
 	int revolve;               /* mandelbrot: the maps read (x, sqrt(y^2+z^2), 0): the set turned about x */
+	int julia;                 /* the Julia process z <- z^2 + k from z = u + iv instead (kind MODEL_C_MANDEL) */
+	double k[2];               /* julia: the constant k */
 	const model_shape_t *shape; /* MODEL_C_SHAPE */
 } model_param_t;
 
@@ -102,6 +104,8 @@ struct model_shape {
 	int bounded;               /* 1 when the surface lies in the sphere below */
 	double centre[3], radius;  /* bounding sphere (actual frame) */
 	int fast_points;           /* points/segments only, constant c, translated frame: model_eval8's fast path */
+	int de;                    /* model_de is a distance bound (elementless smooth Mandelbrot/Julia shape) */
+	double de_m0, de_scale;    /* de: the level of the continuous count; 1 / (||u,v map|| ||M^-1||) */
 	/* kept by model_add / model_check_nesting: */
 	int nest;                  /* levels of shapes below this one (0: none) */
 	double eval_cost, grad_cost; /* distance evaluations per point of model_eval, model_grad */
@@ -156,6 +160,17 @@ void model_eval8(const model_shape_t *s, const float *x, const float *y, const f
 double model_elem_distance(const model_elem_t *e, const double q[3]);
 /* Gradient of f at p (analytic for elements, central differences for c). */
 void model_grad(const model_shape_t *s, const double p[3], double g[3]);
+
+/* Distance estimate of an elementless shape whose parameter is a smooth Mandelbrot or Julia
+ * process (s->de set by model_prepare): the sign of f, and a magnitude never above the distance
+ * from p to the surface (the Douady-Hubbard potential with Koebe's quarter theorem, divided by
+ * the norms of the (u, v) map and of M^-1). Inside the set (no escape) it is -1e-3 * de_scale:
+ * a sign, not a bound. model_de8: the same at 8 float points. */
+double model_de(const model_shape_t *s, const double p[3]);
+void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* 1 with the level *m0 of the continuous count when c is a smooth process with a level inside
+ * (0, maxit) (the surface is the equipotential count = m0). */
+int model_de_level(const model_param_t *c, double *m0);
 
 /* Value of the defining parameter at the actual point p (setup point q). */
 double model_param(const model_shape_t *s, const double p[3], const double q[3]);

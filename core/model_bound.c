@@ -103,6 +103,45 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 
 static void tighten_box(model_shape_t *s);
 
+/* 1 when z <- z^2 + k stays bounded from 0 for 1000 steps: k in the Mandelbrot set as far as
+ * that tells, so the Julia set is connected and its Boettcher map conformal outside it. */
+static int julia_connected(const model_param_t *c)
+{
+	double zr = 0, zi = 0;
+	for (int i = 0; i < 1000; i++) {
+		double t = zr * zr - zi * zi + c->k[0];
+		zi = 2 * zr * zi + c->k[1];
+		zr = t;
+		if (zr * zr + zi * zi > 4)
+			return 0;
+	}
+	return 1;
+}
+
+/* The Douady-Hubbard distance estimate applies to a shape that is only a smooth process
+ * (f = -c(P)): set s->de, its level and scale. */
+static void set_de(model_shape_t *s)
+{
+	const model_param_t *c = &s->c;
+	double m0;
+	s->de = 0;
+	if (s->nel != 0 || !model_de_level(c, &m0) || (c->julia && !julia_connected(c)))
+		return;
+	double uu = 0, vv = 0, uv = 0;
+	for (int i = 0; i < 3; i++) {
+		uu += c->u[i] * c->u[i];
+		vv += c->v[i] * c->v[i];
+		uv += c->u[i] * c->v[i];
+	}
+	/* operator norm of the 2x3 map (u, v): the larger eigenvalue of its Gram matrix */
+	double lam = 0.5 * (uu + vv) + sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv), jn = sqrt(lam);
+	if (!(jn > 0) || !(s->norm_minv > 0))
+		return;
+	s->de = 1;
+	s->de_m0 = m0;
+	s->de_scale = 1 / (jn * s->norm_minv);
+}
+
 /* Why setup_sphere found no bounding sphere, in words the user can act on. */
 static const char *unbounded_reason(const model_shape_t *s)
 {
@@ -201,8 +240,12 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	}
 	if (s->has_lip && !(s->lip > 0))
 		s->has_lip = 0;
-	if (!s->has_lip && warn)
-		*warn = "no Lipschitz bound for this defining parameter: using step-and-bisect bracketing (slower)";
+	set_de(s);
+	if (!s->has_lip && !s->de && warn)
+		*warn = s->c.kind == MODEL_C_MANDEL && s->c.julia && s->nel == 0 && s->c.smooth && !julia_connected(&s->c)
+		        ? "the Julia set of this k is not connected (k is outside the Mandelbrot set), so the distance estimate"
+		          " is not a proven bound: using step-and-bisect bracketing (slower)"
+		        : "no Lipschitz bound for this defining parameter: using step-and-bisect bracketing (slower)";
 	if (s->has_lip && model_is_empty(s)) {
 		if (warn)
 			*warn = "the shape is empty (the defining parameter is below the minimum of the distance sum)";

@@ -326,7 +326,7 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 			double oc[3] = {o[0] - bc[0], o[1] - bc[1], o[2] - bc[2]};
 			tfar[k] = (float)(sqrt(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + half);
 			t[k] = 0;
-			live[k] = g + k < npk && s->has_lip;
+			live[k] = g + k < npk && rt_bound(s) > 0;
 			n += live[k];
 			if (g + k < npk)
 				out[g + k] = 0;
@@ -337,14 +337,14 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 				y[k] = oy[k] + t[k] * dy[k];
 				z[k] = oz[k] + t[k] * dz[k];
 			}
-			model_eval8(s, x, y, z, v);
+			rt_eval8(s, x, y, z, v);
 			st->primary_evals += (uint64_t)n;
 			st->lane_evals += 8;
 			n = 0;
 			for (int k = 0; k < 8; k++) {
 				if (!live[k])
 					continue;
-				double r = ortho ? rr : rr * t[k], dd = v[k] / s->lip - r;
+				double r = ortho ? rr : rr * t[k], dd = v[k] / rt_bound(s) - r;
 				if (!(dd >= 0.5 * r)) {
 					out[g + k] = t[k];       /* near something (or inside, or NaN): start here */
 					live[k] = 0;

@@ -25,6 +25,20 @@ typedef struct {
 	double o[3][RT_LANES], d[3][RT_LANES]; /* the same rays in double (for rt_march1) */
 } rt_packet_t;
 
+/* What the marchers trace for s: f with its Lipschitz bound, or for a distance-estimated shape
+ * (s->de) the estimate itself with bound 1; 0 when neither (the bracketing fallback). */
+static inline double rt_bound(const model_shape_t *s)
+{
+	return s->de ? 1.0 : s->has_lip ? s->lip : 0.0;
+}
+static inline void rt_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
+{
+	if (s->de)
+		model_de8(s, x, y, z, out);
+	else
+		model_eval8(s, x, y, z, out);
+}
+
 /* March the active rays against s. shadow != 0 stops at the first sample
  * with f <= 0 (any hit is enough). Adds evaluations (active lanes) to *evals
  * and 8 per kernel call to *lanes. */

@@ -42,14 +42,14 @@ static void clip1(const model_shape_t *s, const double *o, const double *d, doub
 static double eval_at(const model_shape_t *s, const double *o, const double *d, double t, double sg)
 {
 	double p[3] = {o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]};
-	double v = sg * model_eval(s, p);
+	double v = sg * (s->de ? model_de(s, p) : model_eval(s, p));
 	return v;
 }
 
 double rt_march1(const model_shape_t *s, const double *o, const double *d, double tmin, double tmax,
                  double fa, double fb, double acc, double step, int shadow, int *side, uint64_t *evals)
 {
-	double a = tmin, b = tmax, L = s->has_lip ? s->lip : 0;
+	double a = tmin, b = tmax, L = rt_bound(s);
 	int on;
 	*side = 0;
 	clip1(s, o, d, &a, &b, &on);
@@ -82,7 +82,10 @@ double rt_march1(const model_shape_t *s, const double *o, const double *d, doubl
 			(*evals)++;
 			if (v != v)
 				v = emin * (L > 0 ? L : 1);
-			if (L > 0 && v > 0 && (f + v) / L < (u - t) * 0.999999 && u - t > emin * 1.0001) {
+			/* rejected unless the ball at t and the one at u overlap (outside: both free of
+			 * surface; a sign change: exactly one crossing between them) */
+			double du = (u - t) * 0.999999;
+			if (L > 0 && u - t > emin * 1.0001 && (v > 0 ? (f + v) / L < du : !shadow && (f - v) / L < du)) {
 				u = fmin(t + s1, b);     /* rejected: the plain sphere-tracing step */
 				v = eval_at(s, o, d, u, sg);
 				(*evals)++;

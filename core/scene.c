@@ -202,10 +202,12 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 		c->seed = (unsigned)v[3];
 		return scene_lex_eol(lx);
 	}
-	if (scene_tok_is(&t, "mandelbrot")) {
+	if (scene_tok_is(&t, "mandelbrot") || scene_tok_is(&t, "julia")) {
 		double v[3];
 		c->kind = MODEL_C_MANDEL;
-		if (scene_lex_numbers(lx, v, 3, "mandelbrot BASE AMPLITUDE ITERATIONS") < 0
+		c->julia = t.s[0] == 'j';
+		if (scene_lex_numbers(lx, v, 3, c->julia ? "julia BASE AMPLITUDE ITERATIONS" : "mandelbrot BASE AMPLITUDE ITERATIONS") < 0
+		    || (c->julia && scene_lex_numbers(lx, c->k, 2, "the constant k (real and imaginary part)") < 0)
 		    || scene_lex_numbers(lx, c->u, 4, "the u map (4 numbers)") < 0
 		    || scene_lex_numbers(lx, c->v, 4, "the v map (4 numbers)") < 0)
 			return -1;
@@ -245,7 +247,7 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	lx->pos = save;
 	scene_lex_rest(lx, &rest);
 	if (rest.len == 0)
-		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot or shape");
+		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot, julia or shape");
 	char *src = malloc(rest.len + 1), e[200], msg[300];
 	if (!src)
 		return scene_lex_error(lx, rest.line, rest.col, "out of memory");
