@@ -248,16 +248,22 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	scene_lex_rest(lx, &rest);
 	if (rest.len == 0)
 		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot, julia or shape");
-	char *src = malloc(rest.len + 1), e[200], msg[300];
+	int timed = scene_uses_t(rest.s, rest.len);
+	size_t srclen = timed ? 26 * rest.len + 1 : rest.len + 1;   /* each t becomes (%.17g) */
+	char *src = malloc(srclen), e[200], msg[300];
 	if (!src)
 		return scene_lex_error(lx, rest.line, rest.col, "out of memory");
-	memcpy(src, rest.s, rest.len);
-	src[rest.len] = 0;
+	if (timed)
+		scene_subst_t(rest.s, rest.len, lx->t, src, srclen);
+	else {
+		memcpy(src, rest.s, rest.len);
+		src[rest.len] = 0;
+	}
 	size_t at = 0;
 	if (expr_compile(src, &c->expr, e, sizeof e, &at) < 0) {
 		free(src);
-		snprintf(msg, sizeof msg, "%s", e);
-		return scene_lex_error(lx, rest.line, rest.col + (unsigned)at, msg);
+		snprintf(msg, sizeof msg, "%s%s", e, timed ? " (in the expression with t replaced by its value)" : "");
+		return scene_lex_error(lx, rest.line, timed ? rest.col : rest.col + (unsigned)at, msg);
 	}
 	free(src);
 	if (expr_is_constant(c->expr)) {
@@ -572,6 +578,11 @@ static void empty_warnings(scene_t *sc)
 
 int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen)
 {
+	return scene_parse_frame(text, name, 0, out, err, errlen);
+}
+
+int scene_parse_frame(const char *text, const char *name, double time, scene_t **out, char *err, size_t errlen)
+{
 	scene_lex_t lx;
 	tok_t t;
 	scene_t *sc = calloc(1, sizeof *sc);
@@ -591,6 +602,8 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 	sc->background[0] = sc->background[1] = sc->background[2] = 1;
 	unsigned view_line = 1, view_col = 1;
 	scene_lex_init(&lx, text, name, err, errlen);
+	lx.t = time;
+	sc->t = time;
 	while (!lx.failed && scene_lex_line(&lx)) {
 		scene_lex_tok(&lx, &t);
 		if (scene_tok_is(&t, "view")) {
@@ -637,9 +650,22 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 
 int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 {
-	FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+	char *buf;
 	const char *name = strcmp(path, "-") ? path : "<stdin>";
 	*out = NULL;
+	int rc = scene_read(path, &buf, err, errlen);
+	if (rc < 0)
+		return rc;
+	rc = scene_parse(buf, name, out, err, errlen);
+	free(buf);
+	return rc;
+}
+
+int scene_read(const char *path, char **text, char *err, size_t errlen)
+{
+	FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+	const char *name = strcmp(path, "-") ? path : "<stdin>";
+	*text = NULL;
 	if (!f) {
 		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
 		return -2;
@@ -683,9 +709,8 @@ int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 		free(buf);
 		return -1;
 	}
-	int rc = scene_parse(buf, name, out, err, errlen);
-	free(buf);
-	return rc;
+	*text = buf;
+	return 0;
 }
 
 void scene_free(scene_t *s)
