@@ -288,17 +288,91 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 	return 0;
 }
 
+static double nearest(const model_elem_t *e, const double *p, double *q);
+
+int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, const model_shape_t *b,
+                  double k, char *err, size_t errlen)
+{
+	if (!a || !b || !a->has_lip || !b->has_lip || !(a->lip > 0) || !(b->lip > 0)) {
+		snprintf(err, errlen, "shapes with a known Lipschitz bound to combine");
+		return -1;
+	}
+	if (!isfinite(w) || (op == MODEL_BLEND && !(k > 0 && isfinite(k)))) {
+		snprintf(err, errlen, "%s", op == MODEL_BLEND ? "a blend radius > 0 (and a finite weight)" : "a finite weight");
+		return -1;
+	}
+	model_elem_t e = {0};
+	e.kind = MODEL_CSG;
+	e.w = w;
+	e.r = k;
+	e.op = op;
+	e.shape = a;
+	e.shape2 = b;
+	e.p = malloc(sizeof *e.p);
+	e.pf = calloc(8, sizeof *e.pf);
+	if (!e.p || !e.pf) {
+		free(e.p);
+		free(e.pf);
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	if (push(s, &e, err, errlen) < 0)
+		return -1;
+	if (model_check_nesting(s, err, errlen) < 0) {
+		s->nel--;
+		free(s->el[s->nel].p);
+		free(s->el[s->nel].pf);
+		model_check_nesting(s, NULL, 0);
+		return -1;
+	}
+	return 0;
+}
+
+/* The combination of the normalised values a, b; *la = the weight of a's gradient in its gradient
+ * (b's is sb * (1 - *la), sb = -1 for a difference). */
+static double csg_combine(int op, double k, double a, double b, double *la, double *sb)
+{
+	*sb = 1;
+	switch (op) {
+	case MODEL_UNION: *la = a <= b; return fmin(a, b);
+	case MODEL_INTERSECTION: *la = a >= b; return fmax(a, b);
+	case MODEL_DIFFERENCE: *sb = -1; *la = a >= -b; return fmax(a, -b);
+	default: {
+		double h = fmax(k - fabs(a - b), 0) / k;
+		/* for a < b: d/da = 1 - h/2, d/db = h/2 (and mirrored): a convex combination */
+		*la = a < b ? 1 - h / 2 : h / 2;
+		return fmin(a, b) - k * h * h / 4;
+	}
+	}
+}
+
+double model_elem_value(const model_elem_t *e, const double p[3], const double q[3])
+{
+	double near[3];
+	if (e->kind == MODEL_SHAPE)
+		return fabs(model_eval(e->shape, p)) / e->shape->lip;
+	if (e->kind == MODEL_CSG) {
+		double la, sb;
+		return csg_combine(e->op, e->r, model_eval(e->shape, p) / e->shape->lip,
+		                   model_eval(e->shape2, p) / e->shape2->lip, &la, &sb);
+	}
+	return nearest(e, q, near);
+}
+
 int model_check_nesting(model_shape_t *s, char *err, size_t errlen)
 {
 	int nest = 0;
 	double ev = 1, gr = 1;
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
-		if (e->kind == MODEL_SHAPE) {
-			if (e->shape->nest + 1 > nest)
-				nest = e->shape->nest + 1;
-			ev += e->shape->eval_cost;
-			gr += e->shape->eval_cost + e->shape->grad_cost;
+		if (e->kind == MODEL_SHAPE || e->kind == MODEL_CSG) {
+			for (int j = 0; j < (e->kind == MODEL_CSG ? 2 : 1); j++) {
+				const model_shape_t *o = j ? e->shape2 : e->shape;
+				if (o->nest + 1 > nest)
+					nest = o->nest + 1;
+				ev += o->eval_cost;
+				gr += o->eval_cost + o->grad_cost;
+			}
 		} else {   /* one distance evaluation, however many points the element holds */
 			ev += 1;
 			gr += 1;
@@ -560,7 +634,7 @@ double model_eval(const model_shape_t *s, const double p[3])
 	apply(s->minv, p, q);
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
-		double d = e->kind == MODEL_SHAPE ? fabs(model_eval(e->shape, p)) / e->shape->lip : nearest(e, q, near);
+		double d = e->kind == MODEL_SHAPE || e->kind == MODEL_CSG ? model_elem_value(e, p, q) : nearest(e, q, near);
 		sum += e->w * d;
 	}
 	return sum - model_param(s, p, q);
@@ -572,6 +646,16 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 	apply(s->minv, p, q);
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
+		if (e->kind == MODEL_CSG) {
+			double a = model_eval(e->shape, p) / e->shape->lip, b = model_eval(e->shape2, p) / e->shape2->lip;
+			double la, sb, ga_[3], gb_[3];
+			csg_combine(e->op, e->r, a, b, &la, &sb);
+			model_grad(e->shape, p, ga_);
+			model_grad(e->shape2, p, gb_);
+			for (int j = 0; j < 3; j++)
+				ga[j] += e->w * (la * ga_[j] / e->shape->lip + sb * (1 - la) * gb_[j] / e->shape2->lip);
+			continue;
+		}
 		if (e->kind == MODEL_SHAPE) {
 			double f = model_eval(e->shape, p), sg[3];
 			model_grad(e->shape, p, sg);

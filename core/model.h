@@ -51,7 +51,14 @@
 
 /* Element kinds. */
 enum { MODEL_POINT, MODEL_POINTS, MODEL_SEGMENT, MODEL_POLYLINE, MODEL_LINE,
-       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI };
+       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI, MODEL_CSG };
+/* Constructive combinations (MODEL_CSG elements) of two shapes A, B with the normalised
+ * signed estimates a = f_A/L_A, b = f_B/L_B (each 1-Lipschitz, negative inside):
+ *   union min(a, b), intersection max(a, b), difference max(a, -b), and the smooth blend
+ *   min(a, b) - k h^2 / 4 with h = max(k - |a - b|, 0) / k (radius k > 0): its gradient is a
+ *   convex combination of the two, so it is 1-Lipschitz too, and it lies within k/4 below
+ *   min(a, b) (the blend fills the crease where the surfaces meet, up to k apart). */
+enum { MODEL_UNION, MODEL_INTERSECTION, MODEL_DIFFERENCE, MODEL_BLEND };
 /* Parameter kinds. */
 enum { MODEL_C_CONST, MODEL_C_EXPR, MODEL_C_NOISE, MODEL_C_MANDEL, MODEL_C_SHAPE };
 
@@ -68,7 +75,9 @@ typedef struct {
 	double r;
 	float *pf;                 /* float copy (directions normalised) for the 8-wide kernel */
 	double *nw;                /* MODEL_VORONOI: the nuclei's additive weights */
-	const model_shape_t *shape; /* MODEL_SHAPE */
+	const model_shape_t *shape; /* MODEL_SHAPE; MODEL_CSG: A */
+	const model_shape_t *shape2; /* MODEL_CSG: B */
+	int op;                    /* MODEL_CSG: MODEL_UNION ... MODEL_BLEND (r: the blend radius k) */
 } model_elem_t;
 
 /* The defining parameter. */
@@ -134,6 +143,16 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
  * or -1 with a message. (model_add with MODEL_VORONOI takes plain points.) */
 int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
                      char *err, size_t errlen);
+
+/* Add a constructive element of weight w: op (MODEL_UNION ...) of shapes a and b, both with
+ * a Lipschitz bound; k > 0 the blend radius (MODEL_BLEND). Its value is signed and
+ * 1-Lipschitz in the ACTUAL frame (like a distance-to element, outside the transforms). Returns
+ * 0 or -1 with a message. */
+int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, const model_shape_t *b,
+                  double k, char *err, size_t errlen);
+/* The value of element e of s at the actual point p (setup point q): its distance, or for
+ * MODEL_SHAPE |f|/L and for MODEL_CSG the signed combination. */
+double model_elem_value(const model_elem_t *e, const double p[3], const double q[3]);
 
 /* Recompute s->nest and the costs from the elements and the parameter (the shapes referred
  * to must have theirs). Returns 0, or -1 with a message ("expected ..." follows it) when a

@@ -103,6 +103,40 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 
 static void tighten_box(model_shape_t *s);
 
+/* A shape made only of constructive elements (positive weights, constant c) lies in its
+ * operands' regions (union: both, intersection: their overlap, difference: A's) grown by c/w
+ * (the combination is 1-Lipschitz): that box becomes its region, as if given by `bound`. */
+static void csg_region(model_shape_t *s)
+{
+	double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, wsum = 0;
+	if (s->nel == 0 || s->c.kind != MODEL_C_CONST)
+		return;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		if (e->kind != MODEL_CSG || !(e->w > 0))
+			return;
+		wsum += e->w;
+		const double *a = e->shape->box, *b = e->shape2->box;
+		for (int j = 0; j < 3; j++) {
+			double l = a[j], h = a[3 + j];
+			if (e->op == MODEL_UNION || e->op == MODEL_BLEND)
+				l = fmin(l, b[j]), h = fmax(h, b[3 + j]);
+			else if (e->op == MODEL_INTERSECTION)
+				l = fmax(l, b[j]), h = fmin(h, b[3 + j]);
+			lo[j] = fmin(lo[j], l);
+			hi[j] = fmax(hi[j], h);
+		}
+	}
+	double grow = fmax(s->c.c0, 0) / wsum;
+	for (int j = 0; j < 3; j++) {
+		if (!(lo[j] < hi[j]))
+			return;   /* an empty intersection: left to the 'bound' error */
+		s->box[j] = lo[j] - grow;
+		s->box[3 + j] = hi[j] + grow;
+	}
+	s->user_box = 1;
+}
+
 /* 1 when z <- z^2 + k stays bounded from 0 for 1000 steps: k in the Mandelbrot set as far as
  * that tells, so the Julia set is connected and its Boettcher map conformal outside it. */
 static int julia_connected(const model_param_t *c)
@@ -200,6 +234,8 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		apply(s->m, C, s->centre);
 		s->radius = R * s->norm_m;
 	}
+	if (!s->bounded && !s->user_box)
+		csg_region(s);
 	if (!s->bounded && !s->user_box) {
 		snprintf(err, errlen, "expected a 'bound' box: the shape is unbounded (%s); add 'bound X0 Y0 Z0 X1 Y1 Z1'"
 		         " around the part to draw", unbounded_reason(s));
@@ -224,7 +260,7 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	}
 	double ws = 0, wa = 0, cmax, g;
 	for (size_t i = 0; i < s->nel; i++) {
-		if (s->el[i].kind == MODEL_SHAPE)
+		if (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG)
 			wa += fabs(s->el[i].w);
 		else
 			ws += fabs(s->el[i].w);

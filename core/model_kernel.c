@@ -109,6 +109,26 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 	case MODEL_PLANE:
 		plane_line_disk8(e->kind, f, x, y, z, d);
 		break;
+	case MODEL_CSG: {
+		v8 b;
+		model_eval8(e->shape, ax, ay, az, d);
+		model_eval8(e->shape2, ax, ay, az, b);
+		const float ia = (float)(1.0 / e->shape->lip), ib = (float)(1.0 / e->shape2->lip), kk = (float)e->r;
+		for (int k = 0; k < 8; k++) {
+			float a = d[k] * ia, c = b[k] * ib;
+			switch (e->op) {
+			case MODEL_UNION: d[k] = a < c ? a : c; break;
+			case MODEL_INTERSECTION: d[k] = a > c ? a : c; break;
+			case MODEL_DIFFERENCE: d[k] = a > -c ? a : -c; break;
+			default: {
+				float h = kk - fabsf(a - c);
+				h = h > 0.0f ? h / kk : 0.0f;
+				d[k] = (a < c ? a : c) - kk * h * h * 0.25f;
+			}
+			}
+		}
+		break;
+	}
 	default: {
 		model_eval8(e->shape, ax, ay, az, d);
 		float il = (float)(1.0 / e->shape->lip);

@@ -72,6 +72,10 @@ static int cubical(const build_t *b, const double *p, double h)
 			double d = fabs(model_eval(e->shape, p)) / e->shape->lip;
 			dlo = fmax(d - r, 0);
 			dhi = d + r;
+		} else if (e->kind == MODEL_CSG) {   /* signed, 1-Lipschitz in the actual frame */
+			double d = model_elem_value(e, p, q);
+			dlo = d - r;
+			dhi = d + r;
 		} else {
 			double d = model_elem_distance(e, q);
 			dlo = fmax(d - rs, 0);
@@ -93,7 +97,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	} else {
 		double g = s->lip, sum = 0;
 		for (size_t i = 0; i < s->nel; i++)
-			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE ? 1 : s->norm_minv);
+			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv);
 		g = fmax(s->lip - sum, 0);
 		double c = model_param(s, p, q);
 		clo = c - g * r;

@@ -410,6 +410,29 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				return scene_lex_expected(lx, &n, "the name of a shape or object defined above");
 			if (add_elem(lx, m, MODEL_SHAPE, NULL, 0, 0, other->shape, &n) < 0)
 				return -1;
+		} else if (scene_tok_is(&t, "union") || scene_tok_is(&t, "intersection") || scene_tok_is(&t, "difference")
+		           || scene_tok_is(&t, "blend")) {
+			int op = t.s[0] == 'u' ? MODEL_UNION : t.s[0] == 'i' ? MODEL_INTERSECTION : t.s[0] == 'd' ? MODEL_DIFFERENCE : MODEL_BLEND;
+			scene_obj_t *ab[2];
+			tok_t n[2];
+			for (int j = 0; j < 2; j++) {
+				scene_lex_tok(lx, &n[j]);
+				ab[j] = find(sc, &n[j]);
+				if (!ab[j] || ab[j] == o)
+					return scene_lex_expected(lx, &n[j], "the name of a shape or object defined above");
+				if (!ab[j]->shape->has_lip)
+					return scene_lex_expected(lx, &n[j], "a shape with a Lipschitz bound (Mandelbrot, Julia and unbounded expressions cannot be combined)");
+			}
+			double k = 0, w;
+			char e2[200];
+			if (op == MODEL_BLEND && scene_lex_number(lx, &k, "a blend radius") < 0)
+				return -1;
+			if (opt_weight(lx, &w) < 0)
+				return -1;
+			if (model_add_csg(m, w, op, ab[0]->shape, ab[1]->shape, k, e2, sizeof e2) < 0) {
+				snprintf(msg, sizeof msg, "expected %s", e2);
+				return scene_lex_error(lx, t.line, t.col, msg);
+			}
 		} else if (scene_tok_is(&t, "c")) {
 			if (o->c_line) {
 				snprintf(msg, sizeof msg, "expected one 'c' line per shape: '%s' has its defining parameter from line %u already"
@@ -475,7 +498,7 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			if (*dst < 0)
 				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
 		} else {
-			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi nucleus distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi nucleus distance-to union intersection difference blend), c, a transform, bound, colour, shading, a material coefficient or 'end'");
 		}
 		if (!lx->failed && scene_lex_eol(lx) < 0)
 			return -1;
