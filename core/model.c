@@ -117,11 +117,46 @@ static int need_points(int kind, size_t np)
 {
 	switch (kind) {
 	case MODEL_POINT: return np == 1;
-	case MODEL_SEGMENT: case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: return np == 2;
+	case MODEL_SEGMENT: case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: case MODEL_CIRCLE: case MODEL_BOX: return np == 2;
+	case MODEL_TRIANGLE: return np == 3;
+	case MODEL_POLYGON: return np >= 3;
 	case MODEL_POINTS: return np >= 1;
 	case MODEL_POLYLINE: return np >= 2;
 	default: return np == 0;
 	}
+}
+
+/* A triangle's or polygon's unit normal (Newell's method), stored after its corners; -1 with
+ * a message when it has no area or is not planar. */
+static int polygon_plane(model_elem_t *e, char *err, size_t errlen)
+{
+	double n[3] = {0, 0, 0}, size = 0;
+	const double *v = e->p;
+	for (size_t k = 0; k < e->np; k++) {
+		const double *a = v + 3 * k, *b = v + 3 * ((k + 1) % e->np);
+		n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+		n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+		n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+		for (int j = 0; j < 3; j++)
+			size = fmax(size, fabs(a[j] - v[j]));
+	}
+	double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+	if (!(l > 1e-12 * size * size) || !(size > 0)) {
+		snprintf(err, errlen, "corners that span an area (not all on one line)");
+		return -1;
+	}
+	for (int j = 0; j < 3; j++)
+		n[j] /= l;
+	for (size_t k = 1; k < e->np; k++) {
+		const double *a = v + 3 * k;
+		double h = (a[0] - v[0]) * n[0] + (a[1] - v[1]) * n[1] + (a[2] - v[2]) * n[2];
+		if (fabs(h) > 1e-9 * size) {
+			snprintf(err, errlen, "a planar polygon (corner %zu is %g off the plane of the others)", k + 1, h);
+			return -1;
+		}
+	}
+	memcpy(e->p + 3 * e->np, n, sizeof n);
+	return 0;
 }
 
 static int push(model_shape_t *s, model_elem_t *e, char *err, size_t errlen)
@@ -209,12 +244,12 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 		return rc;
 	}
 	if (!need_points(kind, np)) {
-		snprintf(err, errlen, "%s", kind == MODEL_POLYLINE || kind == MODEL_VORONOI ? "at least 2 points"
+		snprintf(err, errlen, "%s", kind == MODEL_POLYGON ? "at least 3 corners" : kind == MODEL_POLYLINE || kind == MODEL_VORONOI ? "at least 2 points"
 		         : kind == MODEL_POINTS ? "at least 1 point" : "the element's number of points");
 		return -1;
 	}
 	if (!isfinite(w) || !isfinite(r) || r < 0) {
-		snprintf(err, errlen, "a finite weight%s", kind == MODEL_DISK ? " and radius >= 0" : "");
+		snprintf(err, errlen, "a finite weight%s", kind == MODEL_DISK || kind == MODEL_CIRCLE ? " and radius >= 0" : "");
 		return -1;
 	}
 	for (size_t i = 0; i < 3 * np; i++)
@@ -233,7 +268,7 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 	e.r = r;
 	e.shape = shape;
 	size_t nf = kind == MODEL_POLYLINE ? 7 * (np - 1) : 3 * np + 8;
-	e.p = malloc((3 * np + 1) * sizeof *e.p);
+	e.p = malloc((3 * np + 4) * sizeof *e.p);
 	e.pf = calloc(nf, sizeof *e.pf);
 	if (!e.p || !e.pf) {
 		free(e.p);
@@ -243,7 +278,14 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 	}
 	if (np)
 		memcpy(e.p, pts, 3 * np * sizeof *pts);
-	if (kind == MODEL_LINE || kind == MODEL_PLANE || kind == MODEL_DISK) {
+	if (kind == MODEL_TRIANGLE || kind == MODEL_POLYGON) {
+		if (polygon_plane(&e, err, errlen) < 0) {
+			free(e.p);
+			free(e.pf);
+			return -1;
+		}
+	}
+	if (kind == MODEL_LINE || kind == MODEL_PLANE || kind == MODEL_DISK || kind == MODEL_CIRCLE) {
 		double l = len3(e.p + 3);
 		if (!(l > 0)) {
 			free(e.p);
@@ -472,6 +514,61 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 			}
 		}
 		return best;
+	case MODEL_BOX:
+		for (int j = 0; j < 3; j++) {
+			double lo = fmin(e->p[j], e->p[3 + j]), hi = fmax(e->p[j], e->p[3 + j]);
+			q[j] = p[j] < lo ? lo : p[j] > hi ? hi : p[j];
+		}
+		return sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+	case MODEL_TRIANGLE: case MODEL_POLYGON: {
+		const double *v = e->p, *n = e->p + 3 * e->np;
+		double h = (p[0] - v[0]) * n[0] + (p[1] - v[1]) * n[1] + (p[2] - v[2]) * n[2];
+		double pp[3] = {p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]};
+		/* inside test in the plane: the crossing number along the axis pair the normal leaves */
+		int ax = fabs(n[0]) >= fabs(n[1]) && fabs(n[0]) >= fabs(n[2]) ? 0 : fabs(n[1]) >= fabs(n[2]) ? 1 : 2;
+		int i0 = (ax + 1) % 3, i1 = (ax + 2) % 3, in = 0;
+		for (size_t k = 0, j = e->np - 1; k < e->np; j = k++) {
+			const double *a = v + 3 * k, *b = v + 3 * j;
+			if ((a[i1] > pp[i1]) != (b[i1] > pp[i1])
+			    && pp[i0] < (b[i0] - a[i0]) * (pp[i1] - a[i1]) / (b[i1] - a[i1]) + a[i0])
+				in = !in;
+		}
+		if (in) {
+			memcpy(q, pp, sizeof pp);
+			return fabs(h);
+		}
+		for (size_t k = 0; k < e->np; k++) {
+			const double *a = v + 3 * k, *b = v + 3 * ((k + 1) % e->np);
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+			double l2 = dot3(ba, ba), t = l2 > 0 ? dot3(pa, ba) / l2 : 0;
+			t = t < 0 ? 0 : t > 1 ? 1 : t;
+			double c[3] = {a[0] + t * ba[0], a[1] + t * ba[1], a[2] + t * ba[2]};
+			double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+			double l = len3(d);
+			if (l < best) {
+				best = l;
+				memcpy(q, c, sizeof c);
+			}
+		}
+		return best;
+	}
+	case MODEL_CIRCLE: {
+		const double *a = e->p, *n = e->p + 3;
+		double v[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+		double h = dot3(v, n);
+		double rv[3] = {v[0] - h * n[0], v[1] - h * n[1], v[2] - h * n[2]}, rho = len3(rv);
+		if (!(rho > 0)) {   /* on the axis: every ring point is nearest; take one */
+			double t[3] = {fabs(n[0]) < 0.9 ? 1 : 0, fabs(n[0]) < 0.9 ? 0 : 1, 0}, k = dot3(t, n);
+			for (int i = 0; i < 3; i++)
+				rv[i] = t[i] - k * n[i];
+			rho = len3(rv);
+		}
+		for (int i = 0; i < 3; i++)
+			q[i] = a[i] + e->r / rho * rv[i];
+		double d[3] = {p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+		return len3(d);
+	}
 	case MODEL_LINE: case MODEL_PLANE: case MODEL_DISK: {
 		const double *a = e->p, *n = e->p + 3;
 		double v[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};

@@ -51,7 +51,8 @@
 
 /* Element kinds. */
 enum { MODEL_POINT, MODEL_POINTS, MODEL_SEGMENT, MODEL_POLYLINE, MODEL_LINE,
-       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI, MODEL_CSG };
+       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI, MODEL_CSG,
+       MODEL_CIRCLE, MODEL_TRIANGLE, MODEL_POLYGON, MODEL_BOX };
 /* Constructive combinations (MODEL_CSG elements) of two shapes A, B with the normalised
  * signed estimates a = f_A/L_A, b = f_B/L_B (each 1-Lipschitz, negative inside):
  *   union min(a, b), intersection max(a, b), difference max(a, -b), and the smooth blend
@@ -66,7 +67,12 @@ typedef struct model_shape model_shape_t;
 
 /* One element with its weight. p holds np points of 3 doubles: POINT 1,
  * POINTS n, SEGMENT 2, POLYLINE n >= 2, LINE point + direction, PLANE point +
- * normal, DISK centre + normal (radius r). */
+ * normal, DISK centre + normal (radius r), CIRCLE centre + normal (radius r: the
+ * ring, d = sqrt(h^2 + (rho - r)^2)), TRIANGLE 3 corners and POLYGON n >= 3 corners
+ * of a planar filled polygon (d = |h| over it, else the distance to its nearest edge;
+ * the unit normal is kept after the corners), BOX two opposite corners of an
+ * axis-aligned solid box (d = 0 inside). The last four take the scalar path in the
+ * 8-wide kernel. */
 typedef struct {
 	int kind;
 	double w;

@@ -46,7 +46,8 @@ static int param_bound(const model_shape_t *s, const double *lo, const double *h
 static int elem_finite(const model_elem_t *e)
 {
 	return e->kind == MODEL_POINT || e->kind == MODEL_POINTS || e->kind == MODEL_SEGMENT
-	    || e->kind == MODEL_POLYLINE || e->kind == MODEL_DISK;
+	    || e->kind == MODEL_POLYLINE || e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE
+	    || e->kind == MODEL_TRIANGLE || e->kind == MODEL_POLYGON || e->kind == MODEL_BOX;
 }
 
 /* Bounding sphere in the setup frame from sum w_i (|P - C| - R_i) <= c_max. */
@@ -61,7 +62,7 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 		if (!elem_finite(e))
 			continue;
 		wf += e->w;
-		size_t np = e->kind == MODEL_DISK ? 1 : e->np;
+		size_t np = e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE ? 1 : e->np;
 		for (size_t k = 0; k < np; k++) {
 			for (int j = 0; j < 3; j++)
 				C[j] += e->p[3 * k + j];
@@ -78,12 +79,12 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 		if (!elem_finite(e))
 			continue;
 		double rmax = 0;
-		size_t np = e->kind == MODEL_DISK ? 1 : e->np;
+		size_t np = e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE ? 1 : e->np;
 		for (size_t k = 0; k < np; k++) {
 			double d[3] = {e->p[3 * k] - C[0], e->p[3 * k + 1] - C[1], e->p[3 * k + 2] - C[2]};
 			rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
 		}
-		if (e->kind == MODEL_DISK)
+		if (e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE)
 			rmax += e->r;
 		wr += e->w * rmax;
 	}

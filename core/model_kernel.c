@@ -109,6 +109,14 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 	case MODEL_PLANE:
 		plane_line_disk8(e->kind, f, x, y, z, d);
 		break;
+	case MODEL_CIRCLE:
+	case MODEL_TRIANGLE:
+	case MODEL_POLYGON:
+	case MODEL_BOX:
+		/* the scalar double path, lane by lane */
+		for (int k = 0; k < 8; k++)
+			d[k] = (float)model_elem_distance(e, (double[]){x[k], y[k], z[k]});
+		break;
 	case MODEL_CSG: {
 		v8 b;
 		model_eval8(e->shape, ax, ay, az, d);

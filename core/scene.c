@@ -396,6 +396,25 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			int kind = t.s[0] == 's' ? MODEL_SEGMENT : t.s[0] == 'l' ? MODEL_LINE : MODEL_PLANE;
 			if (scene_lex_numbers(lx, v, 6, "a coordinate") < 0 || add_elem(lx, m, kind, v, 2, 0, NULL, &t) < 0)
 				return -1;
+		} else if (scene_tok_is(&t, "circle")) {
+			if (scene_lex_numbers(lx, v, 7, "circle CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_CIRCLE, v, 2, v[6], NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "triangle")) {
+			double tv[9];
+			if (scene_lex_numbers(lx, tv, 9, "triangle X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3") < 0 || add_elem(lx, m, MODEL_TRIANGLE, tv, 3, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "box")) {
+			if (scene_lex_numbers(lx, v, 6, "box X0 Y0 Z0 X1 Y1 Z1") < 0 || add_elem(lx, m, MODEL_BOX, v, 2, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "polygon")) {
+			double *p = NULL;
+			size_t np = 0;
+			if (point_list(lx, &p, &np) < 0)
+				return -1;
+			int rc = add_elem(lx, m, MODEL_POLYGON, p, np, 0, NULL, &t);
+			free(p);
+			if (rc < 0)
+				return -1;
 		} else if (scene_tok_is(&t, "disk")) {
 			if (scene_lex_numbers(lx, v, 7, "disk CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_DISK, v, 2, v[6], NULL, &t) < 0)
 				return -1;
@@ -498,7 +517,7 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			if (*dst < 0)
 				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
 		} else {
-			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi nucleus distance-to union intersection difference blend), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk circle triangle polygon box voronoi nucleus distance-to union intersection difference blend), c, a transform, bound, colour, shading, a material coefficient or 'end'");
 		}
 		if (!lx->failed && scene_lex_eol(lx) < 0)
 			return -1;
