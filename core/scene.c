@@ -367,6 +367,16 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			}
 			char e[300];
 			const char *w = NULL;
+			if (o->through) {
+				/* the thesis' section 6.4: the defining parameter predicted from a point of the
+				 * surface, c = sum w_i d(P, A_i) there (after every element and transform) */
+				double v = model_eval(m, o->through_p);
+				if (!isfinite(v) || m->nel == 0) {
+					snprintf(msg, sizeof msg, "expected distance elements before 'end' for 'c through' in '%s'", o->name);
+					return scene_lex_error(lx, o->c_line, 3, msg);
+				}
+				m->c.c0 = v;
+			}
 			if (model_prepare(m, e, sizeof e, &w) < 0) {
 				snprintf(msg, sizeof msg, "%s (in '%s')", e, o->name);
 				return scene_lex_error(lx, o->line, o->col, msg);
@@ -459,8 +469,19 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				return scene_lex_error(lx, t.line, t.col, msg);
 			}
 			o->c_line = t.line;
-			if (parse_param(lx, sc, m) < 0)
-				return -1;
+			size_t save = lx->pos;
+			tok_t th;
+			if (scene_lex_tok(lx, &th) && scene_tok_is(&th, "through")) {
+				if (scene_lex_numbers(lx, o->through_p, 3, "a point X Y Z on the surface") < 0)
+					return -1;
+				o->through = 1;
+				expr_free(m->c.expr);
+				memset(&m->c, 0, sizeof m->c);
+			} else {
+				lx->pos = save;
+				if (parse_param(lx, sc, m) < 0)
+					return -1;
+			}
 		} else if (scene_tok_is(&t, "translate")) {
 			if (scene_lex_numbers(lx, v, 3, "a translation") < 0 || scene_lex_eol(lx) < 0)
 				return -1;

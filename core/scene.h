@@ -29,6 +29,8 @@ typedef struct {
 	unsigned line, col;        /* where it was defined */
 	int empty;                 /* model_prepare proved the surface empty (warned where it is drawn in 3D) */
 	unsigned c_line;           /* the line of its `c` (0: none yet): a second one is refused */
+	int through;               /* `c through X Y Z`: c set at `end` so that f(through_p) = 0 */
+	double through_p[3];       /* that point, ACTUAL frame */
 } scene_obj_t;
 
 /* One `render` block: a page (two for stereo pages) of one visualisation. */

@@ -112,6 +112,13 @@ int main(void)
 	rc = scene_parse("object a\n  point 1 0 0\n  point -1 0 0\n  c 1\nend\n", "t.scene", &s, err, sizeof err);
 	CHECK(rc == 0 && s->nwarnings == 1 && strstr(s->warnings[0], "t.scene:1:1: warning: 'a': the shape is empty"), "c below the minimum: a warning");
 	scene_free(s);
+	/* c through X Y Z: c from a point of the surface, after the elements and transforms */
+	rc = scene_parse("object a\n  point 0 0 0\n  point 1 0 0 weight 2\n  c through 3 0 0\n  translate 1 0 0\nend\n", "t.scene", &s, err, sizeof err);
+	CHECK(rc == 0 && s->objs[0].shape->c.kind == MODEL_C_CONST && fabs(s->objs[0].shape->c.c0 - 4) < 1e-12
+	      && fabs(model_eval(s->objs[0].shape, (double[]){3, 0, 0})) < 1e-12, "c through: c = 2 + 2*1 = %g, f = 0 at the point", rc == 0 ? s->objs[0].shape->c.c0 : -1);
+	if (rc == 0)
+		scene_free(s);
+	CHECK(fails("object a\n  point 0 0 0\n  c through 1 0\nend\n", "t.scene:3:16: expected a point X Y Z on the surface (a finite number), found the end of the line"), "c through needs three numbers");
 	/* a contour map of the same f (c 0, as the doc advises) is no reason to warn */
 	rc = scene_parse("object a\n  point 1 0 0\n  point -1 0 0\n  c 0\nend\nrender contour\nend\n", "t.scene", &s, err, sizeof err);
 	CHECK(rc == 0 && s->nwarnings == 0, "contour map of a shape with c 0: no 'empty' warning (%zu)", rc == 0 ? s->nwarnings : 99);
