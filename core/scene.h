@@ -52,6 +52,8 @@ typedef struct {
 	char field[64];            /* object whose f is mapped ("" = the first object) */
 	double window[4];          /* x0 y0 x1 y1 of the plane region (contour, voronoi) */
 	double plane;              /* the plane z = plane */
+	int has_on;                /* contour: `on`: the map plane is on[0..2] + s on[3..5] + t on[6..8] */
+	double on[9];
 	unsigned nlevels;
 	double level_from, level_to;
 	int bands;
