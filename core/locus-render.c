@@ -178,6 +178,7 @@ int main(int argc, char **argv)
 	if (!f) {
 		say(err);
 		scene_free(sc);
+		free(text);
 		return EX_IOERR;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, binary ? META_ENC_BINARY : META_ENC_TEXT);

@@ -196,6 +196,7 @@ int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double 
 		}
 	model_elem_t e = {0};
 	e.kind = MODEL_VORONOI;
+	e.pw = 1;
 	e.w = w;
 	e.np = n;
 	e.p = malloc(6 * n * sizeof *e.p);
@@ -261,8 +262,13 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 		snprintf(err, errlen, "a shape with a known Lipschitz bound as a distance element");
 		return -1;
 	}
+	if (kind == MODEL_SHAPE && shape->lip_local) {
+		snprintf(err, errlen, "a shape whose Lipschitz bound holds everywhere (a power above 1 bounds it only in its region)");
+		return -1;
+	}
 	model_elem_t e = {0};
 	e.kind = kind;
+	e.pw = 1;
 	e.w = w;
 	e.np = np;
 	e.r = r;
@@ -335,8 +341,8 @@ static double nearest(const model_elem_t *e, const double *p, double *q);
 int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, const model_shape_t *b,
                   double k, char *err, size_t errlen)
 {
-	if (!a || !b || !a->has_lip || !b->has_lip || !(a->lip > 0) || !(b->lip > 0)) {
-		snprintf(err, errlen, "shapes with a known Lipschitz bound to combine");
+	if (!a || !b || !a->has_lip || !b->has_lip || !(a->lip > 0) || !(b->lip > 0) || a->lip_local || b->lip_local) {
+		snprintf(err, errlen, "shapes with a Lipschitz bound that holds everywhere to combine (not Mandelbrot, Julia or powers above 1)");
 		return -1;
 	}
 	if (!isfinite(w) || (op == MODEL_BLEND && !(k > 0 && isfinite(k)))) {
@@ -345,6 +351,7 @@ int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, co
 	}
 	model_elem_t e = {0};
 	e.kind = MODEL_CSG;
+	e.pw = 1;
 	e.w = w;
 	e.r = k;
 	e.op = op;
@@ -385,6 +392,117 @@ static double csg_combine(int op, double k, double a, double b, double *la, doub
 		*la = a < b ? 1 - h / 2 : h / 2;
 		return fmin(a, b) - k * h * h / 4;
 	}
+	}
+}
+
+int model_set_measure(model_shape_t *s, double pw, int metric, const double mp[3], char *err, size_t errlen)
+{
+	if (s->nel == 0)
+		return snprintf(err, errlen, "an element before its measure"), -1;
+	model_elem_t *e = &s->el[s->nel - 1];
+	if (!(pw >= 1 && pw <= 16))
+		return snprintf(err, errlen, "a power from 1 to 16 (below 1 the power of a distance has no Lipschitz bound at the element)"), -1;
+	if (e->kind == MODEL_VORONOI || e->kind == MODEL_SHAPE || e->kind == MODEL_CSG)
+		return snprintf(err, errlen, "a power or metric on a distance element (not voronoi, distance-to or a combination)"), -1;
+	if (metric != MODEL_EUCLID && e->kind != MODEL_POINT && e->kind != MODEL_POINTS)
+		return snprintf(err, errlen, "a metric on a point or points element only"), -1;
+	if (metric == MODEL_LP && !(mp[0] >= 1 && mp[0] <= 64))
+		return snprintf(err, errlen, "an Lp metric with 1 <= p <= 64"), -1;
+	if (metric == MODEL_ANISO && !(mp[0] > 0 && mp[1] > 0 && mp[2] > 0 && mp[0] <= 1e6 && mp[1] <= 1e6 && mp[2] <= 1e6))
+		return snprintf(err, errlen, "anisotropic metric weights above 0"), -1;
+	e->pw = pw;
+	e->metric = metric;
+	if (metric != MODEL_EUCLID)
+		memcpy(e->mp, mp, sizeof e->mp);
+	e->measured = pw != 1 || metric != MODEL_EUCLID;
+	return 0;
+}
+
+/* Lipschitz factor of the metric against the Euclidean length, and its lower factor. */
+static void metric_factors(const model_elem_t *e, double *up, double *low)
+{
+	*up = *low = 1;
+	if (e->metric == MODEL_LP) {
+		double x = 1 / e->mp[0] - 0.5;
+		*up = pow(3, fmax(x, 0));
+		*low = pow(3, fmin(x, 0));
+	} else if (e->metric == MODEL_ANISO) {
+		*up = sqrt(fmax(e->mp[0], fmax(e->mp[1], e->mp[2])));
+		*low = sqrt(fmin(e->mp[0], fmin(e->mp[1], e->mp[2])));
+	}
+}
+
+/* The measure of element e at q with its gradient g (setup frame; g may be NULL). */
+static double measure(const model_elem_t *e, const double *q, double *g)
+{
+	double d, gg[3] = {0, 0, 0};
+	if (e->metric == MODEL_EUCLID) {
+		double near[3];
+		d = nearest(e, q, near);
+		if (d > 0)
+			for (int j = 0; j < 3; j++)
+				gg[j] = (q[j] - near[j]) / d;
+	} else {
+		d = INFINITY;
+		for (size_t k = 0; k < e->np; k++) {
+			const double *a = e->p + 3 * k;
+			double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]}, m = 0, gk[3];
+			if (e->metric == MODEL_LP) {
+				double pp = e->mp[0], big = fmax(fabs(v[0]), fmax(fabs(v[1]), fabs(v[2])));
+				if (big > 0) {
+					for (int j = 0; j < 3; j++)
+						m += pow(fabs(v[j]) / big, pp);
+					m = big * pow(m, 1 / pp);
+					for (int j = 0; j < 3; j++)   /* d/dv_j = sign(v_j) (|v_j| / m)^(p-1) */
+						gk[j] = (v[j] < 0 ? -1 : 1) * pow(fabs(v[j]) / m, pp - 1);
+				} else {
+					gk[0] = gk[1] = gk[2] = 0;
+				}
+			} else {
+				for (int j = 0; j < 3; j++)
+					m += e->mp[j] * v[j] * v[j];
+				m = sqrt(m);
+				for (int j = 0; j < 3; j++)
+					gk[j] = m > 0 ? e->mp[j] * v[j] / m : 0;
+			}
+			if (m < d) {
+				d = m;
+				memcpy(gg, gk, sizeof gg);
+			}
+		}
+	}
+	if (e->pw != 1) {
+		double k = e->pw * pow(d, e->pw - 1);
+		d = pow(d, e->pw);
+		for (int j = 0; j < 3; j++)
+			gg[j] *= k;
+	}
+	if (g)
+		memcpy(g, gg, sizeof gg);
+	return d;
+}
+
+double model_elem_measure(const model_elem_t *e, const double q[3])
+{
+	double near[3];
+	return e->measured ? measure(e, q, NULL) : nearest(e, q, near);
+}
+
+void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi)
+{
+	for (size_t i = 0; i < s->nel; i++) {
+		model_elem_t *e = &s->el[i];
+		e->lipm = 1;
+		if (!e->measured)
+			continue;
+		double up, low, D = 0;
+		metric_factors(e, &up, &low);
+		/* the distance to the set is at most the distance to its first point */
+		for (int c = 0; c < 8; c++) {
+			double v[3] = {((c & 1) ? hi[0] : lo[0]) - e->p[0], ((c & 2) ? hi[1] : lo[1]) - e->p[1], ((c & 4) ? hi[2] : lo[2]) - e->p[2]};
+			D = fmax(D, len3(v));
+		}
+		e->lipm = up * e->pw * pow(up * D, e->pw - 1);
 	}
 }
 
@@ -731,7 +849,8 @@ double model_eval(const model_shape_t *s, const double p[3])
 	apply(s->minv, p, q);
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
-		double d = e->kind == MODEL_SHAPE || e->kind == MODEL_CSG ? model_elem_value(e, p, q) : nearest(e, q, near);
+		double d = e->kind == MODEL_SHAPE || e->kind == MODEL_CSG ? model_elem_value(e, p, q)
+		         : e->measured ? measure(e, q, NULL) : nearest(e, q, near);
 		sum += e->w * d;
 	}
 	return sum - model_param(s, p, q);
@@ -759,6 +878,13 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			double k = e->w * (f < 0 ? -1 : 1) / e->shape->lip;
 			for (int j = 0; j < 3; j++)
 				ga[j] += k * sg[j];
+			continue;
+		}
+		if (e->measured) {
+			double gm[3];
+			measure(e, q, gm);
+			for (int j = 0; j < 3; j++)
+				gs[j] += e->w * gm[j];
 			continue;
 		}
 		double d = nearest(e, q, near);

@@ -84,7 +84,19 @@ typedef struct {
 	const model_shape_t *shape; /* MODEL_SHAPE; MODEL_CSG: A */
 	const model_shape_t *shape2; /* MODEL_CSG: B */
 	int op;                    /* MODEL_CSG: MODEL_UNION ... MODEL_BLEND (r: the blend radius k) */
+	/* the distance measure (model_set_measure): d^pw of the distance in the metric */
+	double pw;                 /* power >= 1 (1: plain distance) */
+	int metric;                /* MODEL_EUCLID, MODEL_LP (mp[0] = p >= 1), MODEL_ANISO (mp = a_x a_y a_z > 0) */
+	double mp[3];
+	int measured;              /* pw != 1 or a metric: the scalar path, bound lipm */
+	double lipm;               /* set by model_prepare: Lipschitz bound of the measure over the region */
 } model_elem_t;
+/* Metrics of point elements: Euclidean; Lp, (sum |v_j|^p)^(1/p), within
+ * 3^max(0, 1/p - 1/2) of the Euclidean length (its Lipschitz bound); weighted anisotropic
+ * sqrt(sum a_j v_j^2), Lipschitz sqrt(max a_j). A power pw >= 1 of a measure bounded by D over
+ * the region is Lipschitz pw D^(pw - 1) times the measure's bound (model_prepare takes D from
+ * the setup box's corners). */
+enum { MODEL_EUCLID, MODEL_LP, MODEL_ANISO };
 
 /* The defining parameter. */
 typedef struct {
@@ -116,6 +128,7 @@ struct model_shape {
 	/* set by model_prepare: */
 	double lip;                /* Lipschitz bound of f in the actual frame (0 if none) */
 	int has_lip;               /* 1 when lip is a valid bound inside box */
+	int lip_local;             /* lip holds only inside box (a power above 1): no distance-to, CSG or cone outside it */
 	int bounded;               /* 1 when the surface lies in the sphere below */
 	double centre[3], radius;  /* bounding sphere (actual frame) */
 	int fast_points;           /* points/segments only, constant c, translated frame: model_eval8's fast path */
@@ -159,6 +172,16 @@ int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, co
 /* The value of element e of s at the actual point p (setup point q): its distance, or for
  * MODEL_SHAPE |f|/L and for MODEL_CSG the signed combination. */
 double model_elem_value(const model_elem_t *e, const double p[3], const double q[3]);
+
+/* Give the last element added a distance measure: d^pw (pw >= 1) of its distance in the metric
+ * (MODEL_LP and MODEL_ANISO for point and points elements only; mp as above). Returns 0 or -1
+ * with a message ("expected ..." follows it). */
+int model_set_measure(model_shape_t *s, double pw, int metric, const double mp[3], char *err, size_t errlen);
+/* The measure of a measured element at the setup point q (model_elem_distance otherwise). */
+double model_elem_measure(const model_elem_t *e, const double q[3]);
+
+/* Set every measured element's lipm for the setup-frame box lo..hi (model_prepare calls it). */
+void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi);
 
 /* Recompute s->nest and the costs from the elements and the parameter (the shapes referred
  * to must have theirs). Returns 0, or -1 with a message ("expected ..." follows it) when a

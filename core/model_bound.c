@@ -88,12 +88,44 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 			rmax += e->r;
 		wr += e->w * rmax;
 	}
+	/* measured elements (powers, metrics): with x = |P - C| - max R_i >= 1 every term is at
+	 * least w_i (low_i x)^p_i >= w_i low_i^p_i x^pmin, so the surface lies within
+	 * max R_i + max(1, (c_max / sum w_i low_i^p_i)^(1/pmin)) */
+	double pmin = INFINITY, wl = 0, rbig = 0;
+	int measured = 0;
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		measured |= e->measured;
+	}
+	if (measured) {
+		for (size_t i = 0; i < s->nel; i++) {
+			const model_elem_t *e = &s->el[i];
+			if (!elem_finite(e))
+				continue;
+			double low = 1;
+			if (e->metric == MODEL_LP)
+				low = pow(3, fmin(1 / e->mp[0] - 0.5, 0));
+			else if (e->metric == MODEL_ANISO)
+				low = sqrt(fmin(e->mp[0], fmin(e->mp[1], e->mp[2])));
+			pmin = fmin(pmin, e->pw);
+			wl += e->w * pow(low, e->pw);
+			double rmax = 0;
+			size_t np = e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE ? 1 : e->np;
+			for (size_t k = 0; k < np; k++) {
+				double d[3] = {e->p[3 * k] - C[0], e->p[3 * k + 1] - C[1], e->p[3 * k + 2] - C[2]};
+				rmax = fmax(rmax, sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+			}
+			rbig = fmax(rbig, rmax + (e->kind == MODEL_DISK || e->kind == MODEL_CIRCLE ? e->r : 0));
+		}
+	}
 	for (double r = 1; r <= 1e6; r *= 2) {
 		double lo[3] = {C[0] - r, C[1] - r, C[2] - r}, hi[3] = {C[0] + r, C[1] + r, C[2] + r};
 		double cmax, g;
 		if (param_bound(s, lo, hi, &cmax, &g) < 0 || !isfinite(cmax))
 			return -1;
 		double need = (cmax + wr) / wf;
+		if (measured)
+			need = rbig + fmax(1, pow(fmax(cmax, 0) / wl, 1 / pmin));
 		if (s->c.kind != MODEL_C_EXPR || need <= r) {
 			*R = fmax(need, 0) * 1.0001 + 1e-6;
 			return 0;
@@ -228,7 +260,7 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	s->fast_points = s->c.kind == MODEL_C_CONST && mi[0] == 1 && mi[1] == 0 && mi[2] == 0 && mi[4] == 0
 	              && mi[5] == 1 && mi[6] == 0 && mi[8] == 0 && mi[9] == 0 && mi[10] == 1;
 	for (size_t i = 0; i < s->nel; i++)
-		if (s->el[i].kind != MODEL_POINT && s->el[i].kind != MODEL_SEGMENT)
+		if ((s->el[i].kind != MODEL_POINT && s->el[i].kind != MODEL_SEGMENT) || s->el[i].measured)
 			s->fast_points = 0;
 	s->bounded = setup_sphere(s, C, &R) == 0;
 	if (s->bounded) {
@@ -260,11 +292,15 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 		}
 	}
 	double ws = 0, wa = 0, cmax, g;
+	model_measure_bounds(s, lo, hi);
+	s->lip_local = 0;
+	for (size_t i = 0; i < s->nel; i++)
+		s->lip_local |= s->el[i].measured && s->el[i].pw > 1;
 	for (size_t i = 0; i < s->nel; i++) {
 		if (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG)
 			wa += fabs(s->el[i].w);
 		else
-			ws += fabs(s->el[i].w);
+			ws += fabs(s->el[i].w) * s->el[i].lipm;
 	}
 	s->has_lip = 0;
 	s->lip = 0;

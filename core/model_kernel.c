@@ -61,6 +61,11 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 {
 	const float *f = e->pf;
 	v8 t;
+	if (e->measured) {   /* powers and metrics: the scalar double path, lane by lane */
+		for (int k = 0; k < 8; k++)
+			d[k] = (float)model_elem_measure(e, (double[]){x[k], y[k], z[k]});
+		return;
+	}
 	switch (e->kind) {
 	case MODEL_POINT:
 		point8(f, x, y, z, d);

@@ -56,7 +56,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
 		double dlo, dhi;
-		if (e->kind == MODEL_POINT && b->exact_points) {
+		if (e->kind == MODEL_POINT && b->exact_points && !e->measured) {
 			const double *a = e->p;
 			double mn = 0, mx = 0;
 			for (int j = 0; j < 3; j++) {
@@ -77,9 +77,9 @@ static int cubical(const build_t *b, const double *p, double h)
 			dlo = d - r;
 			dhi = d + r;
 		} else {
-			double d = model_elem_distance(e, q);
-			dlo = fmax(d - rs, 0);
-			dhi = d + rs;
+			double d = model_elem_measure(e, q);
+			dlo = fmax(d - e->lipm * rs, 0);
+			dhi = d + e->lipm * rs;
 		}
 		if (e->w >= 0) {
 			lo += e->w * dlo;
@@ -97,7 +97,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	} else {
 		double g = s->lip, sum = 0;
 		for (size_t i = 0; i < s->nel; i++)
-			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv);
+			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv * s->el[i].lipm);
 		g = fmax(s->lip - sum, 0);
 		double c = model_param(s, p, q);
 		clo = c - g * r;

@@ -326,7 +326,7 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 			double oc[3] = {o[0] - bc[0], o[1] - bc[1], o[2] - bc[2]};
 			tfar[k] = (float)(sqrt(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + half);
 			t[k] = 0;
-			live[k] = g + k < npk && rt_bound(s) > 0;
+			live[k] = g + k < npk && rt_bound(s) > 0 && !s->lip_local;
 			n += live[k];
 			if (g + k < npk)
 				out[g + k] = 0;

@@ -116,30 +116,79 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 	return scene_lex_expected(lx, &(tok_t){"", 0, lx->line, 1}, "'end' closing the view block");
 }
 
-/* Optional "weight W" at the end of an element line. */
-static int opt_weight(scene_lex_t *lx, double *w)
+/* The optional end of an element line: "weight W", "power P", "metric lp P" or
+ * "metric aniso AX AY AZ", in any order (measure != NULL: power and metric allowed). */
+typedef struct {
+	double pw, mp[3];
+	int metric;
+	scene_tok_t at;            /* the first power/metric word, for messages */
+} measure_t;
+
+static int opt_suffix(scene_lex_t *lx, double *w, measure_t *ms)
 {
 	tok_t t;
 	*w = 1;
-	if (!scene_lex_tok(lx, &t))
-		return 0;
-	if (!scene_tok_is(&t, "weight"))
-		return scene_lex_expected(lx, &t, "'weight' or the end of the line");
-	if (scene_lex_number(lx, w, "a weight") < 0)
-		return -1;
-	return scene_lex_eol(lx);
+	if (ms) {
+		memset(ms, 0, sizeof *ms);
+		ms->pw = 1;
+	}
+	int seen_w = 0;
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "weight") && !seen_w) {
+			seen_w = 1;
+			if (scene_lex_number(lx, w, "a weight") < 0)
+				return -1;
+		} else if (ms && scene_tok_is(&t, "power")) {
+			if (!ms->at.len)
+				ms->at = t;
+			if (scene_lex_number(lx, &ms->pw, "a power") < 0)
+				return -1;
+		} else if (ms && scene_tok_is(&t, "metric")) {
+			tok_t k;
+			if (!ms->at.len)
+				ms->at = t;
+			scene_lex_tok(lx, &k);
+			if (scene_tok_is(&k, "lp")) {
+				ms->metric = MODEL_LP;
+				if (scene_lex_number(lx, &ms->mp[0], "the p of the Lp metric") < 0)
+					return -1;
+			} else if (scene_tok_is(&k, "aniso")) {
+				ms->metric = MODEL_ANISO;
+				if (scene_lex_numbers(lx, ms->mp, 3, "an anisotropic weight AX AY AZ") < 0)
+					return -1;
+			} else if (scene_tok_is(&k, "euclidean")) {
+				ms->metric = MODEL_EUCLID;
+			} else {
+				return scene_lex_expected(lx, &k, "lp P, aniso AX AY AZ or euclidean");
+			}
+		} else {
+			return scene_lex_expected(lx, &t, ms ? "'weight', 'power', 'metric' or the end of the line" : "'weight' or the end of the line");
+		}
+	}
+	return 0;
+}
+
+static int opt_weight(scene_lex_t *lx, double *w)
+{
+	return opt_suffix(lx, w, NULL);
 }
 
 static int add_elem(scene_lex_t *lx, model_shape_t *m, int kind, const double *p, size_t np,
                     double r, const model_shape_t *other, const tok_t *at)
 {
 	double w;
+	measure_t ms;
 	char e[200], msg[256];
-	if (opt_weight(lx, &w) < 0)
+	if (opt_suffix(lx, &w, kind == MODEL_SHAPE ? NULL : &ms) < 0)
 		return -1;
 	if (model_add(m, kind, w, p, np, r, other, e, sizeof e) < 0) {
 		snprintf(msg, sizeof msg, "expected %s", e);
 		return scene_lex_error(lx, at->line, at->col, msg);
+	}
+	if (kind != MODEL_SHAPE && (ms.pw != 1 || ms.metric != MODEL_EUCLID)
+	    && model_set_measure(m, ms.pw, ms.metric, ms.mp, e, sizeof e) < 0) {
+		snprintf(msg, sizeof msg, "expected %s", e);
+		return scene_lex_error(lx, ms.at.line, ms.at.col, msg);
 	}
 	return 0;
 }
