@@ -64,6 +64,7 @@ void model_free(model_shape_t *s)
 		free(s->el[i].p);
 		free(s->el[i].pf);
 		free(s->el[i].nw);
+		expr_free(s->el[i].wexpr);
 	}
 	free(s->el);
 	expr_free(s->c.expr);
@@ -395,6 +396,29 @@ static double csg_combine(int op, double k, double a, double b, double *la, doub
 	}
 }
 
+int model_set_weight_expr(model_shape_t *s, expr_t *x, char *err, size_t errlen)
+{
+	if (s->nel == 0) {
+		expr_free(x);
+		return snprintf(err, errlen, "an element before its weight"), -1;
+	}
+	model_elem_t *e = &s->el[s->nel - 1];
+	if (e->kind == MODEL_VORONOI || e->kind == MODEL_SHAPE || e->kind == MODEL_CSG) {
+		expr_free(x);
+		return snprintf(err, errlen, "a constant weight on voronoi, distance-to and combination elements"), -1;
+	}
+	expr_free(e->wexpr);
+	e->wexpr = x;
+	e->w = 1;
+	return 0;
+}
+
+/* The weight of e at the setup point q. */
+static double weight_at(const model_elem_t *e, const double *q)
+{
+	return e->wexpr ? expr_eval(e->wexpr, q[0], q[1], q[2]) : e->w;
+}
+
 int model_set_measure(model_shape_t *s, double pw, int metric, const double mp[3], char *err, size_t errlen)
 {
 	if (s->nel == 0)
@@ -493,7 +517,8 @@ void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi)
 	for (size_t i = 0; i < s->nel; i++) {
 		model_elem_t *e = &s->el[i];
 		e->lipm = 1;
-		if (!e->measured)
+		e->dmax = INFINITY;
+		if (e->kind == MODEL_SHAPE || e->kind == MODEL_CSG || e->kind == MODEL_VORONOI || !e->np)
 			continue;
 		double up, low, D = 0;
 		metric_factors(e, &up, &low);
@@ -502,7 +527,9 @@ void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi)
 			double v[3] = {((c & 1) ? hi[0] : lo[0]) - e->p[0], ((c & 2) ? hi[1] : lo[1]) - e->p[1], ((c & 4) ? hi[2] : lo[2]) - e->p[2]};
 			D = fmax(D, len3(v));
 		}
-		e->lipm = up * e->pw * pow(up * D, e->pw - 1);
+		e->dmax = pow(up * (D + (e->kind == MODEL_CIRCLE ? e->r : 0)), e->pw);
+		if (e->measured)
+			e->lipm = up * e->pw * pow(up * D, e->pw - 1);
 	}
 }
 
@@ -851,7 +878,7 @@ double model_eval(const model_shape_t *s, const double p[3])
 		const model_elem_t *e = &s->el[i];
 		double d = e->kind == MODEL_SHAPE || e->kind == MODEL_CSG ? model_elem_value(e, p, q)
 		         : e->measured ? measure(e, q, NULL) : nearest(e, q, near);
-		sum += e->w * d;
+		sum += weight_at(e, q) * d;
 	}
 	return sum - model_param(s, p, q);
 }
@@ -878,6 +905,16 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			double k = e->w * (f < 0 ? -1 : 1) / e->shape->lip;
 			for (int j = 0; j < 3; j++)
 				ga[j] += k * sg[j];
+			continue;
+		}
+		if (e->wexpr) {   /* grad (w d) = w grad d + d grad w, grad w by central differences */
+			double gm[3], d = measure(e, q, gm), w = weight_at(e, q), h = 1e-5 * (1 + len3(q));
+			for (int j = 0; j < 3; j++) {
+				double qa[3] = {q[0], q[1], q[2]}, qb[3] = {q[0], q[1], q[2]};
+				qa[j] += h;
+				qb[j] -= h;
+				gs[j] += w * gm[j] + d * (weight_at(e, qa) - weight_at(e, qb)) / (2 * h);
+			}
 			continue;
 		}
 		if (e->measured) {

@@ -90,6 +90,8 @@ typedef struct {
 	double mp[3];
 	int measured;              /* pw != 1 or a metric: the scalar path, bound lipm */
 	double lipm;               /* set by model_prepare: Lipschitz bound of the measure over the region */
+	double dmax;               /* set by model_prepare: the measure's largest value over the region */
+	expr_t *wexpr;             /* a weight that varies with the setup point (owned; w is then unused) */
 } model_elem_t;
 /* Metrics of point elements: Euclidean; Lp, (sum |v_j|^p)^(1/p), within
  * 3^max(0, 1/p - 1/2) of the Euclidean length (its Lipschitz bound); weighted anisotropic
@@ -177,6 +179,12 @@ double model_elem_value(const model_elem_t *e, const double p[3], const double q
  * (MODEL_LP and MODEL_ANISO for point and points elements only; mp as above). Returns 0 or -1
  * with a message ("expected ..." follows it). */
 int model_set_measure(model_shape_t *s, double pw, int metric, const double mp[3], char *err, size_t errlen);
+/* Give the last element added the position-varying weight w(q) = e (an expression in x, y, z of
+ * the setup frame; the element owns it from here, also on failure). Such a shape needs a
+ * `bound` box: its Lipschitz bound is max|w|·L_d + G_w·D over it (G_w from interval
+ * arithmetic, D the largest distance). Returns 0 or -1 with a message. */
+int model_set_weight_expr(model_shape_t *s, expr_t *e, char *err, size_t errlen);
+
 /* The measure of a measured element at the setup point q (model_elem_distance otherwise). */
 double model_elem_measure(const model_elem_t *e, const double q[3]);
 

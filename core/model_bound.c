@@ -57,8 +57,8 @@ static int setup_sphere(const model_shape_t *s, double *C, double *R)
 	C[0] = C[1] = C[2] = 0;
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
-		if (e->w < 0)
-			return -1;
+		if (e->w < 0 || e->wexpr)
+			return -1;   /* negative or varying weights: no sphere, a user box */
 		if (!elem_finite(e))
 			continue;
 		wf += e->w;
@@ -226,6 +226,9 @@ static const char *unbounded_reason(const model_shape_t *s)
 	}
 	if (s->nel == 0)
 		return "no elements: the solid is wherever the defining parameter is positive";
+	for (size_t i = 0; i < s->nel; i++)
+		if (s->el[i].wexpr)
+			return "a weight varies with position, and its bound is taken over the box";
 	if (!finite && shapes && !infinite)
 		return "its elements are only distance-to other shapes, and Locus does not carry their extent over";
 	if (!finite)
@@ -260,7 +263,7 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	s->fast_points = s->c.kind == MODEL_C_CONST && mi[0] == 1 && mi[1] == 0 && mi[2] == 0 && mi[4] == 0
 	              && mi[5] == 1 && mi[6] == 0 && mi[8] == 0 && mi[9] == 0 && mi[10] == 1;
 	for (size_t i = 0; i < s->nel; i++)
-		if ((s->el[i].kind != MODEL_POINT && s->el[i].kind != MODEL_SEGMENT) || s->el[i].measured)
+		if ((s->el[i].kind != MODEL_POINT && s->el[i].kind != MODEL_SEGMENT) || s->el[i].measured || s->el[i].wexpr)
 			s->fast_points = 0;
 	s->bounded = setup_sphere(s, C, &R) == 0;
 	if (s->bounded) {
@@ -295,16 +298,25 @@ int model_prepare(model_shape_t *s, char *err, size_t errlen, const char **warn)
 	model_measure_bounds(s, lo, hi);
 	s->lip_local = 0;
 	for (size_t i = 0; i < s->nel; i++)
-		s->lip_local |= s->el[i].measured && s->el[i].pw > 1;
+		s->lip_local |= (s->el[i].measured && s->el[i].pw > 1) || s->el[i].wexpr != NULL;
+	int wbad = 0;
 	for (size_t i = 0; i < s->nel; i++) {
-		if (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG)
-			wa += fabs(s->el[i].w);
-		else
-			ws += fabs(s->el[i].w) * s->el[i].lipm;
+		const model_elem_t *e = &s->el[i];
+		if (e->kind == MODEL_SHAPE || e->kind == MODEL_CSG)
+			wa += fabs(e->w);
+		else if (e->wexpr) {
+			/* |grad (w d)| <= max|w| L_d + G_w D over the box */
+			double wlo, whi, gw;
+			if (expr_bound(e->wexpr, lo, hi, &wlo, &whi, &gw) < 0 || !isfinite(e->dmax) || !isfinite(gw))
+				wbad = 1;
+			else
+				ws += fmax(fabs(wlo), fabs(whi)) * e->lipm + gw * e->dmax;
+		} else
+			ws += fabs(e->w) * e->lipm;
 	}
 	s->has_lip = 0;
 	s->lip = 0;
-	if (param_bound(s, lo, hi, &cmax, &g) == 0 && g >= 0) {
+	if (!wbad && param_bound(s, lo, hi, &cmax, &g) == 0 && g >= 0) {
 		s->has_lip = 1;
 		if (s->c.kind == MODEL_C_SHAPE)
 			s->lip = s->norm_minv * ws + wa + g;

@@ -200,6 +200,13 @@ void model_eval8(const model_shape_t *s, const float *x, const float *y, const f
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
 		elem8(e, qx, qy, qz, x, y, z, d);
+		if (e->wexpr) {   /* a weight that varies with the setup point */
+			v8 wv;
+			expr_eval8(e->wexpr, qx, qy, qz, wv);
+			for (int k = 0; k < 8; k++)
+				sum[k] += wv[k] * d[k];
+			continue;
+		}
 		float w = (float)e->w;
 		for (int k = 0; k < 8; k++)
 			sum[k] += w * d[k];

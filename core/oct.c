@@ -81,7 +81,14 @@ static int cubical(const build_t *b, const double *p, double h)
 			dlo = fmax(d - e->lipm * rs, 0);
 			dhi = d + e->lipm * rs;
 		}
-		if (e->w >= 0) {
+		if (e->wexpr) {   /* the weight's interval over the cell's setup box times [dlo, dhi] */
+			double cl[3] = {q[0] - rs, q[1] - rs, q[2] - rs}, ch[3] = {q[0] + rs, q[1] + rs, q[2] + rs}, wl, wh, gw;
+			if (expr_bound(e->wexpr, cl, ch, &wl, &wh, &gw) < 0)
+				return 1;
+			double a = wl * dlo, b2 = wl * dhi, c = wh * dlo, d = wh * dhi;
+			lo += fmin(fmin(a, b2), fmin(c, d));
+			hi += fmax(fmax(a, b2), fmax(c, d));
+		} else if (e->w >= 0) {
 			lo += e->w * dlo;
 			hi += e->w * dhi;
 		} else {
@@ -97,7 +104,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	} else {
 		double g = s->lip, sum = 0;
 		for (size_t i = 0; i < s->nel; i++)
-			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv * s->el[i].lipm);
+			sum += s->el[i].wexpr ? 0 : fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv * s->el[i].lipm);
 		g = fmax(s->lip - sum, 0);
 		double c = model_param(s, p, q);
 		clo = c - g * r;

@@ -1,6 +1,7 @@
 /* scene.c: parser of the scene language: view, lights, background, shapes and objects, render blocks. */
 #include "scene_int.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -122,7 +123,36 @@ typedef struct {
 	double pw, mp[3];
 	int metric;
 	scene_tok_t at;            /* the first power/metric word, for messages */
+	expr_t *wexpr;             /* a weight expression in x, y, z (owned until handed on) */
+	scene_tok_t wat;
 } measure_t;
+
+/* 1 when the token uses x, y or z as an identifier (a position-varying weight). */
+static int uses_xyz(const tok_t *t)
+{
+	for (size_t i = 0; i < t->len; i++) {
+		char c = t->s[i];
+		int before = i > 0 && (isalnum((unsigned char)t->s[i - 1]) || t->s[i - 1] == '_' || t->s[i - 1] == '.');
+		int after = i + 1 < t->len && (isalnum((unsigned char)t->s[i + 1]) || t->s[i + 1] == '_');
+		if ((c == 'x' || c == 'y' || c == 'z') && !before && !after)
+			return 1;
+	}
+	return 0;
+}
+
+/* "weight EXPR" with x, y, z: compile the token (t replaced by its value). */
+static int weight_expr(scene_lex_t *lx, const tok_t *t, expr_t **out)
+{
+	char src[1024], e[200], msg[300];
+	size_t at = 0;
+	if (scene_subst_t(t->s, t->len, lx->t, src, sizeof src) < 0)
+		return scene_lex_error(lx, t->line, t->col, "expected a weight expression of at most 200 bytes");
+	if (expr_compile(src, out, e, sizeof e, &at) < 0) {
+		snprintf(msg, sizeof msg, "%s (in the weight '%.*s')", e, (int)(t->len > 60 ? 60 : t->len), t->s);
+		return scene_lex_error(lx, t->line, t->col, msg);
+	}
+	return 0;
+}
 
 static int opt_suffix(scene_lex_t *lx, double *w, measure_t *ms)
 {
@@ -136,6 +166,15 @@ static int opt_suffix(scene_lex_t *lx, double *w, measure_t *ms)
 	while (scene_lex_tok(lx, &t)) {
 		if (scene_tok_is(&t, "weight") && !seen_w) {
 			seen_w = 1;
+			size_t save = lx->pos;
+			tok_t v;
+			if (ms && scene_lex_tok(lx, &v) && uses_xyz(&v)) {
+				ms->wat = v;
+				if (weight_expr(lx, &v, &ms->wexpr) < 0)
+					return -1;
+				continue;
+			}
+			lx->pos = save;
 			if (scene_lex_number(lx, w, "a weight") < 0)
 				return -1;
 		} else if (ms && scene_tok_is(&t, "power")) {
@@ -179,11 +218,19 @@ static int add_elem(scene_lex_t *lx, model_shape_t *m, int kind, const double *p
 	double w;
 	measure_t ms;
 	char e[200], msg[256];
-	if (opt_suffix(lx, &w, kind == MODEL_SHAPE ? NULL : &ms) < 0)
+	ms.wexpr = NULL;
+	if (opt_suffix(lx, &w, kind == MODEL_SHAPE ? NULL : &ms) < 0) {
+		expr_free(ms.wexpr);
 		return -1;
+	}
 	if (model_add(m, kind, w, p, np, r, other, e, sizeof e) < 0) {
+		expr_free(ms.wexpr);
 		snprintf(msg, sizeof msg, "expected %s", e);
 		return scene_lex_error(lx, at->line, at->col, msg);
+	}
+	if (ms.wexpr && model_set_weight_expr(m, ms.wexpr, e, sizeof e) < 0) {
+		snprintf(msg, sizeof msg, "expected %s", e);
+		return scene_lex_error(lx, ms.wat.line, ms.wat.col, msg);
 	}
 	if (kind != MODEL_SHAPE && (ms.pw != 1 || ms.metric != MODEL_EUCLID)
 	    && model_set_measure(m, ms.pw, ms.metric, ms.mp, e, sizeof e) < 0) {
