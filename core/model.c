@@ -64,6 +64,8 @@ void model_free(model_shape_t *s)
 		free(s->el[i].p);
 		free(s->el[i].pf);
 		free(s->el[i].nw);
+		free(s->el[i].nm);
+		free(s->el[i].grp);
 		expr_free(s->el[i].wexpr);
 	}
 	free(s->el);
@@ -182,7 +184,16 @@ static int push(model_shape_t *s, model_elem_t *e, char *err, size_t errlen)
 int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
                      char *err, size_t errlen)
 {
-	if (n < 2) {
+	return model_add_nuclei2(s, w, ab, wt, NULL, NULL, n, err, errlen);
+}
+
+int model_add_nuclei2(model_shape_t *s, double w, const double *ab, const double *wt, const double *fac,
+                      const int *grp, size_t n, char *err, size_t errlen)
+{
+	size_t groups = 0;
+	for (size_t k = 0; k < n; k++)
+		groups += !grp || k == 0 || grp[k] != grp[k - 1];
+	if (groups < 2) {
 		snprintf(err, errlen, "at least 2 nuclei");
 		return -1;
 	}
@@ -195,6 +206,11 @@ int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double 
 			snprintf(err, errlen, "finite coordinates and weights (found NaN or infinity)");
 			return -1;
 		}
+	for (size_t k = 0; fac && k < n; k++)
+		if (!(fac[k] > 0 && fac[k] <= 1e6)) {
+			snprintf(err, errlen, "multiplicative weights above 0");
+			return -1;
+		}
 	model_elem_t e = {0};
 	e.kind = MODEL_VORONOI;
 	e.pw = 1;
@@ -202,10 +218,14 @@ int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double 
 	e.np = n;
 	e.p = malloc(6 * n * sizeof *e.p);
 	e.nw = malloc(n * sizeof *e.nw);
-	e.pf = malloc(8 * n * sizeof *e.pf);
-	if (!e.p || !e.nw || !e.pf) {
+	e.nm = malloc(n * sizeof *e.nm);
+	e.grp = malloc(n * sizeof *e.grp);
+	e.pf = malloc(10 * n * sizeof *e.pf);
+	if (!e.p || !e.nw || !e.pf || !e.nm || !e.grp) {
 		free(e.p);
 		free(e.nw);
+		free(e.nm);
+		free(e.grp);
 		free(e.pf);
 		snprintf(err, errlen, "out of memory");
 		return -1;
@@ -213,15 +233,19 @@ int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double 
 	memcpy(e.p, ab, 6 * n * sizeof *ab);
 	memcpy(e.nw, wt, n * sizeof *wt);
 	for (size_t k = 0; k < n; k++) {
+		e.nm[k] = fac ? 1 / fac[k] : 1;
+		e.grp[k] = grp ? grp[k] : (int)k;
 		const double *a = ab + 6 * k, *b = a + 3;
 		double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, l2 = dot3(ba, ba);
-		float *f = e.pf + 8 * k;
+		float *f = e.pf + 10 * k;
 		for (int i = 0; i < 3; i++) {
 			f[i] = (float)a[i];
 			f[3 + i] = (float)ba[i];
 		}
 		f[6] = l2 > 0 ? (float)(1.0 / l2) : 0.0f;
 		f[7] = (float)wt[k];
+		f[8] = (float)e.nm[k];
+		f[9] = k > 0 && e.grp[k] == e.grp[k - 1] ? 1.0f : 0.0f;   /* continues the previous nucleus */
 	}
 	return push(s, &e, err, errlen);
 }
@@ -518,6 +542,9 @@ void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi)
 		model_elem_t *e = &s->el[i];
 		e->lipm = 1;
 		e->dmax = INFINITY;
+		if (e->kind == MODEL_VORONOI)   /* (e2 - e1)/2 of (1/M)-Lipschitz e's */
+			for (size_t k = 0; k < e->np; k++)
+				e->lipm = k ? fmax(e->lipm, e->nm[k]) : e->nm[k];
 		if (e->kind == MODEL_SHAPE || e->kind == MODEL_CSG || e->kind == MODEL_VORONOI || !e->np)
 			continue;
 		double up, low, D = 0;
@@ -602,8 +629,26 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 		/* e_k = d(p, N_k) - w_k; the estimate (e2 - e1)/2 has gradient (u2 - u1)/2
 		 * with u the unit vectors from the nearest points of the two nuclei; q is
 		 * placed so that (p - q) / estimate is that gradient */
-		double e1 = INFINITY, e2 = INFINITY, n1[3] = {0, 0, 0}, n2[3] = {0, 0, 0}, d1 = 0, d2 = 0;
-		for (size_t k = 0; k < e->np; k++) {
+		double e1 = INFINITY, e2 = INFINITY, n1[3] = {0, 0, 0}, n2[3] = {0, 0, 0}, d1 = 0, d2 = 0, m1 = 1, m2 = 1;
+		/* the nucleus being gathered (a run of segments): its smallest e, nearest point, d, 1/M */
+		double ce = INFINITY, cn[3] = {0, 0, 0}, cd = 0, cm = 1;
+		for (size_t k = 0; k <= e->np; k++) {
+			if (k == e->np || k == 0 || e->grp[k] != e->grp[k - 1]) {
+				if (k > 0) {   /* fold the finished nucleus into the two smallest */
+					if (ce < e1) {
+						e2 = e1, d2 = d1, m2 = m1;
+						memcpy(n2, n1, sizeof n1);
+						e1 = ce, d1 = cd, m1 = cm;
+						memcpy(n1, cn, sizeof cn);
+					} else if (ce < e2) {
+						e2 = ce, d2 = cd, m2 = cm;
+						memcpy(n2, cn, sizeof cn);
+					}
+				}
+				ce = INFINITY;
+				if (k == e->np)
+					break;
+			}
 			const double *a = e->p + 6 * k, *b = a + 3;
 			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
 			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
@@ -611,23 +656,15 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 			h = h < 0 ? 0 : h > 1 ? 1 : h;
 			double c[3] = {a[0] + h * ba[0], a[1] + h * ba[1], a[2] + h * ba[2]};
 			double dv[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-			double d = len3(dv), ev = d - e->nw[k];
-			if (ev < e1) {
-				e2 = e1;
-				d2 = d1;
-				memcpy(n2, n1, sizeof n1);
-				e1 = ev;
-				d1 = d;
-				memcpy(n1, c, sizeof c);
-			} else if (ev < e2) {
-				e2 = ev;
-				d2 = d;
-				memcpy(n2, c, sizeof c);
+			double d = len3(dv), ev = d * e->nm[k] - e->nw[k];
+			if (ev < ce) {
+				ce = ev, cd = d, cm = e->nm[k];
+				memcpy(cn, c, sizeof c);
 			}
 		}
 		double est = (e2 - e1) / 2;
 		for (int j = 0; j < 3; j++) {
-			double u1 = d1 > 0 ? (p[j] - n1[j]) / d1 : 0, u2 = d2 > 0 ? (p[j] - n2[j]) / d2 : 0;
+			double u1 = d1 > 0 ? m1 * (p[j] - n1[j]) / d1 : 0, u2 = d2 > 0 ? m2 * (p[j] - n2[j]) / d2 : 0;
 			q[j] = p[j] - est * (u2 - u1) / 2;
 		}
 		return est;

@@ -80,7 +80,9 @@ typedef struct {
 	size_t np;
 	double r;
 	float *pf;                 /* float copy (directions normalised) for the 8-wide kernel */
-	double *nw;                /* MODEL_VORONOI: the nuclei's additive weights */
+	double *nw;                /* MODEL_VORONOI: the additive weight of each segment's nucleus */
+	double *nm;                /* MODEL_VORONOI: 1 / the multiplicative weight (e = d/M - W) */
+	int *grp;                  /* MODEL_VORONOI: the nucleus of each segment (polyline nuclei: runs) */
 	const model_shape_t *shape; /* MODEL_SHAPE; MODEL_CSG: A */
 	const model_shape_t *shape2; /* MODEL_CSG: B */
 	int op;                    /* MODEL_CSG: MODEL_UNION ... MODEL_BLEND (r: the blend radius k) */
@@ -190,6 +192,15 @@ double model_elem_measure(const model_elem_t *e, const double q[3]);
 
 /* Set every measured element's lipm for the setup-frame box lo..hi (model_prepare calls it). */
 void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi);
+
+/* The general Voronoi element: n segments (ab: 6 numbers each, a point has both ends equal),
+ * grouped into nuclei by grp (non-decreasing ids, a run of segments is a polyline nucleus;
+ * NULL: one nucleus per segment), with additive weights wt and multiplicative weights fac
+ * (NULL: 1) per segment (equal within a nucleus): e = d(P, N)/M - W, and the estimate
+ * (e2 - e1)/2 of the two smallest over distinct nuclei, Lipschitz max(1/M). At least two
+ * nuclei; M > 0. Returns 0 or -1 with a message. */
+int model_add_nuclei2(model_shape_t *s, double w, const double *ab, const double *wt, const double *fac,
+                      const int *grp, size_t n, char *err, size_t errlen);
 
 /* Recompute s->nest and the costs from the elements and the parameter (the shapes referred
  * to must have theirs). Returns 0, or -1 with a message ("expected ..." follows it) when a

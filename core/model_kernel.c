@@ -88,13 +88,26 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 			d[k] = INFINITY;
 			d2[k] = INFINITY;
 		}
-		for (size_t i = 0; i < e->np; i++) {
-			const float *g = f + 8 * i, wk = g[7];
+		v8 cur;
+		for (size_t i = 0; i <= e->np; i++) {
+			/* a segment that starts a nucleus folds the previous one into the two smallest */
+			if (i == e->np || f[10 * i + 9] == 0.0f) {
+				if (i > 0)
+					for (int k = 0; k < 8; k++) {
+						float v = cur[k], a = d[k], b = d2[k];
+						d2[k] = v < a ? a : (v < b ? v : b);
+						d[k] = v < a ? v : a;
+					}
+				if (i == e->np)
+					break;
+				for (int k = 0; k < 8; k++)
+					cur[k] = INFINITY;
+			}
+			const float *g = f + 10 * i, wk = g[7], im = g[8];
 			segment8(g, x, y, z, t);
 			for (int k = 0; k < 8; k++) {
-				float v = t[k] - wk, a = d[k], b = d2[k];
-				d2[k] = v < a ? a : (v < b ? v : b);
-				d[k] = v < a ? v : a;
+				float v = t[k] * im - wk;
+				cur[k] = v < cur[k] ? v : cur[k];
 			}
 		}
 		for (int k = 0; k < 8; k++)

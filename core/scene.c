@@ -375,42 +375,58 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	return 0;
 }
 
-/* `nucleus` lines of an object, gathered into one Voronoi element at its end. */
+/* `nucleus` lines of an object, gathered into one Voronoi element at its end: segments (a
+ * point is a segment of equal ends), each with its nucleus' number, additive and
+ * multiplicative weight. */
 typedef struct {
-	double *ab, *wt;
+	double *ab, *wt, *fac;
+	int *grp;
 	size_t n, cap;
+	int ngroups;
 	unsigned line, col;
 } nuclei_t;
 
 static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 {
-	double v[6];
-	size_t save = lx->pos;
+	double v[3 * 256];
+	size_t save;
 	tok_t t;
 	int k = 0;
-	while (k < 6) {
+	for (;;) {
 		save = lx->pos;
-		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight")) {
-			lx->pos = save;   /* leave 'weight' (or the end) for below */
+		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight") || scene_tok_is(&t, "factor")) {
+			lx->pos = save;   /* leave 'weight' / 'factor' (or the end) for below */
 			break;
 		}
 		lx->pos = save;
+		if (k == (int)(sizeof v / sizeof v[0]))
+			return scene_lex_error(lx, kw->line, kw->col, "expected a polyline nucleus of at most 256 points");
 		if (scene_lex_number(lx, &v[k], "a nucleus coordinate") < 0)
 			return -1;
 		k++;
 	}
-	if (k != 3 && k != 6)
-		return scene_lex_error(lx, kw->line, kw->col, "expected nucleus X Y Z (a point) or X1 Y1 Z1 X2 Y2 Z2 (a segment), then optionally 'weight W'");
-	if (k == 3)
-		memcpy(v + 3, v, 3 * sizeof *v);
-	double w = 0;
-	if (scene_lex_tok(lx, &t)) {
-		if (!scene_tok_is(&t, "weight"))
-			return scene_lex_expected(lx, &t, "'weight' or the end of the line");
-		if (scene_lex_number(lx, &w, "a nucleus weight") < 0)
-			return -1;
+	if (k < 3 || k % 3)
+		return scene_lex_error(lx, kw->line, kw->col, "expected nucleus X Y Z (a point), X1 Y1 Z1 X2 Y2 Z2 (a segment) or more"
+		                       " points (a polyline), then optionally 'weight W' and 'factor M'");
+	double w = 0, m = 1;
+	int seen_w = 0, seen_m = 0;
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "weight") && !seen_w) {
+			seen_w = 1;
+			if (scene_lex_number(lx, &w, "a nucleus weight") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "factor") && !seen_m) {
+			seen_m = 1;
+			if (scene_lex_number(lx, &m, "a multiplicative weight") < 0)
+				return -1;
+			if (!(m > 0))
+				return scene_lex_error(lx, t.line, t.col, "expected a multiplicative weight above 0 (e = d/M - W)");
+		} else {
+			return scene_lex_expected(lx, &t, "'weight', 'factor' or the end of the line");
+		}
 	}
-	if (nu->n == nu->cap) {
+	size_t npts = (size_t)k / 3, nseg = npts == 1 ? 1 : npts - 1;
+	while (nu->n + nseg > nu->cap) {
 		size_t cap = nu->cap ? 2 * nu->cap : 8;
 		double *ab = realloc(nu->ab, 6 * cap * sizeof *ab);
 		if (ab)
@@ -418,7 +434,13 @@ static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 		double *wt = realloc(nu->wt, cap * sizeof *wt);
 		if (wt)
 			nu->wt = wt;
-		if (!ab || !wt)
+		double *fc = realloc(nu->fac, cap * sizeof *fc);
+		if (fc)
+			nu->fac = fc;
+		int *gr = realloc(nu->grp, cap * sizeof *gr);
+		if (gr)
+			nu->grp = gr;
+		if (!ab || !wt || !fc || !gr)
 			return scene_lex_error(lx, kw->line, kw->col, "out of memory");
 		nu->cap = cap;
 	}
@@ -426,19 +448,30 @@ static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 		nu->line = kw->line;
 		nu->col = kw->col;
 	}
-	memcpy(nu->ab + 6 * nu->n, v, sizeof v);
-	nu->wt[nu->n++] = w;
-	return scene_lex_eol(lx);
+	for (size_t q = 0; q < nseg; q++) {
+		const double *a = v + 3 * q, *b = npts == 1 ? a : a + 3;
+		memcpy(nu->ab + 6 * nu->n, a, 3 * sizeof *a);
+		memcpy(nu->ab + 6 * nu->n + 3, b, 3 * sizeof *b);
+		nu->wt[nu->n] = w;
+		nu->fac[nu->n] = m;
+		nu->grp[nu->n] = nu->ngroups;
+		nu->n++;
+	}
+	nu->ngroups++;
+	return 0;
 }
 
 static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei_t *nu);
 
 static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 {
-	nuclei_t nu = {NULL, NULL, 0, 0, 0, 0};
+	nuclei_t nu;
+	memset(&nu, 0, sizeof nu);
 	int rc = parse_body_inner(lx, sc, o, &nu);
 	free(nu.ab);
 	free(nu.wt);
+	free(nu.fac);
+	free(nu.grp);
 	return rc;
 }
 
@@ -456,7 +489,7 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				return -1;
 			if (nu->n) {
 				char e2[200];
-				if (model_add_nuclei(m, 1, nu->ab, nu->wt, nu->n, e2, sizeof e2) < 0) {
+				if (model_add_nuclei2(m, 1, nu->ab, nu->wt, nu->fac, nu->grp, nu->n, e2, sizeof e2) < 0) {
 					snprintf(msg, sizeof msg, "expected %s", e2);
 					return scene_lex_error(lx, nu->line, nu->col, msg);
 				}
