@@ -34,12 +34,18 @@ int cam_setup(cam_t *c, char *err, unsigned long errlen)
 		snprintf(err, errlen, "an eye position different from the look-at point");
 		return -1;
 	}
-	cross(c->fwd, c->up, c->right);
+	if (c->handedness == CAM_RIGHT_HANDED)
+		cross(c->fwd, c->up, c->right);
+	else
+		cross(c->up, c->fwd, c->right);
 	if (!(norm(c->right) > 1e-9 * (1 + sqrt(c->up[0] * c->up[0] + c->up[1] * c->up[1] + c->up[2] * c->up[2])))) {
 		snprintf(err, errlen, "an up vector not parallel to the viewing direction");
 		return -1;
 	}
-	cross(c->right, c->fwd, c->upv);
+	if (c->handedness == CAM_RIGHT_HANDED)
+		cross(c->right, c->fwd, c->upv);
+	else
+		cross(c->fwd, c->right, c->upv);
 	if (!(c->fov > 0 && c->fov < 180)) {
 		snprintf(err, errlen, "a field of view between 0 and 180 degrees");
 		return -1;

@@ -1,9 +1,13 @@
 /* camera.h: the observer and the ABSOLUTE -> OBSERVER -> WINDOW -> VIEWPORT mapping (thesis section 1.4).
  *
- * Handedness: Locus is right-handed. The OBSERVER frame has its origin at the
- * eye; forward = normalize(look - eye), right = normalize(forward x up),
- * upv = right x forward. On the picture, right points to the right and upv
- * up. (POV-Ray is left-handed: a scene symmetric in x renders identically.)
+ * Handedness: by default the thesis' LEFT-handed system (section 1.2: x to
+ * the right, y up, z away from the viewer). The OBSERVER frame has its origin
+ * at the eye; forward = normalize(look - eye), right = normalize(up x forward),
+ * upv = forward x right (with the default eye on -z looking at the origin, +x
+ * is on the right of the picture, as in the thesis and in POV-Ray).
+ * handedness = CAM_RIGHT_HANDED gives the mirror image: right = normalize(
+ * forward x up), upv = right x forward (+x on the left in that view). On the
+ * picture, right points to the right and upv up.
  *
  * WINDOW: perspective projection onto the plane at distance 1 in front of the
  * eye; the window is centred on the origin of the WINDOW system, horiz =
@@ -20,12 +24,15 @@
 #define LOCUS_CAMERA_H
 
 enum { CAM_PERSPECTIVE, CAM_ORTHOGRAPHIC };
+/* Handedness of the ABSOLUTE system (the zero value is the thesis' left-handed one). */
+enum { CAM_LEFT_HANDED = 0, CAM_RIGHT_HANDED = 1 };
 
 typedef struct {
 	double eye[3], look[3], up[3];
 	double fov;          /* horizontal field of view, degrees (perspective) */
 	double window;       /* orthographic window width in world units (0: derived) */
 	int projection;      /* CAM_PERSPECTIVE or CAM_ORTHOGRAPHIC */
+	int handedness;      /* CAM_LEFT_HANDED (default) or CAM_RIGHT_HANDED */
 	unsigned nxpix, nypix;
 	/* derived by cam_setup: */
 	double fwd[3], right[3], upv[3];

@@ -1,9 +1,11 @@
 /* locus-render.c: render a scene file into a meta file (ray tracing, octree, contours, Voronoi, wireframes). */
 #include "mesh.h"
 #include "scene.h"
+#include "scene_lex.h"
 #include "transport.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -17,13 +19,17 @@
 #define EX_IOERR 74
 
 static const char usage[] =
-	"usage: locus-render SCENE [-o OUT] [--binary] [--threads N] [--quiet] [--stats]\n"
+	"usage: locus-render SCENE [-o OUT] [--binary] [--threads N] [--frames N|A-B] [--time-step DT]\n"
+	"                    [--quiet] [--stats]\n"
 	"Render the scene file SCENE ('-' = stdin) into a Locus meta file.\n"
 	"  -o OUT       write OUT ('-' = stdout, the default) via a temporary file and rename;\n"
 	"               OUT.stl, OUT.ply or OUT.obj: the drawn objects' triangle mesh instead\n"
 	"               (binary STL, binary PLY, Wavefront OBJ; docs/mesh.md)\n"
 	"  --binary     write the binary meta encoding (default: text)\n"
 	"  --threads N  worker threads (default: all CPUs); the output does not depend on N\n"
+	"  --frames N   an animation: frames 0..N-1 (or A-B: frames A..B), one set of pages\n"
+	"               each, the scene parsed again for each with t = frame x DT\n"
+	"  --time-step DT  the time between frames (default 1); without --frames t = 0\n"
 	"  --quiet      no progress bar and no warnings\n"
 	"  --stats      print one line of costs on stderr: pixels, distance evaluations\n"
 	"               (per pixel, per ray kind), octree cells, times in milliseconds\n"
@@ -45,6 +51,37 @@ static void progress(void *user, unsigned done, unsigned total)
 	if (done >= total)
 		fputc('\n', stderr);
 	fflush(stderr);
+}
+
+/* One message line on stderr, control bytes escaped (a scene's text never reaches the terminal raw). */
+static void say(const char *msg)
+{
+	char buf[2048];
+	scene_escape(buf, sizeof buf, msg);
+	fprintf(stderr, "%s\n", buf);
+}
+
+/* Sum the costs of one frame into the run's. */
+static void add_stats(scene_stats_t *a, const scene_stats_t *b)
+{
+	a->rt.evals += b->rt.evals;
+	a->rt.lane_evals += b->rt.lane_evals;
+	a->rt.primary_evals += b->rt.primary_evals;
+	a->rt.shadow_evals += b->rt.shadow_evals;
+	a->rt.normal_evals += b->rt.normal_evals;
+	a->rt.aa_evals += b->rt.aa_evals;
+	a->rt.hits += b->rt.hits;
+	a->rt.aa_pixels += b->rt.aa_pixels;
+	a->oct_visited += b->oct_visited;
+	a->oct_leaves += b->oct_leaves;
+	a->oct_evals += b->oct_evals;
+	a->oct_cubical_visited += b->oct_cubical_visited;
+	a->oct_cubical_leaves += b->oct_cubical_leaves;
+	a->seconds_cubical += b->seconds_cubical;
+	a->wire_segments += b->wire_segments;
+	a->contour_segments += b->contour_segments;
+	a->seconds_trace += b->seconds_trace;
+	a->pixels += b->pixels;
 }
 
 static double now(void)
@@ -98,7 +135,8 @@ int main(int argc, char **argv)
 {
 	const char *in = NULL, *out = "-";
 	int binary = 0, quiet = 0, stats = 0;
-	long threads = 0;
+	long threads = 0, frame0 = 0, frame1 = 0;
+	double dt = 1;
 	for (int i = 1; i < argc; i++) {
 		const char *a = argv[i];
 		if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
@@ -122,6 +160,30 @@ int main(int argc, char **argv)
 				fprintf(stderr, "locus-render: --threads expects 1..64, found '%s'\n", argv[i]);
 				return EX_USAGE;
 			}
+		} else if (!strcmp(a, "--frames") && i + 1 < argc) {
+			char *end;
+			const char *v = argv[++i];
+			long x = strtol(v, &end, 10), y;
+			if (*end == '-' && end > v) {
+				y = strtol(end + 1, &end, 10);
+				if (*end || x < 0 || y < x || y > 9999999) {
+					fprintf(stderr, "locus-render: --frames expects N or A-B with 0 <= A <= B, found '%s'\n", v);
+					return EX_USAGE;
+				}
+				frame0 = x, frame1 = y;
+			} else if (*end || x < 1 || x > 10000000) {
+				fprintf(stderr, "locus-render: --frames expects N (1..10000000) or A-B, found '%s'\n", v);
+				return EX_USAGE;
+			} else {
+				frame0 = 0, frame1 = x - 1;
+			}
+		} else if (!strcmp(a, "--time-step") && i + 1 < argc) {
+			char *end;
+			dt = strtod(argv[++i], &end);
+			if (*end || !isfinite(dt) || end == argv[i]) {
+				fprintf(stderr, "locus-render: --time-step expects a finite number, found '%s'\n", argv[i]);
+				return EX_USAGE;
+			}
 		} else if (a[0] == '-' && a[1]) {
 			fprintf(stderr, "locus-render: unknown option '%s' (try --help)\n", a);
 			return EX_USAGE;
@@ -139,14 +201,18 @@ int main(int argc, char **argv)
 	double t_start = now();
 	char err[1024];
 	scene_t *sc;
-	int rc = scene_load(in, &sc, err, sizeof err);
+	char *text;
+	const char *name = strcmp(in, "-") ? in : "<stdin>";
+	int rc = scene_read(in, &text, err, sizeof err);
+	if (rc == 0 && (rc = scene_parse_frame(text, name, frame0 * dt, &sc, err, sizeof err)) < 0)
+		free(text);
 	if (rc < 0) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		return rc == -2 ? EX_NOINPUT : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (!quiet)
 		for (size_t i = 0; i < sc->nwarnings; i++)
-			fprintf(stderr, "%s\n", sc->warnings[i]);
+			say(sc->warnings[i]);
 	size_t nw0 = sc->nwarnings;
 	if (mesh_format_of(out) >= 0) {
 		int status = write_mesh(sc, out, mesh_format_of(out), stats, t_start);
@@ -158,8 +224,9 @@ int main(int argc, char **argv)
 	 * written in place, never replaced (drivers/transport.h) */
 	io_transport_t *f = io_open_write(out, err, sizeof err);
 	if (!f) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		scene_free(sc);
+		free(text);
 		return EX_IOERR;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, binary ? META_ENC_BINARY : META_ENC_TEXT);
@@ -171,21 +238,48 @@ int main(int argc, char **argv)
 	if (!w) {
 		fprintf(stderr, "locus-render: out of memory\n");
 		status = EX_SOFTWARE;
-	} else if ((rc = scene_render(sc, w, &o, &st, err, sizeof err)) < 0) {
-		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : err);
-		status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+	} else {
+		memset(&st, 0, sizeof st);
+		/* frames are independent: each is the scene parsed at its t and rendered onto the
+		 * same writer (its pages follow the previous frame's) */
+		for (long fr = frame0; fr <= frame1 && !status; fr++) {
+			scene_stats_t one;
+			if (fr > frame0) {
+				scene_t *next;
+				if ((rc = scene_parse_frame(text, name, fr * dt, &next, err, sizeof err)) < 0) {
+					say(err);
+					status = rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+					break;
+				}
+				scene_free(sc);
+				sc = next;
+			}
+			if ((rc = scene_render(sc, w, &o, &one, err, sizeof err)) < 0) {
+				say(io_failed(f) ? io_error(f) : err);
+				status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+				break;
+			}
+			add_stats(&st, &one);
+			if (!quiet && frame1 > frame0) {
+				if (fr > frame0 && sc->nwarnings)
+					fprintf(stderr, "locus-render: frame %ld (t = %g):\n", fr, fr * dt);
+				for (size_t i = fr > frame0 ? 0 : nw0; i < sc->nwarnings; i++)
+					say(sc->warnings[i]);
+			}
+		}
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");
 		status = EX_IOERR;
 	}
 	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
-		fprintf(stderr, "%s\n", err);
+		say(err);
 		status = EX_IOERR;
 	}
-	if (!status && !quiet)
+	if (!status && !quiet && frame1 == frame0)
 		for (size_t i = nw0; i < sc->nwarnings; i++)
-			fprintf(stderr, "%s\n", sc->warnings[i]);
+			say(sc->warnings[i]);
+	free(text);
 	if (!status && stats) {
 		double total = now() - t_start;
 		double px = st.pixels ? st.pixels : 1;

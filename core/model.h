@@ -51,7 +51,15 @@
 
 /* Element kinds. */
 enum { MODEL_POINT, MODEL_POINTS, MODEL_SEGMENT, MODEL_POLYLINE, MODEL_LINE,
-       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI };
+       MODEL_PLANE, MODEL_DISK, MODEL_SHAPE, MODEL_VORONOI, MODEL_CSG,
+       MODEL_CIRCLE, MODEL_TRIANGLE, MODEL_POLYGON, MODEL_BOX };
+/* Constructive combinations (MODEL_CSG elements) of two shapes A, B with the normalised
+ * signed estimates a = f_A/L_A, b = f_B/L_B (each 1-Lipschitz, negative inside):
+ *   union min(a, b), intersection max(a, b), difference max(a, -b), and the smooth blend
+ *   min(a, b) - k h^2 / 4 with h = max(k - |a - b|, 0) / k (radius k > 0): its gradient is a
+ *   convex combination of the two, so it is 1-Lipschitz too, and it lies within k/4 below
+ *   min(a, b) (the blend fills the crease where the surfaces meet, up to k apart). */
+enum { MODEL_UNION, MODEL_INTERSECTION, MODEL_DIFFERENCE, MODEL_BLEND };
 /* Parameter kinds. */
 enum { MODEL_C_CONST, MODEL_C_EXPR, MODEL_C_NOISE, MODEL_C_MANDEL, MODEL_C_SHAPE };
 
@@ -59,7 +67,12 @@ typedef struct model_shape model_shape_t;
 
 /* One element with its weight. p holds np points of 3 doubles: POINT 1,
  * POINTS n, SEGMENT 2, POLYLINE n >= 2, LINE point + direction, PLANE point +
- * normal, DISK centre + normal (radius r). */
+ * normal, DISK centre + normal (radius r), CIRCLE centre + normal (radius r: the
+ * ring, d = sqrt(h^2 + (rho - r)^2)), TRIANGLE 3 corners and POLYGON n >= 3 corners
+ * of a planar filled polygon (d = |h| over it, else the distance to its nearest edge;
+ * the unit normal is kept after the corners), BOX two opposite corners of an
+ * axis-aligned solid box (d = 0 inside). The last four take the scalar path in the
+ * 8-wide kernel. */
 typedef struct {
 	int kind;
 	double w;
@@ -67,9 +80,27 @@ typedef struct {
 	size_t np;
 	double r;
 	float *pf;                 /* float copy (directions normalised) for the 8-wide kernel */
-	double *nw;                /* MODEL_VORONOI: the nuclei's additive weights */
-	const model_shape_t *shape; /* MODEL_SHAPE */
+	double *nw;                /* MODEL_VORONOI: the additive weight of each segment's nucleus */
+	double *nm;                /* MODEL_VORONOI: 1 / the multiplicative weight (e = d/M - W) */
+	int *grp;                  /* MODEL_VORONOI: the nucleus of each segment (polyline nuclei: runs) */
+	const model_shape_t *shape; /* MODEL_SHAPE; MODEL_CSG: A */
+	const model_shape_t *shape2; /* MODEL_CSG: B */
+	int op;                    /* MODEL_CSG: MODEL_UNION ... MODEL_BLEND (r: the blend radius k) */
+	/* the distance measure (model_set_measure): d^pw of the distance in the metric */
+	double pw;                 /* power >= 1 (1: plain distance) */
+	int metric;                /* MODEL_EUCLID, MODEL_LP (mp[0] = p >= 1), MODEL_ANISO (mp = a_x a_y a_z > 0) */
+	double mp[3];
+	int measured;              /* pw != 1 or a metric: the scalar path, bound lipm */
+	double lipm;               /* set by model_prepare: Lipschitz bound of the measure over the region */
+	double dmax;               /* set by model_prepare: the measure's largest value over the region */
+	expr_t *wexpr;             /* a weight that varies with the setup point (owned; w is then unused) */
 } model_elem_t;
+/* Metrics of point elements: Euclidean; Lp, (sum |v_j|^p)^(1/p), within
+ * 3^max(0, 1/p - 1/2) of the Euclidean length (its Lipschitz bound); weighted anisotropic
+ * sqrt(sum a_j v_j^2), Lipschitz sqrt(max a_j). A power pw >= 1 of a measure bounded by D over
+ * the region is Lipschitz pw D^(pw - 1) times the measure's bound (model_prepare takes D from
+ * the setup box's corners). */
+enum { MODEL_EUCLID, MODEL_LP, MODEL_ANISO };
 
 /* The defining parameter. */
 typedef struct {
@@ -82,6 +113,8 @@ typedef struct {
 	int maxit;                 /* mandelbrot iterations */
 	int smooth;                /* mandelbrot: continuous escape count instead of n */
 	int revolve;               /* mandelbrot: the maps read (x, sqrt(y^2+z^2), 0): the set turned about x */
+	int julia;                 /* the Julia process z <- z^2 + k from z = u + iv instead (kind MODEL_C_MANDEL) */
+	double k[2];               /* julia: the constant k */
 	const model_shape_t *shape; /* MODEL_C_SHAPE */
 } model_param_t;
 
@@ -99,9 +132,12 @@ struct model_shape {
 	/* set by model_prepare: */
 	double lip;                /* Lipschitz bound of f in the actual frame (0 if none) */
 	int has_lip;               /* 1 when lip is a valid bound inside box */
+	int lip_local;             /* lip holds only inside box (a power above 1): no distance-to, CSG or cone outside it */
 	int bounded;               /* 1 when the surface lies in the sphere below */
 	double centre[3], radius;  /* bounding sphere (actual frame) */
 	int fast_points;           /* points/segments only, constant c, translated frame: model_eval8's fast path */
+	int de;                    /* model_de is a distance bound (elementless smooth Mandelbrot/Julia shape) */
+	double de_m0, de_scale;    /* de: the level of the continuous count; 1 / (||u,v map|| ||M^-1||) */
 	/* kept by model_add / model_check_nesting: */
 	int nest;                  /* levels of shapes below this one (0: none) */
 	double eval_cost, grad_cost; /* distance evaluations per point of model_eval, model_grad */
@@ -131,6 +167,41 @@ int model_add(model_shape_t *s, int kind, double w, const double *pts, size_t np
 int model_add_nuclei(model_shape_t *s, double w, const double *ab, const double *wt, size_t n,
                      char *err, size_t errlen);
 
+/* Add a constructive element of weight w: op (MODEL_UNION ...) of shapes a and b, both with
+ * a Lipschitz bound; k > 0 the blend radius (MODEL_BLEND). Its value is signed and
+ * 1-Lipschitz in the ACTUAL frame (like a distance-to element, outside the transforms). Returns
+ * 0 or -1 with a message. */
+int model_add_csg(model_shape_t *s, double w, int op, const model_shape_t *a, const model_shape_t *b,
+                  double k, char *err, size_t errlen);
+/* The value of element e of s at the actual point p (setup point q): its distance, or for
+ * MODEL_SHAPE |f|/L and for MODEL_CSG the signed combination. */
+double model_elem_value(const model_elem_t *e, const double p[3], const double q[3]);
+
+/* Give the last element added a distance measure: d^pw (pw >= 1) of its distance in the metric
+ * (MODEL_LP and MODEL_ANISO for point and points elements only; mp as above). Returns 0 or -1
+ * with a message ("expected ..." follows it). */
+int model_set_measure(model_shape_t *s, double pw, int metric, const double mp[3], char *err, size_t errlen);
+/* Give the last element added the position-varying weight w(q) = e (an expression in x, y, z of
+ * the setup frame; the element owns it from here, also on failure). Such a shape needs a
+ * `bound` box: its Lipschitz bound is max|w|·L_d + G_w·D over it (G_w from interval
+ * arithmetic, D the largest distance). Returns 0 or -1 with a message. */
+int model_set_weight_expr(model_shape_t *s, expr_t *e, char *err, size_t errlen);
+
+/* The measure of a measured element at the setup point q (model_elem_distance otherwise). */
+double model_elem_measure(const model_elem_t *e, const double q[3]);
+
+/* Set every measured element's lipm for the setup-frame box lo..hi (model_prepare calls it). */
+void model_measure_bounds(model_shape_t *s, const double *lo, const double *hi);
+
+/* The general Voronoi element: n segments (ab: 6 numbers each, a point has both ends equal),
+ * grouped into nuclei by grp (non-decreasing ids, a run of segments is a polyline nucleus;
+ * NULL: one nucleus per segment), with additive weights wt and multiplicative weights fac
+ * (NULL: 1) per segment (equal within a nucleus): e = d(P, N)/M - W, and the estimate
+ * (e2 - e1)/2 of the two smallest over distinct nuclei, Lipschitz max(1/M). At least two
+ * nuclei; M > 0. Returns 0 or -1 with a message. */
+int model_add_nuclei2(model_shape_t *s, double w, const double *ab, const double *wt, const double *fac,
+                      const int *grp, size_t n, char *err, size_t errlen);
+
 /* Recompute s->nest and the costs from the elements and the parameter (the shapes referred
  * to must have theirs). Returns 0, or -1 with a message ("expected ..." follows it) when a
  * bound above is passed; err may be NULL. model_add calls it for shape elements; call it
@@ -156,6 +227,17 @@ void model_eval8(const model_shape_t *s, const float *x, const float *y, const f
 double model_elem_distance(const model_elem_t *e, const double q[3]);
 /* Gradient of f at p (analytic for elements, central differences for c). */
 void model_grad(const model_shape_t *s, const double p[3], double g[3]);
+
+/* Distance estimate of an elementless shape whose parameter is a smooth Mandelbrot or Julia
+ * process (s->de set by model_prepare): the sign of f, and a magnitude never above the distance
+ * from p to the surface (the Douady-Hubbard potential with Koebe's quarter theorem, divided by
+ * the norms of the (u, v) map and of M^-1). Inside the set (no escape) it is -1e-3 * de_scale:
+ * a sign, not a bound. model_de8: the same at 8 float points. */
+double model_de(const model_shape_t *s, const double p[3]);
+void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* 1 with the level *m0 of the continuous count when c is a smooth process with a level inside
+ * (0, maxit) (the surface is the equipotential count = m0). */
+int model_de_level(const model_param_t *c, double *m0);
 
 /* Value of the defining parameter at the actual point p (setup point q). */
 double model_param(const model_shape_t *s, const double p[3], const double q[3]);

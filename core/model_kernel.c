@@ -61,6 +61,11 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 {
 	const float *f = e->pf;
 	v8 t;
+	if (e->measured) {   /* powers and metrics: the scalar double path, lane by lane */
+		for (int k = 0; k < 8; k++)
+			d[k] = (float)model_elem_measure(e, (double[]){x[k], y[k], z[k]});
+		return;
+	}
 	switch (e->kind) {
 	case MODEL_POINT:
 		point8(f, x, y, z, d);
@@ -83,13 +88,26 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 			d[k] = INFINITY;
 			d2[k] = INFINITY;
 		}
-		for (size_t i = 0; i < e->np; i++) {
-			const float *g = f + 8 * i, wk = g[7];
+		v8 cur;
+		for (size_t i = 0; i <= e->np; i++) {
+			/* a segment that starts a nucleus folds the previous one into the two smallest */
+			if (i == e->np || f[10 * i + 9] == 0.0f) {
+				if (i > 0)
+					for (int k = 0; k < 8; k++) {
+						float v = cur[k], a = d[k], b = d2[k];
+						d2[k] = v < a ? a : (v < b ? v : b);
+						d[k] = v < a ? v : a;
+					}
+				if (i == e->np)
+					break;
+				for (int k = 0; k < 8; k++)
+					cur[k] = INFINITY;
+			}
+			const float *g = f + 10 * i, wk = g[7], im = g[8];
 			segment8(g, x, y, z, t);
 			for (int k = 0; k < 8; k++) {
-				float v = t[k] - wk, a = d[k], b = d2[k];
-				d2[k] = v < a ? a : (v < b ? v : b);
-				d[k] = v < a ? v : a;
+				float v = t[k] * im - wk;
+				cur[k] = v < cur[k] ? v : cur[k];
 			}
 		}
 		for (int k = 0; k < 8; k++)
@@ -109,6 +127,34 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 	case MODEL_PLANE:
 		plane_line_disk8(e->kind, f, x, y, z, d);
 		break;
+	case MODEL_CIRCLE:
+	case MODEL_TRIANGLE:
+	case MODEL_POLYGON:
+	case MODEL_BOX:
+		/* the scalar double path, lane by lane */
+		for (int k = 0; k < 8; k++)
+			d[k] = (float)model_elem_distance(e, (double[]){x[k], y[k], z[k]});
+		break;
+	case MODEL_CSG: {
+		v8 b;
+		model_eval8(e->shape, ax, ay, az, d);
+		model_eval8(e->shape2, ax, ay, az, b);
+		const float ia = (float)(1.0 / e->shape->lip), ib = (float)(1.0 / e->shape2->lip), kk = (float)e->r;
+		for (int k = 0; k < 8; k++) {
+			float a = d[k] * ia, c = b[k] * ib;
+			switch (e->op) {
+			case MODEL_UNION: d[k] = a < c ? a : c; break;
+			case MODEL_INTERSECTION: d[k] = a > c ? a : c; break;
+			case MODEL_DIFFERENCE: d[k] = a > -c ? a : -c; break;
+			default: {
+				float h = kk - fabsf(a - c);
+				h = h > 0.0f ? h / kk : 0.0f;
+				d[k] = (a < c ? a : c) - kk * h * h * 0.25f;
+			}
+			}
+		}
+		break;
+	}
 	default: {
 		model_eval8(e->shape, ax, ay, az, d);
 		float il = (float)(1.0 / e->shape->lip);
@@ -167,6 +213,13 @@ void model_eval8(const model_shape_t *s, const float *x, const float *y, const f
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
 		elem8(e, qx, qy, qz, x, y, z, d);
+		if (e->wexpr) {   /* a weight that varies with the setup point */
+			v8 wv;
+			expr_eval8(e->wexpr, qx, qy, qz, wv);
+			for (int k = 0; k < 8; k++)
+				sum[k] += wv[k] * d[k];
+			continue;
+		}
 		float w = (float)e->w;
 		for (int k = 0; k < 8; k++)
 			sum[k] += w * d[k];

@@ -56,7 +56,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	for (size_t i = 0; i < s->nel; i++) {
 		const model_elem_t *e = &s->el[i];
 		double dlo, dhi;
-		if (e->kind == MODEL_POINT && b->exact_points) {
+		if (e->kind == MODEL_POINT && b->exact_points && !e->measured) {
 			const double *a = e->p;
 			double mn = 0, mx = 0;
 			for (int j = 0; j < 3; j++) {
@@ -72,12 +72,23 @@ static int cubical(const build_t *b, const double *p, double h)
 			double d = fabs(model_eval(e->shape, p)) / e->shape->lip;
 			dlo = fmax(d - r, 0);
 			dhi = d + r;
+		} else if (e->kind == MODEL_CSG) {   /* signed, 1-Lipschitz in the actual frame */
+			double d = model_elem_value(e, p, q);
+			dlo = d - r;
+			dhi = d + r;
 		} else {
-			double d = model_elem_distance(e, q);
-			dlo = fmax(d - rs, 0);
-			dhi = d + rs;
+			double d = model_elem_measure(e, q);
+			dlo = fmax(d - e->lipm * rs, 0);
+			dhi = d + e->lipm * rs;
 		}
-		if (e->w >= 0) {
+		if (e->wexpr) {   /* the weight's interval over the cell's setup box times [dlo, dhi] */
+			double cl[3] = {q[0] - rs, q[1] - rs, q[2] - rs}, ch[3] = {q[0] + rs, q[1] + rs, q[2] + rs}, wl, wh, gw;
+			if (expr_bound(e->wexpr, cl, ch, &wl, &wh, &gw) < 0)
+				return 1;
+			double a = wl * dlo, b2 = wl * dhi, c = wh * dlo, d = wh * dhi;
+			lo += fmin(fmin(a, b2), fmin(c, d));
+			hi += fmax(fmax(a, b2), fmax(c, d));
+		} else if (e->w >= 0) {
 			lo += e->w * dlo;
 			hi += e->w * dhi;
 		} else {
@@ -93,7 +104,7 @@ static int cubical(const build_t *b, const double *p, double h)
 	} else {
 		double g = s->lip, sum = 0;
 		for (size_t i = 0; i < s->nel; i++)
-			sum += fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE ? 1 : s->norm_minv);
+			sum += s->el[i].wexpr ? 0 : fabs(s->el[i].w) * (s->el[i].kind == MODEL_SHAPE || s->el[i].kind == MODEL_CSG ? 1 : s->norm_minv * s->el[i].lipm);
 		g = fmax(s->lip - sum, 0);
 		double c = model_param(s, p, q);
 		clo = c - g * r;

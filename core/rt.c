@@ -13,6 +13,7 @@
 
 typedef struct {
 	const rt_params_t *p;
+	const unsigned char *dbl; /* per object: 1 = marched in double precision (rt_march1) */
 	meta_rgb_t *img;
 	const meta_rgb_t *src;   /* supersampling pass: the first-pass picture */
 	int pass;
@@ -65,11 +66,11 @@ static void refine_hit(const model_shape_t *s, double *P, const double *V, doubl
 }
 
 /* Trace up to RT_LANES rays (active[k]) and shade them into col. */
-static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3], rt_stats_t *st,
-                   const float *tstart, size_t stride)
+static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *pk, double col[RT_LANES][3],
+                   rt_stats_t *st, const float *tstart, size_t stride)
 {
 	double best[RT_LANES];
-	int obj[RT_LANES];
+	int obj[RT_LANES], side[RT_LANES];
 	uint64_t lanes = 0;
 	for (int k = 0; k < RT_LANES; k++) {
 		best[k] = INFINITY;
@@ -79,6 +80,22 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 	}
 	for (size_t i = 0; i < p->nobjects; i++) {
 		uint64_t ev = 0;
+		if (dbl[i]) {
+			for (int k = 0; k < RT_LANES; k++) {
+				if (!pk->active[k])
+					continue;
+				double o[3] = {pk->o[0][k], pk->o[1][k], pk->o[2][k]}, d[3] = {pk->d[0][k], pk->d[1][k], pk->d[2][k]};
+				int sd;
+				double th = rt_march1(p->objects[i].shape, o, d, 0, INFINITY, pk->fa[k], pk->fb[k], pk->acc, pk->step, 0, &sd, &ev);
+				if (th < best[k]) {
+					best[k] = th;
+					obj[k] = (int)i;
+					side[k] = sd;
+				}
+			}
+			st->primary_evals += ev;
+			continue;
+		}
 		if (tstart)
 			for (int k = 0; k < RT_LANES; k++)
 				pk->tmin[k] = tstart[i * stride];
@@ -88,6 +105,7 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 			if (pk->active[k] && pk->thit[k] < best[k]) {
 				best[k] = pk->thit[k];
 				obj[k] = (int)i;
+				side[k] = (int)pk->side[k];
 			}
 	}
 	double P[RT_LANES][3], N[RT_LANES][3], V[RT_LANES][3];
@@ -100,8 +118,8 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 		st->hits++;
 		const rt_object_t *ob = &p->objects[obj[k]];
 		for (int i = 0; i < 3; i++) {
-			P[k][i] = pko[i][k] + best[k] * pkd[i][k];
-			V[k][i] = -pkd[i][k];
+			P[k][i] = dbl[obj[k]] ? pk->o[i][k] + best[k] * pk->d[i][k] : pko[i][k] + best[k] * pkd[i][k];
+			V[k][i] = dbl[obj[k]] ? -pk->d[i][k] : -pkd[i][k];
 		}
 		if (p->refine && ob->shape->has_lip)
 			refine_hit(ob->shape, P[k], V[k], (pk->fa[k] + pk->fb[k] * best[k]), st);
@@ -113,7 +131,10 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 				N[k][i] /= l;
 		else
 			memcpy(N[k], V[k], sizeof N[k]);
-		if (dot(N[k], V[k]) < 0)
+		/* the normal faces the side the ray came from: grad(side * f) points back along the
+		 * ray by construction, also at the rim where N.V is about 0 and its computed sign is
+		 * noise; only a ray that started on the surface (side 0) uses the two-sided rule */
+		if (side[k] ? side[k] < 0 : dot(N[k], V[k]) < 0)
 			for (int i = 0; i < 3; i++)
 				N[k][i] = -N[k][i];
 		double a = ob->shading == RT_CONSTANT ? 1 : ob->ambient;
@@ -145,9 +166,13 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 			sp.active[k] = 1;
 			need = 1;
 			double fp = pk->fa[k] + pk->fb[k] * best[k];
-			sp.ox[k] = (float)(P[k][0] + 0.5 * fp * N[k][0]);
-			sp.oy[k] = (float)(P[k][1] + 0.5 * fp * N[k][1]);
-			sp.oz[k] = (float)(P[k][2] + 0.5 * fp * N[k][2]);
+			for (int i = 0; i < 3; i++) {
+				sp.o[i][k] = P[k][i] + 0.5 * fp * N[k][i];
+				sp.d[i][k] = Ld[k][i];
+			}
+			sp.ox[k] = (float)sp.o[0][k];
+			sp.oy[k] = (float)sp.o[1][k];
+			sp.oz[k] = (float)sp.o[2][k];
 			sp.dx[k] = (float)Ld[k][0];
 			sp.dy[k] = (float)Ld[k][1];
 			sp.dz[k] = (float)Ld[k][2];
@@ -159,6 +184,18 @@ static void trace8(const rt_params_t *p, rt_packet_t *pk, double col[RT_LANES][3
 		if (need && lt->shadows) {
 			for (size_t i = 0; i < p->nobjects; i++) {
 				uint64_t ev = 0;
+				if (dbl[i]) {
+					for (int k = 0; k < RT_LANES; k++) {
+						if (!sp.active[k])
+							continue;
+						double o[3] = {sp.o[0][k], sp.o[1][k], sp.o[2][k]}, d[3] = {sp.d[0][k], sp.d[1][k], sp.d[2][k]};
+						int sd;
+						if (rt_march1(p->objects[i].shape, o, d, sp.tmin[k], dist[k], sp.fa[k], 0, sp.acc, sp.step, 1, &sd, &ev) < INFINITY)
+							sp.active[k] = 0;
+					}
+					st->shadow_evals += ev;
+					continue;
+				}
 				rt_march8(p->objects[i].shape, &sp, 1, &ev, &lanes);
 				st->shadow_evals += ev;
 				for (int k = 0; k < RT_LANES; k++)
@@ -191,6 +228,10 @@ static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, d
 {
 	double o[3], d[3];
 	cam_ray(&p->cam, px, py, o, d);
+	for (int i = 0; i < 3; i++) {
+		pk->o[i][k] = o[i];
+		pk->d[i][k] = d[i];
+	}
 	pk->ox[k] = (float)o[0];
 	pk->oy[k] = (float)o[1];
 	pk->oz[k] = (float)o[2];
@@ -285,7 +326,7 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 			double oc[3] = {o[0] - bc[0], o[1] - bc[1], o[2] - bc[2]};
 			tfar[k] = (float)(sqrt(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + half);
 			t[k] = 0;
-			live[k] = g + k < npk && s->has_lip;
+			live[k] = g + k < npk && rt_bound(s) > 0 && !s->lip_local;
 			n += live[k];
 			if (g + k < npk)
 				out[g + k] = 0;
@@ -296,14 +337,14 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 				y[k] = oy[k] + t[k] * dy[k];
 				z[k] = oz[k] + t[k] * dz[k];
 			}
-			model_eval8(s, x, y, z, v);
+			rt_eval8(s, x, y, z, v);
 			st->primary_evals += (uint64_t)n;
 			st->lane_evals += 8;
 			n = 0;
 			for (int k = 0; k < 8; k++) {
 				if (!live[k])
 					continue;
-				double r = ortho ? rr : rr * t[k], dd = v[k] / s->lip - r;
+				double r = ortho ? rr : rr * t[k], dd = v[k] / rt_bound(s) - r;
 				if (!(dd >= 0.5 * r)) {
 					out[g + k] = t[k];       /* near something (or inside, or NaN): start here */
 					live[k] = 0;
@@ -322,18 +363,37 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 	}
 }
 
-static void render_row(const rt_params_t *p, meta_rgb_t *row, unsigned r, rt_stats_t *st)
+/* Rays of the packet in double precision as well (cam_ray: the reference set-up). */
+static void double_rays(const rt_params_t *p, rt_packet_t *pk, double px0, double dpx, double py)
+{
+	for (int k = 0; k < RT_LANES; k++) {
+		double o[3], d[3];
+		cam_ray(&p->cam, px0 + k * dpx, py, o, d);
+		for (int i = 0; i < 3; i++) {
+			pk->o[i][k] = o[i];
+			pk->d[i][k] = d[i];
+		}
+	}
+}
+
+static void render_row(const rt_params_t *p, const unsigned char *dbl, meta_rgb_t *row, unsigned r, rt_stats_t *st)
 {
 	unsigned nx = p->cam.nxpix, j = p->cam.nypix - 1 - r, npk = (nx + RT_LANES - 1) / RT_LANES;
 	rt_packet_t pk;
 	double col[RT_LANES][3];
 	float *start = malloc((p->nobjects * npk + 1) * sizeof *start);
+	int any = 0;
+	for (size_t i = 0; i < p->nobjects; i++)
+		any |= dbl[i];
 	for (size_t i = 0; start && i < p->nobjects; i++)
-		cone_starts(p, p->objects[i].shape, j, npk, start + i * npk, st);
+		if (!dbl[i])
+			cone_starts(p, p->objects[i].shape, j, npk, start + i * npk, st);
 	for (unsigned x0 = 0, q = 0; x0 < nx; x0 += RT_LANES, q++) {
 		init_packet(p, &pk);
 		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < RT_LANES ? (int)(nx - x0) : RT_LANES);
-		trace8(p, &pk, col, st, start ? start + q : NULL, npk);
+		if (any)
+			double_rays(p, &pk, x0 + 0.5, 1.0, j + 0.5);
+		trace8(p, dbl, &pk, col, st, start ? start + q : NULL, npk);
 		for (int k = 0; k < RT_LANES && x0 + k < nx; k++)
 			row[x0 + k] = to_rgb(col[k]);
 	}
@@ -350,7 +410,8 @@ static int differs(meta_rgb_t a, meta_rgb_t b, double th)
 	return 0;
 }
 
-static void supersample_row(const rt_params_t *p, const meta_rgb_t *src, meta_rgb_t *row, unsigned r, rt_stats_t *st)
+static void supersample_row(const rt_params_t *p, const unsigned char *dbl, const meta_rgb_t *src, meta_rgb_t *row,
+                            unsigned r, rt_stats_t *st)
 {
 	unsigned nx = p->cam.nxpix, ny = p->cam.nypix, j = ny - 1 - r, n = (unsigned)p->supersample;
 	double th = p->aa_threshold > 0 ? p->aa_threshold : 8;
@@ -372,7 +433,7 @@ static void supersample_row(const rt_params_t *p, const meta_rgb_t *src, meta_rg
 				unsigned a = (s0 + k) % n, b = (s0 + k) / n;
 				setup_ray(p, &pk, (int)k, i + (a + 0.5) / n, j + (b + 0.5) / n);
 			}
-			trace8(p, &pk, col, st, NULL, 0);
+			trace8(p, dbl, &pk, col, st, NULL, 0);
 			for (unsigned k = 0; k < RT_LANES && s0 + k < n * n; k++)
 				for (int q = 0; q < 3; q++)
 					sum[q] += col[k][q];
@@ -395,9 +456,9 @@ static void *worker(void *arg)
 		if (r >= ny)
 			break;
 		if (job->pass == 0)
-			render_row(p, job->img + (size_t)r * nx, r, &w->st);
+			render_row(p, job->dbl, job->img + (size_t)r * nx, r, &w->st);
 		else
-			supersample_row(p, job->src, job->img + (size_t)r * nx, r, &w->st);
+			supersample_row(p, job->dbl, job->src, job->img + (size_t)r * nx, r, &w->st);
 		atomic_fetch_add(&job->rows_done, 1);
 	}
 	atomic_fetch_add(&job->workers_done, 1);
@@ -457,6 +518,31 @@ static int run_pass(job_t *job, unsigned nthreads, rt_stats_t *st, char *err, si
 	return 0;
 }
 
+int rt_needs_double(const cam_t *c, const model_shape_t *s, double accuracy)
+{
+	/* the float marcher's limits in pixels: positions carry about 2 ulps of the largest
+	 * coordinate (eye or region), its hit tolerance is at least 2e-6 of the ray parameter */
+	double S = 0, R, cen[3];
+	for (int i = 0; i < 3; i++) {
+		S = fmax(S, fabs(c->eye[i]));
+		S = fmax(S, fmax(fabs(s->box[i]), fabs(s->box[3 + i])));
+		cen[i] = (s->box[i] + s->box[3 + i]) / 2;
+	}
+	R = 0.5 * sqrt((s->box[3] - s->box[0]) * (s->box[3] - s->box[0]) + (s->box[4] - s->box[1]) * (s->box[4] - s->box[1])
+	               + (s->box[5] - s->box[2]) * (s->box[5] - s->box[2]));
+	if (s->bounded && s->radius < R) {
+		R = s->radius;
+		memcpy(cen, s->centre, sizeof cen);
+	}
+	double v[3] = {c->eye[0] - cen[0], c->eye[1] - cen[1], c->eye[2] - cen[2]};
+	double dist = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+	double tnear = fmax(dist - R, 1e-3 + 0.1 * dist), tfar = dist + R;
+	double err_pos = 2.4e-7 * S / cam_footprint(c, tnear);
+	double err_tol = 2e-6 * (tfar + 1) / cam_footprint(c, tfar);
+	double limit = 4 * (accuracy > 0 ? accuracy : 1e-3);
+	return !(err_pos <= limit && err_tol <= limit);
+}
+
 int rt_render(const rt_params_t *p, meta_rgb_t *img, rt_stats_t *st, char *err, size_t errlen)
 {
 	rt_stats_t local;
@@ -474,12 +560,24 @@ int rt_render(const rt_params_t *p, meta_rgb_t *img, rt_stats_t *st, char *err, 
 	memset(&job, 0, sizeof job);
 	job.p = p;
 	job.img = img;
-	if (run_pass(&job, nthreads, st, err, errlen) < 0)
+	unsigned char *dbl = calloc(p->nobjects + 1, 1);
+	if (!dbl) {
+		snprintf(err, errlen, "out of memory");
+		return -1;
+	}
+	for (size_t i = 0; i < p->nobjects; i++)
+		dbl[i] = rt_needs_double(&p->cam, p->objects[i].shape, p->accuracy);
+	job.dbl = dbl;
+	int rc0 = run_pass(&job, nthreads, st, err, errlen);
+	if (rc0 < 0 || p->supersample < 2)
+		free(dbl);
+	if (rc0 < 0)
 		return -1;
 	if (p->supersample >= 2) {
 		size_t n = (size_t)p->cam.nxpix * p->cam.nypix;
 		meta_rgb_t *copy = malloc(n * sizeof *copy);
 		if (!copy) {
+			free(dbl);
 			snprintf(err, errlen, "out of memory for supersampling");
 			return -1;
 		}
@@ -488,6 +586,7 @@ int rt_render(const rt_params_t *p, meta_rgb_t *img, rt_stats_t *st, char *err, 
 		job.pass = 1;
 		int rc = run_pass(&job, nthreads, st, err, errlen);
 		free(copy);
+		free(dbl);
 		if (rc < 0)
 			return -1;
 	}

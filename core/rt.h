@@ -21,10 +21,15 @@
  *     1000 steps) and sign changes are bisected (the bracketing fallback).
  * Every evaluation of f is counted (rt_stats_t), per ray kind.
  *
+ * Precision: an object that the float lanes cannot resolve to `accuracy` in
+ * this view (far eye, large coordinates, narrow field: rt_needs_double) is
+ * marched ray by ray in double precision with the same rules (rt_march1.c).
+ *
  * Shading: RT_CONSTANT is the object colour, unlit; RT_GOURAUD ambient +
  * diffuse (Lambert); RT_PHONG adds specular highlights (reflection vector,
  * exponent `shininess`). Surfaces are two-sided: the normal grad f/|grad f|
- * is flipped to face the viewer. A light with shadows casts a shadow ray
+ * is turned to the side the ray came from (the sign of f before the
+ * crossing; the sign of N.V only for a ray that starts on the surface). A light with shadows casts a shadow ray
  * from the hit point (offset by half a pixel footprint along the normal)
  * that is marched like a primary ray against every object.
  *

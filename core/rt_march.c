@@ -52,7 +52,7 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
                     float *restrict side, float *restrict hit, const float *restrict u,
                     const float *restrict val, const float *restrict fa, const float *restrict fb,
                     const float *restrict t1, const float *restrict smin, float L, float invL,
-                    float nolip, float acc, float step, float shadow)
+                    float nolip, float acc, float step, float shadow, float strict)
 {
 	for (int k = 0; k < RT_LANES; k++) {
 		float uk = u[k], v = val[k];
@@ -63,24 +63,33 @@ static void update8(float *restrict mode, float *restrict t, float *restrict f, 
 		float inm = mode[k] == M_MARCH ? 1.0f : 0.0f, inb = mode[k] == M_BRACKET ? 1.0f : 0.0f;
 		/* march */
 		float beyond = uk >= t1[k] ? 1.0f : 0.0f;  /* the sample is at the region's exit */
-		float cross = v <= 0.0f ? 1.0f : 0.0f;
+		float cross_raw = v <= 0.0f ? 1.0f : 0.0f;
 		float c1 = (f[k] + v) * invL >= s[k] * 0.999999f ? 1.0f : 0.0f;
 		float c2 = s[k] <= emin * 1.0001f ? 1.0f : 0.0f;
 		float cert = maxf(nolip, maxf(c1, c2));
+		/* strict: a sign change counts only when the ball outside at t and the ball inside at
+		 * the sample overlap (one crossing between them); a long proposal that lands inside
+		 * past a thin gap is rejected like an uncertified step */
+		float c3 = (f[k] - v) * invL >= s[k] * 0.999999f - emin ? 1.0f : 0.0f;
+		float cross_ok = maxf(1.0f - strict, maxf(shadow, maxf(nolip, maxf(c3, c2))));
+		float cross = cross_raw * cross_ok;
 		/* slope m = (v - f)/s; secant step -1.05 v/m when falling, the largest step two
 		 * overlapping balls allow, 2 * 0.9 v/(L - m), when rising: one division */
 		float dv = v - f[k];
 		float den = dv < 0.0f ? -dv * (1.0f / 1.05f) : (L * s[k] - dv) * (1.0f / 1.8f);
 		float safe = v * invL;
 		float sg = den > 0.0f ? v * s[k] / den : safe;
-		sg = maxf(maxf(safe, minf(sg, 16.0f * safe)), emin);
+		/* a distance estimate is not Lipschitz: its slope says little about the next ball, so
+		 * a rising ray grows its step by at most 1.5x */
+		float capk = strict > 0 ? 1.5f : 16.0f;
+		sg = maxf(maxf(safe, minf(sg, capk * safe)), emin);
 		sg = nolip > 0 ? maxf(step * fp, smin[k]) : sg;
 		float rej = maxf(f[k] * invL, emin);
 		float m_brk = inm * cross * (1.0f - shadow);   /* march -> bracket */
 		float m_shd = inm * cross * shadow;            /* shadow ray blocked */
-		float m_out = inm * (1.0f - cross) * beyond * cert;          /* certified to the exit: a miss */
-		float m_acc = inm * (1.0f - cross) * (1.0f - beyond) * cert; /* step accepted */
-		float m_rej = inm * (1.0f - cross) * (1.0f - cert);
+		float m_out = inm * (1.0f - cross_raw) * beyond * cert;          /* certified to the exit: a miss */
+		float m_acc = inm * (1.0f - cross_raw) * (1.0f - beyond) * cert; /* step accepted */
+		float m_rej = inm * (1.0f - cross) * (1.0f - (1.0f - cross_raw) * cert);
 		/* bracket */
 		float cv1 = fabsf(v) < eps * (nolip > 0 ? 1.0f : L) ? 1.0f : 0.0f;
 		float cv2 = hi[k] - lo[k] < eps ? 1.0f : 0.0f;
@@ -112,7 +121,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 {
 	float mode[RT_LANES], t[RT_LANES], f[RT_LANES], st[RT_LANES], lo[RT_LANES], flo[RT_LANES], hi[RT_LANES], fhi[RT_LANES], side[RT_LANES], u[RT_LANES], t1[RT_LANES];
 	float x[RT_LANES], y[RT_LANES], z[RT_LANES], val[RT_LANES];
-	float L = s->has_lip ? (float)s->lip : 0.0f, invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
+	float L = (float)rt_bound(s), invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
 	int n = 0;
 	for (int k = 0; k < RT_LANES; k++)
 		n += pk->active[k] && pk->tmin[k] < INFINITY;
@@ -128,6 +137,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	clip8(s, pk, ca, cb, con);
 	for (int k = 0; k < RT_LANES; k++) {
 		pk->thit[k] = INFINITY;
+		pk->side[k] = 0;
 		mode[k] = M_DONE;
 		t[k] = f[k] = st[k] = lo[k] = flo[k] = hi[k] = fhi[k] = side[k] = 0;
 		t1[k] = 0;
@@ -149,9 +159,11 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		x[k] = pk->ox[k] + u[k] * pk->dx[k];
 		y[k] = pk->oy[k] + u[k] * pk->dy[k];
 		z[k] = pk->oz[k] + u[k] * pk->dz[k];
+		if (s->de && mode[k] == M_DONE)
+			x[k] = NAN;
 	}
 	for (int g = 0; g < RT_LANES; g += 8)
-		model_eval8(s, x + g, y + g, z + g, val + g);
+		rt_eval8(s, x + g, y + g, z + g, val + g);
 	*evals += (uint64_t)n;
 	*lanes += RT_LANES;
 	for (int k = 0; k < RT_LANES; k++) {
@@ -170,6 +182,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		v *= sgn[k];
 		if (v == v && (touch || v <= eps * (L > 0 ? L : 1.0f))) {
 			pk->thit[k] = u[k];
+			pk->side[k] = touch ? 1.0f : 0.0f;   /* touching the bounding sphere: entered from outside */
 			mode[k] = M_DONE;
 			n--;
 			continue;
@@ -183,6 +196,9 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		st[k] = L > 0 ? maxf(v * invL, emin) : maxf(pk->step * fp, smin[k]);
 	}
 	int iter = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		if (mode[k] == M_MARCH)
+			pk->side[k] = sgn[k];
 	while (n > 0 && iter++ < 4000) {
 		for (int k = 0; k < RT_LANES; k++) {
 			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
@@ -191,6 +207,8 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			x[k] = pk->ox[k] + u[k] * pk->dx[k];
 			y[k] = pk->oy[k] + u[k] * pk->dy[k];
 			z[k] = pk->oz[k] + u[k] * pk->dz[k];
+			if (s->de && mode[k] == M_DONE)
+				x[k] = NAN;   /* model_de8 skips the lane (its value is not used) */
 		}
 		/* a group of 8 lanes whose rays are all done is not evaluated */
 		for (int g = 0; g < RT_LANES; g += 8) {
@@ -198,7 +216,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			for (int k = g; k < g + 8; k++)
 				busy |= mode[k] != M_DONE;
 			if (busy) {
-				model_eval8(s, x + g, y + g, z + g, val + g);
+				rt_eval8(s, x + g, y + g, z + g, val + g);
 				*lanes += 8;
 			}
 		}
@@ -206,7 +224,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		for (int k = 0; k < RT_LANES; k++)
 			val[k] *= sgn[k];
 		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1, smin,
-		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f);
+		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f, s->de ? 1.0f : 0.0f);
 		n = 0;
 		for (int k = 0; k < RT_LANES; k++)
 			n += mode[k] != M_DONE;

@@ -1,6 +1,7 @@
 /* scene.c: parser of the scene language: view, lights, background, shapes and objects, render blocks. */
 #include "scene_int.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -24,7 +25,7 @@ static void warn(scene_t *sc, unsigned line, unsigned col, const char *msg)
 	if (sc->nwarnings >= SCENE_MAX_WARNINGS)
 		return;
 	char *b = sc->warnbuf[sc->nwarnings], tmp[sizeof sc->warnbuf[0]];
-	snprintf(tmp, sizeof tmp, "%.200s:%u:%u: warning: %.250s", sc->name, line, col, msg);
+	snprintf(tmp, sizeof tmp, "%.180s:%u:%u: warning: %.300s", sc->name, line, col, msg);
 	memcpy(b, tmp, sizeof tmp);
 	sc->warnings[sc->nwarnings++] = b;
 }
@@ -91,6 +92,14 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 					sc->stereo = SCENE_STEREO_SIDE;
 			} else
 				return scene_lex_expected(lx, &t, "perspective, orthographic or stereoscopic");
+		} else if (scene_tok_is(&t, "handedness")) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "left"))
+				c->handedness = CAM_LEFT_HANDED;
+			else if (scene_tok_is(&t, "right"))
+				c->handedness = CAM_RIGHT_HANDED;
+			else
+				return scene_lex_expected(lx, &t, "left (the thesis' system, the default) or right");
 		} else if (scene_tok_is(&t, "stereo-layout")) {
 			scene_lex_tok(lx, &t);
 			if (scene_tok_is(&t, "side-by-side"))
@@ -100,7 +109,7 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 			else
 				return scene_lex_expected(lx, &t, "side-by-side or pages");
 		} else {
-			return scene_lex_expected(lx, &t, "a view setting (eye, look-at, direction, up, fov, projection, window, size, eye-separation, stereo-layout) or 'end'");
+			return scene_lex_expected(lx, &t, "a view setting (eye, look-at, direction, up, fov, projection, window, size, eye-separation, stereo-layout, handedness) or 'end'");
 		}
 		if (scene_lex_eol(lx) < 0)
 			return -1;
@@ -108,30 +117,125 @@ static int parse_view(scene_lex_t *lx, scene_t *sc)
 	return scene_lex_expected(lx, &(tok_t){"", 0, lx->line, 1}, "'end' closing the view block");
 }
 
-/* Optional "weight W" at the end of an element line. */
-static int opt_weight(scene_lex_t *lx, double *w)
+/* The optional end of an element line: "weight W", "power P", "metric lp P" or
+ * "metric aniso AX AY AZ", in any order (measure != NULL: power and metric allowed). */
+typedef struct {
+	double pw, mp[3];
+	int metric;
+	scene_tok_t at;            /* the first power/metric word, for messages */
+	expr_t *wexpr;             /* a weight expression in x, y, z (owned until handed on) */
+	scene_tok_t wat;
+} measure_t;
+
+/* 1 when the token uses x, y or z as an identifier (a position-varying weight). */
+static int uses_xyz(const tok_t *t)
+{
+	for (size_t i = 0; i < t->len; i++) {
+		char c = t->s[i];
+		int before = i > 0 && (isalnum((unsigned char)t->s[i - 1]) || t->s[i - 1] == '_' || t->s[i - 1] == '.');
+		int after = i + 1 < t->len && (isalnum((unsigned char)t->s[i + 1]) || t->s[i + 1] == '_');
+		if ((c == 'x' || c == 'y' || c == 'z') && !before && !after)
+			return 1;
+	}
+	return 0;
+}
+
+/* "weight EXPR" with x, y, z: compile the token (t replaced by its value). */
+static int weight_expr(scene_lex_t *lx, const tok_t *t, expr_t **out)
+{
+	char src[1024], e[200], msg[300];
+	size_t at = 0;
+	if (scene_subst_t(t->s, t->len, lx->t, src, sizeof src) < 0)
+		return scene_lex_error(lx, t->line, t->col, "expected a weight expression of at most 200 bytes");
+	if (expr_compile(src, out, e, sizeof e, &at) < 0) {
+		snprintf(msg, sizeof msg, "%s (in the weight '%.*s')", e, (int)(t->len > 60 ? 60 : t->len), t->s);
+		return scene_lex_error(lx, t->line, t->col, msg);
+	}
+	return 0;
+}
+
+static int opt_suffix(scene_lex_t *lx, double *w, measure_t *ms)
 {
 	tok_t t;
 	*w = 1;
-	if (!scene_lex_tok(lx, &t))
-		return 0;
-	if (!scene_tok_is(&t, "weight"))
-		return scene_lex_expected(lx, &t, "'weight' or the end of the line");
-	if (scene_lex_number(lx, w, "a weight") < 0)
-		return -1;
-	return scene_lex_eol(lx);
+	if (ms) {
+		memset(ms, 0, sizeof *ms);
+		ms->pw = 1;
+	}
+	int seen_w = 0;
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "weight") && !seen_w) {
+			seen_w = 1;
+			size_t save = lx->pos;
+			tok_t v;
+			if (ms && scene_lex_tok(lx, &v) && uses_xyz(&v)) {
+				ms->wat = v;
+				if (weight_expr(lx, &v, &ms->wexpr) < 0)
+					return -1;
+				continue;
+			}
+			lx->pos = save;
+			if (scene_lex_number(lx, w, "a weight") < 0)
+				return -1;
+		} else if (ms && scene_tok_is(&t, "power")) {
+			if (!ms->at.len)
+				ms->at = t;
+			if (scene_lex_number(lx, &ms->pw, "a power") < 0)
+				return -1;
+		} else if (ms && scene_tok_is(&t, "metric")) {
+			tok_t k;
+			if (!ms->at.len)
+				ms->at = t;
+			scene_lex_tok(lx, &k);
+			if (scene_tok_is(&k, "lp")) {
+				ms->metric = MODEL_LP;
+				if (scene_lex_number(lx, &ms->mp[0], "the p of the Lp metric") < 0)
+					return -1;
+			} else if (scene_tok_is(&k, "aniso")) {
+				ms->metric = MODEL_ANISO;
+				if (scene_lex_numbers(lx, ms->mp, 3, "an anisotropic weight AX AY AZ") < 0)
+					return -1;
+			} else if (scene_tok_is(&k, "euclidean")) {
+				ms->metric = MODEL_EUCLID;
+			} else {
+				return scene_lex_expected(lx, &k, "lp P, aniso AX AY AZ or euclidean");
+			}
+		} else {
+			return scene_lex_expected(lx, &t, ms ? "'weight', 'power', 'metric' or the end of the line" : "'weight' or the end of the line");
+		}
+	}
+	return 0;
+}
+
+static int opt_weight(scene_lex_t *lx, double *w)
+{
+	return opt_suffix(lx, w, NULL);
 }
 
 static int add_elem(scene_lex_t *lx, model_shape_t *m, int kind, const double *p, size_t np,
                     double r, const model_shape_t *other, const tok_t *at)
 {
 	double w;
+	measure_t ms;
 	char e[200], msg[256];
-	if (opt_weight(lx, &w) < 0)
+	ms.wexpr = NULL;
+	if (opt_suffix(lx, &w, kind == MODEL_SHAPE ? NULL : &ms) < 0) {
+		expr_free(ms.wexpr);
 		return -1;
+	}
 	if (model_add(m, kind, w, p, np, r, other, e, sizeof e) < 0) {
+		expr_free(ms.wexpr);
 		snprintf(msg, sizeof msg, "expected %s", e);
 		return scene_lex_error(lx, at->line, at->col, msg);
+	}
+	if (ms.wexpr && model_set_weight_expr(m, ms.wexpr, e, sizeof e) < 0) {
+		snprintf(msg, sizeof msg, "expected %s", e);
+		return scene_lex_error(lx, ms.wat.line, ms.wat.col, msg);
+	}
+	if (kind != MODEL_SHAPE && (ms.pw != 1 || ms.metric != MODEL_EUCLID)
+	    && model_set_measure(m, ms.pw, ms.metric, ms.mp, e, sizeof e) < 0) {
+		snprintf(msg, sizeof msg, "expected %s", e);
+		return scene_lex_error(lx, ms.at.line, ms.at.col, msg);
 	}
 	return 0;
 }
@@ -194,10 +298,12 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 		c->seed = (unsigned)v[3];
 		return scene_lex_eol(lx);
 	}
-	if (scene_tok_is(&t, "mandelbrot")) {
+	if (scene_tok_is(&t, "mandelbrot") || scene_tok_is(&t, "julia")) {
 		double v[3];
 		c->kind = MODEL_C_MANDEL;
-		if (scene_lex_numbers(lx, v, 3, "mandelbrot BASE AMPLITUDE ITERATIONS") < 0
+		c->julia = t.s[0] == 'j';
+		if (scene_lex_numbers(lx, v, 3, c->julia ? "julia BASE AMPLITUDE ITERATIONS" : "mandelbrot BASE AMPLITUDE ITERATIONS") < 0
+		    || (c->julia && scene_lex_numbers(lx, c->k, 2, "the constant k (real and imaginary part)") < 0)
 		    || scene_lex_numbers(lx, c->u, 4, "the u map (4 numbers)") < 0
 		    || scene_lex_numbers(lx, c->v, 4, "the v map (4 numbers)") < 0)
 			return -1;
@@ -237,17 +343,23 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	lx->pos = save;
 	scene_lex_rest(lx, &rest);
 	if (rest.len == 0)
-		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot or shape");
-	char *src = malloc(rest.len + 1), e[200], msg[300];
+		return scene_lex_expected(lx, &rest, "a value, an expression in x, y, z, noise, mandelbrot, julia or shape");
+	int timed = scene_uses_t(rest.s, rest.len);
+	size_t srclen = timed ? 26 * rest.len + 1 : rest.len + 1;   /* each t becomes (%.17g) */
+	char *src = malloc(srclen), e[200], msg[300];
 	if (!src)
 		return scene_lex_error(lx, rest.line, rest.col, "out of memory");
-	memcpy(src, rest.s, rest.len);
-	src[rest.len] = 0;
+	if (timed)
+		scene_subst_t(rest.s, rest.len, lx->t, src, srclen);
+	else {
+		memcpy(src, rest.s, rest.len);
+		src[rest.len] = 0;
+	}
 	size_t at = 0;
 	if (expr_compile(src, &c->expr, e, sizeof e, &at) < 0) {
 		free(src);
-		snprintf(msg, sizeof msg, "%s", e);
-		return scene_lex_error(lx, rest.line, rest.col + (unsigned)at, msg);
+		snprintf(msg, sizeof msg, "%s%s", e, timed ? " (in the expression with t replaced by its value)" : "");
+		return scene_lex_error(lx, rest.line, timed ? rest.col : rest.col + (unsigned)at, msg);
 	}
 	free(src);
 	if (expr_is_constant(c->expr)) {
@@ -263,42 +375,58 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 	return 0;
 }
 
-/* `nucleus` lines of an object, gathered into one Voronoi element at its end. */
+/* `nucleus` lines of an object, gathered into one Voronoi element at its end: segments (a
+ * point is a segment of equal ends), each with its nucleus' number, additive and
+ * multiplicative weight. */
 typedef struct {
-	double *ab, *wt;
+	double *ab, *wt, *fac;
+	int *grp;
 	size_t n, cap;
+	int ngroups;
 	unsigned line, col;
 } nuclei_t;
 
 static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 {
-	double v[6];
-	size_t save = lx->pos;
+	double v[3 * 256];
+	size_t save;
 	tok_t t;
 	int k = 0;
-	while (k < 6) {
+	for (;;) {
 		save = lx->pos;
-		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight")) {
-			lx->pos = save;   /* leave 'weight' (or the end) for below */
+		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight") || scene_tok_is(&t, "factor")) {
+			lx->pos = save;   /* leave 'weight' / 'factor' (or the end) for below */
 			break;
 		}
 		lx->pos = save;
+		if (k == (int)(sizeof v / sizeof v[0]))
+			return scene_lex_error(lx, kw->line, kw->col, "expected a polyline nucleus of at most 256 points");
 		if (scene_lex_number(lx, &v[k], "a nucleus coordinate") < 0)
 			return -1;
 		k++;
 	}
-	if (k != 3 && k != 6)
-		return scene_lex_error(lx, kw->line, kw->col, "expected nucleus X Y Z (a point) or X1 Y1 Z1 X2 Y2 Z2 (a segment), then optionally 'weight W'");
-	if (k == 3)
-		memcpy(v + 3, v, 3 * sizeof *v);
-	double w = 0;
-	if (scene_lex_tok(lx, &t)) {
-		if (!scene_tok_is(&t, "weight"))
-			return scene_lex_expected(lx, &t, "'weight' or the end of the line");
-		if (scene_lex_number(lx, &w, "a nucleus weight") < 0)
-			return -1;
+	if (k < 3 || k % 3)
+		return scene_lex_error(lx, kw->line, kw->col, "expected nucleus X Y Z (a point), X1 Y1 Z1 X2 Y2 Z2 (a segment) or more"
+		                       " points (a polyline), then optionally 'weight W' and 'factor M'");
+	double w = 0, m = 1;
+	int seen_w = 0, seen_m = 0;
+	while (scene_lex_tok(lx, &t)) {
+		if (scene_tok_is(&t, "weight") && !seen_w) {
+			seen_w = 1;
+			if (scene_lex_number(lx, &w, "a nucleus weight") < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "factor") && !seen_m) {
+			seen_m = 1;
+			if (scene_lex_number(lx, &m, "a multiplicative weight") < 0)
+				return -1;
+			if (!(m > 0))
+				return scene_lex_error(lx, t.line, t.col, "expected a multiplicative weight above 0 (e = d/M - W)");
+		} else {
+			return scene_lex_expected(lx, &t, "'weight', 'factor' or the end of the line");
+		}
 	}
-	if (nu->n == nu->cap) {
+	size_t npts = (size_t)k / 3, nseg = npts == 1 ? 1 : npts - 1;
+	while (nu->n + nseg > nu->cap) {
 		size_t cap = nu->cap ? 2 * nu->cap : 8;
 		double *ab = realloc(nu->ab, 6 * cap * sizeof *ab);
 		if (ab)
@@ -306,7 +434,13 @@ static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 		double *wt = realloc(nu->wt, cap * sizeof *wt);
 		if (wt)
 			nu->wt = wt;
-		if (!ab || !wt)
+		double *fc = realloc(nu->fac, cap * sizeof *fc);
+		if (fc)
+			nu->fac = fc;
+		int *gr = realloc(nu->grp, cap * sizeof *gr);
+		if (gr)
+			nu->grp = gr;
+		if (!ab || !wt || !fc || !gr)
 			return scene_lex_error(lx, kw->line, kw->col, "out of memory");
 		nu->cap = cap;
 	}
@@ -314,19 +448,30 @@ static int nucleus_line(scene_lex_t *lx, nuclei_t *nu, const tok_t *kw)
 		nu->line = kw->line;
 		nu->col = kw->col;
 	}
-	memcpy(nu->ab + 6 * nu->n, v, sizeof v);
-	nu->wt[nu->n++] = w;
-	return scene_lex_eol(lx);
+	for (size_t q = 0; q < nseg; q++) {
+		const double *a = v + 3 * q, *b = npts == 1 ? a : a + 3;
+		memcpy(nu->ab + 6 * nu->n, a, 3 * sizeof *a);
+		memcpy(nu->ab + 6 * nu->n + 3, b, 3 * sizeof *b);
+		nu->wt[nu->n] = w;
+		nu->fac[nu->n] = m;
+		nu->grp[nu->n] = nu->ngroups;
+		nu->n++;
+	}
+	nu->ngroups++;
+	return 0;
 }
 
 static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei_t *nu);
 
 static int parse_body(scene_lex_t *lx, scene_t *sc, scene_obj_t *o)
 {
-	nuclei_t nu = {NULL, NULL, 0, 0, 0, 0};
+	nuclei_t nu;
+	memset(&nu, 0, sizeof nu);
 	int rc = parse_body_inner(lx, sc, o, &nu);
 	free(nu.ab);
 	free(nu.wt);
+	free(nu.fac);
+	free(nu.grp);
 	return rc;
 }
 
@@ -344,18 +489,30 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				return -1;
 			if (nu->n) {
 				char e2[200];
-				if (model_add_nuclei(m, 1, nu->ab, nu->wt, nu->n, e2, sizeof e2) < 0) {
+				if (model_add_nuclei2(m, 1, nu->ab, nu->wt, nu->fac, nu->grp, nu->n, e2, sizeof e2) < 0) {
 					snprintf(msg, sizeof msg, "expected %s", e2);
 					return scene_lex_error(lx, nu->line, nu->col, msg);
 				}
 			}
 			char e[300];
 			const char *w = NULL;
+			if (o->through) {
+				/* the thesis' section 6.4: the defining parameter predicted from a point of the
+				 * surface, c = sum w_i d(P, A_i) there (after every element and transform) */
+				double v = model_eval(m, o->through_p);
+				if (!isfinite(v) || m->nel == 0) {
+					snprintf(msg, sizeof msg, "expected distance elements before 'end' for 'c through' in '%s'", o->name);
+					return scene_lex_error(lx, o->c_line, 3, msg);
+				}
+				m->c.c0 = v;
+			}
 			if (model_prepare(m, e, sizeof e, &w) < 0) {
 				snprintf(msg, sizeof msg, "%s (in '%s')", e, o->name);
 				return scene_lex_error(lx, o->line, o->col, msg);
 			}
-			if (w && (o->drawn || !strstr(w, "empty"))) {
+			if (w && strstr(w, "empty"))
+				o->empty = 1;   /* warned at the end of the scene, if a 3D picture draws it */
+			else if (w) {
 				snprintf(msg, sizeof msg, "'%s': %s", o->name, w);
 				warn(sc, o->line, o->col, msg);
 			}
@@ -378,6 +535,25 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			int kind = t.s[0] == 's' ? MODEL_SEGMENT : t.s[0] == 'l' ? MODEL_LINE : MODEL_PLANE;
 			if (scene_lex_numbers(lx, v, 6, "a coordinate") < 0 || add_elem(lx, m, kind, v, 2, 0, NULL, &t) < 0)
 				return -1;
+		} else if (scene_tok_is(&t, "circle")) {
+			if (scene_lex_numbers(lx, v, 7, "circle CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_CIRCLE, v, 2, v[6], NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "triangle")) {
+			double tv[9];
+			if (scene_lex_numbers(lx, tv, 9, "triangle X1 Y1 Z1 X2 Y2 Z2 X3 Y3 Z3") < 0 || add_elem(lx, m, MODEL_TRIANGLE, tv, 3, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "box")) {
+			if (scene_lex_numbers(lx, v, 6, "box X0 Y0 Z0 X1 Y1 Z1") < 0 || add_elem(lx, m, MODEL_BOX, v, 2, 0, NULL, &t) < 0)
+				return -1;
+		} else if (scene_tok_is(&t, "polygon")) {
+			double *p = NULL;
+			size_t np = 0;
+			if (point_list(lx, &p, &np) < 0)
+				return -1;
+			int rc = add_elem(lx, m, MODEL_POLYGON, p, np, 0, NULL, &t);
+			free(p);
+			if (rc < 0)
+				return -1;
 		} else if (scene_tok_is(&t, "disk")) {
 			if (scene_lex_numbers(lx, v, 7, "disk CX CY CZ NX NY NZ RADIUS") < 0 || add_elem(lx, m, MODEL_DISK, v, 2, v[6], NULL, &t) < 0)
 				return -1;
@@ -392,9 +568,49 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 				return scene_lex_expected(lx, &n, "the name of a shape or object defined above");
 			if (add_elem(lx, m, MODEL_SHAPE, NULL, 0, 0, other->shape, &n) < 0)
 				return -1;
-		} else if (scene_tok_is(&t, "c")) {
-			if (parse_param(lx, sc, m) < 0)
+		} else if (scene_tok_is(&t, "union") || scene_tok_is(&t, "intersection") || scene_tok_is(&t, "difference")
+		           || scene_tok_is(&t, "blend")) {
+			int op = t.s[0] == 'u' ? MODEL_UNION : t.s[0] == 'i' ? MODEL_INTERSECTION : t.s[0] == 'd' ? MODEL_DIFFERENCE : MODEL_BLEND;
+			scene_obj_t *ab[2];
+			tok_t n[2];
+			for (int j = 0; j < 2; j++) {
+				scene_lex_tok(lx, &n[j]);
+				ab[j] = find(sc, &n[j]);
+				if (!ab[j] || ab[j] == o)
+					return scene_lex_expected(lx, &n[j], "the name of a shape or object defined above");
+				if (!ab[j]->shape->has_lip)
+					return scene_lex_expected(lx, &n[j], "a shape with a Lipschitz bound (Mandelbrot, Julia and unbounded expressions cannot be combined)");
+			}
+			double k = 0, w;
+			char e2[200];
+			if (op == MODEL_BLEND && scene_lex_number(lx, &k, "a blend radius") < 0)
 				return -1;
+			if (opt_weight(lx, &w) < 0)
+				return -1;
+			if (model_add_csg(m, w, op, ab[0]->shape, ab[1]->shape, k, e2, sizeof e2) < 0) {
+				snprintf(msg, sizeof msg, "expected %s", e2);
+				return scene_lex_error(lx, t.line, t.col, msg);
+			}
+		} else if (scene_tok_is(&t, "c")) {
+			if (o->c_line) {
+				snprintf(msg, sizeof msg, "expected one 'c' line per shape: '%s' has its defining parameter from line %u already"
+				         " (delete one of them)", o->name, o->c_line);
+				return scene_lex_error(lx, t.line, t.col, msg);
+			}
+			o->c_line = t.line;
+			size_t save = lx->pos;
+			tok_t th;
+			if (scene_lex_tok(lx, &th) && scene_tok_is(&th, "through")) {
+				if (scene_lex_numbers(lx, o->through_p, 3, "a point X Y Z on the surface") < 0)
+					return -1;
+				o->through = 1;
+				expr_free(m->c.expr);
+				memset(&m->c, 0, sizeof m->c);
+			} else {
+				lx->pos = save;
+				if (parse_param(lx, sc, m) < 0)
+					return -1;
+			}
 		} else if (scene_tok_is(&t, "translate")) {
 			if (scene_lex_numbers(lx, v, 3, "a translation") < 0 || scene_lex_eol(lx) < 0)
 				return -1;
@@ -451,7 +667,7 @@ static int parse_body_inner(scene_lex_t *lx, scene_t *sc, scene_obj_t *o, nuclei
 			if (*dst < 0)
 				return scene_lex_error(lx, t.line, t.col, "expected a non-negative material coefficient");
 		} else {
-			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk voronoi nucleus distance-to), c, a transform, bound, colour, shading, a material coefficient or 'end'");
+			return scene_lex_expected(lx, &t, "an element (point points segment polyline line plane disk circle triangle polygon box voronoi nucleus distance-to union intersection difference blend), c, a transform, bound, colour, shading, a material coefficient or 'end'");
 		}
 		if (!lx->failed && scene_lex_eol(lx) < 0)
 			return -1;
@@ -534,7 +750,30 @@ static int parse_light(scene_lex_t *lx, scene_t *sc)
 	return 0;
 }
 
+/* A drawn object whose surface is proved empty is worth a warning only where a 3D picture (ray
+ * tracing, octree, wireframe) would show that surface: a contour map of f (e.g. with c 0) is fine. */
+static void empty_warnings(scene_t *sc)
+{
+	int in3d = sc->nrenders == 0;
+	for (size_t i = 0; i < sc->nrenders; i++)
+		in3d |= sc->renders[i].kind != SCENE_CONTOUR && sc->renders[i].kind != SCENE_VORONOI;
+	for (size_t i = 0; in3d && i < sc->nobjs; i++) {
+		const scene_obj_t *o = &sc->objs[i];
+		if (!o->drawn || !o->empty)
+			continue;
+		char msg[400];
+		snprintf(msg, sizeof msg, "'%s': the shape is empty: f = sum of weighted distances - c stays above 0 (c is below"
+		         " the sum's minimum), so its 3D pictures show nothing of it; raise c to see a surface", o->name);
+		warn(sc, o->line, o->col, msg);
+	}
+}
+
 int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen)
+{
+	return scene_parse_frame(text, name, 0, out, err, errlen);
+}
+
+int scene_parse_frame(const char *text, const char *name, double time, scene_t **out, char *err, size_t errlen)
 {
 	scene_lex_t lx;
 	tok_t t;
@@ -555,6 +794,8 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 	sc->background[0] = sc->background[1] = sc->background[2] = 1;
 	unsigned view_line = 1, view_col = 1;
 	scene_lex_init(&lx, text, name, err, errlen);
+	lx.t = time;
+	sc->t = time;
 	while (!lx.failed && scene_lex_line(&lx)) {
 		scene_lex_tok(&lx, &t);
 		if (scene_tok_is(&t, "view")) {
@@ -582,6 +823,15 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 			scene_lex_error(&lx, view_line, view_col, msg);
 		}
 	}
+	size_t ndrawn = 0;
+	for (size_t i = 0; i < sc->nobjs; i++)
+		ndrawn += sc->objs[i].drawn;
+	if (!lx.failed && ndrawn == 0 && sc->nrenders == 0)
+		scene_lex_error(&lx, 1, 1, sc->nobjs ? "expected an 'object' block or a 'render' block: the scene defines only 'shape' blocks,"
+		                " which are never drawn themselves, so it would render a blank page"
+		                : "expected an 'object' block or a 'render' block: the scene is empty (no statement), so it would render a blank page");
+	if (!lx.failed)
+		empty_warnings(sc);
 	if (lx.failed) {
 		scene_free(sc);
 		return strstr(err, "out of memory") ? SCENE_ENOMEM : -1;
@@ -592,9 +842,22 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 
 int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 {
-	FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+	char *buf;
 	const char *name = strcmp(path, "-") ? path : "<stdin>";
 	*out = NULL;
+	int rc = scene_read(path, &buf, err, errlen);
+	if (rc < 0)
+		return rc;
+	rc = scene_parse(buf, name, out, err, errlen);
+	free(buf);
+	return rc;
+}
+
+int scene_read(const char *path, char **text, char *err, size_t errlen)
+{
+	FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
+	const char *name = strcmp(path, "-") ? path : "<stdin>";
+	*text = NULL;
 	if (!f) {
 		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
 		return -2;
@@ -638,9 +901,8 @@ int scene_load(const char *path, scene_t **out, char *err, size_t errlen)
 		free(buf);
 		return -1;
 	}
-	int rc = scene_parse(buf, name, out, err, errlen);
-	free(buf);
-	return rc;
+	*text = buf;
+	return 0;
 }
 
 void scene_free(scene_t *s)

@@ -27,6 +27,10 @@ typedef struct {
 	int drawn;
 	rt_object_t mat;           /* material; mat.shape == shape */
 	unsigned line, col;        /* where it was defined */
+	int empty;                 /* model_prepare proved the surface empty (warned where it is drawn in 3D) */
+	unsigned c_line;           /* the line of its `c` (0: none yet): a second one is refused */
+	int through;               /* `c through X Y Z`: c set at `end` so that f(through_p) = 0 */
+	double through_p[3];       /* that point, ACTUAL frame */
 } scene_obj_t;
 
 /* One `render` block: a page (two for stereo pages) of one visualisation. */
@@ -50,6 +54,8 @@ typedef struct {
 	char field[64];            /* object whose f is mapped ("" = the first object) */
 	double window[4];          /* x0 y0 x1 y1 of the plane region (contour, voronoi) */
 	double plane;              /* the plane z = plane */
+	int has_on;                /* contour: `on`: the map plane is on[0..2] + s on[3..5] + t on[6..8] */
+	double on[9];
 	unsigned nlevels;
 	double level_from, level_to;
 	int bands;
@@ -67,6 +73,7 @@ typedef struct {
 /* A parsed scene. */
 typedef struct {
 	char name[256];            /* file name used in messages */
+	double t;                  /* the time parameter it was parsed at (scene_parse_frame) */
 	cam_t cam;
 	int stereo;                /* SCENE_MONO or a stereo layout */
 	double eye_separation;
@@ -89,6 +96,15 @@ typedef struct {
 /* Parse scene text (NUL-terminated); name is used in messages. Returns 0
  * with *out, or -1 with "name:line:col: expected ..." in err (SCENE_ENOMEM). */
 int scene_parse(const char *text, const char *name, scene_t **out, char *err, size_t errlen);
+
+/* The same with the time parameter `t` set to t: every number token that uses t (no blanks,
+ * e.g. 2+0.5*t) and every c expression that does is evaluated with this value. scene_parse is
+ * scene_parse_frame at t = 0. */
+int scene_parse_frame(const char *text, const char *name, double t, scene_t **out, char *err, size_t errlen);
+
+/* Read a scene file ("-" = stdin) into *text (NUL-terminated, malloc'd; free it). Returns 0,
+ * -1 (not text: a NUL byte), -2 (cannot be read) or SCENE_ENOMEM, with a message. */
+int scene_read(const char *path, char **text, char *err, size_t errlen);
 
 /* Read and parse a file ("-" = stdin). Returns 0, -1 (syntax: err holds the
  * message), -2 (the file cannot be read) or SCENE_ENOMEM. */

@@ -56,6 +56,13 @@ static int map_contours(scene_t *s, const scene_render_t *r, meta_writer_t *w, c
 			x[k] = (float)(r->window[0] + ((double)(i % nx) + 0.5) * sx);
 			y[k] = (float)(r->window[1] + ((double)(i / nx) + 0.5) * sy);
 			zz[k] = (float)r->plane;
+			if (r->has_on) {   /* any plane: P = O + s U + t V, (s, t) over the window */
+				double a = r->window[0] + ((double)(i % nx) + 0.5) * sx, b = r->window[1] + ((double)(i / nx) + 0.5) * sy;
+				const double *o = r->on;
+				x[k] = (float)(o[0] + a * o[3] + b * o[6]);
+				y[k] = (float)(o[1] + a * o[4] + b * o[7]);
+				zz[k] = (float)(o[2] + a * o[5] + b * o[8]);
+			}
 		}
 		model_eval8(shape, x, y, zz, out);
 		for (size_t k = 0; k < 8 && i0 + k < n; k++)

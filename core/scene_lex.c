@@ -103,11 +103,35 @@ int scene_tok_is(const scene_tok_t *t, const char *word)
 	return t->len == strlen(word) && !memcmp(t->s, word, t->len);
 }
 
+size_t scene_escape(char *dst, size_t dstlen, const char *src)
+{
+	static const char hex[] = "0123456789abcdef";
+	size_t n = 0;
+	if (!dstlen)
+		return 0;
+	for (const unsigned char *p = (const unsigned char *)src; *p && n + 1 < dstlen; p++) {
+		if (*p >= 0x20 && *p != 0x7f) {
+			dst[n++] = (char)*p;
+			continue;
+		}
+		if (n + 4 >= dstlen)
+			break;
+		dst[n++] = '\\';
+		dst[n++] = 'x';
+		dst[n++] = hex[*p >> 4];
+		dst[n++] = hex[*p & 15];
+	}
+	dst[n] = 0;
+	return n;
+}
+
 int scene_lex_error(scene_lex_t *lx, unsigned line, unsigned col, const char *msg)
 {
 	if (!lx->failed) {
+		char raw[1024];
 		lx->failed = 1;
-		snprintf(lx->err, lx->errlen, "%s:%u:%u: %s", lx->name, line, col, msg);
+		snprintf(raw, sizeof raw, "%s:%u:%u: %s", lx->name, line, col, msg);
+		scene_escape(lx->err, lx->errlen, raw);
 	}
 	return -1;
 }
@@ -122,12 +146,76 @@ int scene_lex_expected(scene_lex_t *lx, const scene_tok_t *t, const char *what)
 	return scene_lex_error(lx, t->line, t->col, msg);
 }
 
+static int ident_char(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_'; }
+
+int scene_uses_t(const char *s, size_t n)
+{
+	for (size_t i = 0; i < n; i++)
+		if (s[i] == 't' && (i == 0 || !ident_char(s[i - 1])) && (i + 1 == n || !ident_char(s[i + 1]))
+		    && !(i > 0 && s[i - 1] == '.'))
+			return 1;
+	return 0;
+}
+
+int scene_subst_t(const char *s, size_t n, double t, char *dst, size_t dstlen)
+{
+	char val[40];
+	int vl = snprintf(val, sizeof val, "(%.17g)", t);
+	size_t o = 0;
+	for (size_t i = 0; i < n; i++) {
+		int is_t = s[i] == 't' && (i == 0 || !ident_char(s[i - 1])) && (i + 1 == n || !ident_char(s[i + 1]));
+		if (is_t) {
+			if (o + (size_t)vl >= dstlen)
+				return -1;
+			memcpy(dst + o, val, (size_t)vl);
+			o += (size_t)vl;
+		} else {
+			if (o + 1 >= dstlen)
+				return -1;
+			dst[o++] = s[i];
+		}
+	}
+	dst[o] = 0;
+	return 0;
+}
+
+/* A number token that uses t: a constant expression at the frame's t. */
+static int time_number(scene_lex_t *lx, const scene_tok_t *t, double *v, const char *what)
+{
+	char src[512], e[200], msg[400];
+	expr_t *x = NULL;
+	size_t at = 0;
+	if (scene_subst_t(t->s, t->len, lx->t, src, sizeof src) < 0)
+		return scene_lex_error(lx, t->line, t->col, "expected an expression in t of at most 200 bytes");
+	if (expr_compile(src, &x, e, sizeof e, &at) < 0) {
+		snprintf(msg, sizeof msg, "%s (in the expression in t '%.*s')", e, (int)(t->len > 60 ? 60 : t->len), t->s);
+		return scene_lex_error(lx, t->line, t->col, msg);
+	}
+	if (!expr_is_constant(x)) {
+		expr_free(x);
+		snprintf(msg, sizeof msg, "expected %s: an expression in t alone (x, y, z have no value here), found '%.*s'",
+		         what, (int)(t->len > 60 ? 60 : t->len), t->s);
+		return scene_lex_error(lx, t->line, t->col, msg);
+	}
+	double y = expr_eval(x, 0, 0, 0);
+	expr_free(x);
+	if (!isfinite(y) || fabs(y) > EXPR_MAX_NUMBER) {
+		snprintf(msg, sizeof msg, "expected %s between -1e6 and 1e6, found '%.*s' = %g at t = %g", what,
+		         (int)(t->len > 60 ? 60 : t->len), t->s, y, lx->t);
+		return scene_lex_error(lx, t->line, t->col, msg);
+	}
+	*v = y;
+	return 0;
+}
+
 int scene_lex_number(scene_lex_t *lx, double *v, const char *what)
 {
 	scene_tok_t t;
 	char buf[64], msg[128];
 	snprintf(msg, sizeof msg, "%s (a finite number)", what);
-	if (!scene_lex_tok(lx, &t) || t.len >= sizeof buf)
+	if (scene_lex_tok(lx, &t) && scene_uses_t(t.s, t.len))
+		return time_number(lx, &t, v, what);
+	if (!t.len || t.len >= sizeof buf)
 		return scene_lex_expected(lx, &t, msg);
 	memcpy(buf, t.s, t.len);
 	buf[t.len] = 0;

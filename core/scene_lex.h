@@ -20,6 +20,7 @@ typedef struct {
 	char *err;
 	size_t errlen;
 	int failed;
+	double t;                /* the scene's time parameter (the frame's value of `t`) */
 } scene_lex_t;
 
 /* Start lexing text. */
@@ -34,9 +35,18 @@ void scene_lex_rest(scene_lex_t *lx, scene_tok_t *t);
 int scene_tok_is(const scene_tok_t *t, const char *word);
 /* Record "name:line:col: expected WHAT, found 'TOKEN'" (first error only). Returns -1. */
 int scene_lex_expected(scene_lex_t *lx, const scene_tok_t *t, const char *what);
-/* Record "name:line:col: MESSAGE" (first error only). Returns -1. */
+/* Copy src to dst (NUL-terminated, truncated to dstlen) with every control byte (below 0x20,
+ * and 0x7f) written as \xHH, so that echoed scene text cannot drive a terminal. Returns the length. */
+size_t scene_escape(char *dst, size_t dstlen, const char *src);
+/* Record "name:line:col: MESSAGE" (first error only, control bytes escaped). Returns -1. */
 int scene_lex_error(scene_lex_t *lx, unsigned line, unsigned col, const char *msg);
-/* Read a finite number token (what names it in the message). Returns 0 or -1. */
+/* 1 when the n bytes at s use the time parameter `t` (an identifier of its own). */
+int scene_uses_t(const char *s, size_t n);
+/* Copy the n bytes at s into dst (NUL-terminated) with every identifier `t` replaced by the
+ * value (t) in parentheses. Returns 0, or -1 when it does not fit. */
+int scene_subst_t(const char *s, size_t n, double t, char *dst, size_t dstlen);
+/* Read a finite number token (what names it in the message); a token using `t` (no blanks
+ * inside, e.g. 1+0.5*t) is a constant expression evaluated at the frame's t. Returns 0 or -1. */
 int scene_lex_number(scene_lex_t *lx, double *v, const char *what);
 /* Read n finite numbers. */
 int scene_lex_numbers(scene_lex_t *lx, double *v, int n, const char *what);

@@ -188,6 +188,13 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 				rc = scene_lex_error(lx, t.line, t.col, "expected window X0 Y0 X1 Y1 with X0 < X1 and Y0 < Y1");
 		} else if (scene_tok_is(&t, "plane")) {
 			rc = scene_lex_number(lx, &r->plane, "the z of the plane");
+		} else if (scene_tok_is(&t, "on")) {
+			rc = scene_lex_numbers(lx, r->on, 9, "on OX OY OZ UX UY UZ VX VY VZ (origin and the two axes of the plane)");
+			double *u = r->on + 3, *v = r->on + 6;
+			double cx = u[1] * v[2] - u[2] * v[1], cy = u[2] * v[0] - u[0] * v[2], cz = u[0] * v[1] - u[1] * v[0];
+			if (!rc && !(cx * cx + cy * cy + cz * cz > 1e-24))
+				rc = scene_lex_error(lx, t.line, t.col, "expected two axes U and V that are not parallel (nor zero)");
+			r->has_on = 1;
 		} else if (scene_tok_is(&t, "levels")) {
 			int n;
 			rc = whole(lx, &n, 1, 1000, "a number of levels");

@@ -151,7 +151,9 @@ bad "mesh depth 11" 65 "bad.scene:5:1: expected a mesh depth from 1 to 10" "$OBJ
 render mesh
   depth 11
 end"
-bad "nothing drawn" 65 "bad.scene:1:1: the mesh is empty: the scene draws no object" 'shape b
+# a scene of shape blocks only is refused by the scene language itself (issue 13's "an empty
+# scene is an error"), before the mesh is tried
+bad "nothing drawn" 65 "bad.scene:1:1: expected an 'object' block or a 'render' block" 'shape b
   point 0 0 0
   c 1
 end'

@@ -83,8 +83,15 @@ int main(void)
 		      "L = (sum |w| of setup elements + G_c) / scale + shape weight (%g)", o->shape->lip);
 		scene_free(s);
 	}
-	CHECK(scene_parse("", "empty.scene", &s, err, sizeof err) == 0 && s->nobjs == 0, "an empty scene is valid");
-	scene_free(s);
+	CHECK(fails("", "t.scene:1:1: expected an 'object' block or a 'render' block: the scene is empty"), "an empty scene is an error");
+	CHECK(fails("# only a comment\n\n", "t.scene:1:1: expected an 'object' block or a 'render' block"), "a scene of comments is empty");
+	CHECK(fails("shape s\n  point 0 0 0\n  c 1\nend\n", "t.scene:1:1: expected an 'object' block or a 'render' block: the scene defines only 'shape' blocks"), "shapes alone draw nothing");
+	CHECK(fails("object a\n  point 0 0 0\n  c 1\n  c 2\nend\n", "t.scene:4:3: expected one 'c' line per shape: 'a' has its defining parameter from line 3 already"), "c given twice");
+	CHECK(fails("object a\n  point 0 0 0 weight 0\n  c 1\nend\n", "t.scene:1:1: expected a non-zero weight: every element has weight 0"), "all-zero weights: not blamed on negative weights");
+	CHECK(fails("object a\n  point 0 0 0 weight 0\n  c x\nend\n", "t.scene:1:1: expected a 'bound' box: the shape is unbounded (the weights of its finite elements are all 0)"), "zero weights, varying c: the reason");
+	CHECK(fails("shape b\n  point 0 0 0\n  c 1\nend\nobject a\n  distance-to b\n  c 1\nend\n", "t.scene:5:1: expected a 'bound' box: the shape is unbounded (its elements are only distance-to"), "distance-to alone: says a bound is needed");
+	CHECK(fails("object a\n  point 0 0 -1 weight -1\n  point 0 0 1\n  c 1\nend\n", "t.scene:1:1: expected a 'bound' box: the shape is unbounded (the weights of its finite elements sum to 0 or less"), "negative weights named as such");
+	CHECK(fails("object a\n  point 0 0 0\n  c \033[2J\nend\n", "t.scene:3:5: expected a number, x, y, z, pi, e, a function or '(', found '\\x1b[2J'"), "control bytes escaped in the message");
 
 	CHECK(fails("view\n  eye 0 0\nend\n", "t.scene:2:10: expected an eye coordinate (a finite number), found the end of the line"), "missing coordinate");
 	CHECK(fails("objekt a\n", "t.scene:1:1: expected view, background, light, shape, object or render, found 'objekt'"), "unknown statement");
@@ -104,6 +111,17 @@ int main(void)
 	/* a degenerate model parses with a warning */
 	rc = scene_parse("object a\n  point 1 0 0\n  point -1 0 0\n  c 1\nend\n", "t.scene", &s, err, sizeof err);
 	CHECK(rc == 0 && s->nwarnings == 1 && strstr(s->warnings[0], "t.scene:1:1: warning: 'a': the shape is empty"), "c below the minimum: a warning");
+	scene_free(s);
+	/* c through X Y Z: c from a point of the surface, after the elements and transforms */
+	rc = scene_parse("object a\n  point 0 0 0\n  point 1 0 0 weight 2\n  c through 3 0 0\n  translate 1 0 0\nend\n", "t.scene", &s, err, sizeof err);
+	CHECK(rc == 0 && s->objs[0].shape->c.kind == MODEL_C_CONST && fabs(s->objs[0].shape->c.c0 - 4) < 1e-12
+	      && fabs(model_eval(s->objs[0].shape, (double[]){3, 0, 0})) < 1e-12, "c through: c = 2 + 2*1 = %g, f = 0 at the point", rc == 0 ? s->objs[0].shape->c.c0 : -1);
+	if (rc == 0)
+		scene_free(s);
+	CHECK(fails("object a\n  point 0 0 0\n  c through 1 0\nend\n", "t.scene:3:16: expected a point X Y Z on the surface (a finite number), found the end of the line"), "c through needs three numbers");
+	/* a contour map of the same f (c 0, as the doc advises) is no reason to warn */
+	rc = scene_parse("object a\n  point 1 0 0\n  point -1 0 0\n  c 0\nend\nrender contour\nend\n", "t.scene", &s, err, sizeof err);
+	CHECK(rc == 0 && s->nwarnings == 0, "contour map of a shape with c 0: no 'empty' warning (%zu)", rc == 0 ? s->nwarnings : 99);
 	scene_free(s);
 	return UNIT_DONE();
 }
