@@ -4,8 +4,10 @@
 
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops, dev_null_ops;
 extern const dev_ops_t dev_film_ops;
+extern const dev_ops_t dev_vga_ops, dev_xga_ops;
 extern const dev_ops_t dev_svg_ops;
 extern const dev_ops_t dev_hpgl_ops;
+extern const dev_ops_t dev_eps_ops, dev_ps_ops, dev_pdf_ops;
 
 const dev_ops_t *const dev_registry[] = {
 	&dev_png_ops,
@@ -13,8 +15,13 @@ const dev_ops_t *const dev_registry[] = {
 	&dev_rle_ops,
 	&dev_null_ops,
 	&dev_film_ops,
+	&dev_vga_ops,
+	&dev_xga_ops,
 	&dev_svg_ops,
 	&dev_hpgl_ops,
+	&dev_eps_ops,
+	&dev_ps_ops,
+	&dev_pdf_ops,
 	NULL
 };
 

@@ -1,0 +1,25 @@
+/* dev-xga.c: the XGA device: 1024x768 with 256 colours, or 640x480 with 65,536 direct colours. */
+#include "fbmode.h"
+#include "fbout.h"
+
+static const fbm_mode_t xga_modes[] = {
+	{ "1024x768x256", "1024x768", 1024, 768, 256, 1.0, FBOUT_LINEAR8,
+		"one byte per pixel, 256 of 262,144 colours (18-bit DAC)" },
+	{ "640x480x565", "640x480", 640, 480, 65536, 1.0, FBOUT_DIRECT565,
+		"direct colour, 16 bits per pixel 5-6-5, no palette" },
+};
+
+const fbm_modes_t xga_mode_list = { xga_modes, sizeof xga_modes / sizeof xga_modes[0] };
+
+static int xga_open(dev_device_t *d)
+{
+	return fbm_open(d, &xga_mode_list);
+}
+
+const dev_ops_t dev_xga_ops = {
+	.name = "xga", .description = "XGA framebuffer: 1024x768x256 or 640x480 5-6-5; dump, PNG, PCX, BMP, fbdev",
+	.extension = ".png", .caps = DEV_CAP_RASTER, .colours = 256, .option_list = fbm_options,
+	.priv_size = FBM_PRIV_SIZE,
+	.open = xga_open, .begin_page = fbm_begin_page, .write_band = fbm_write_band,
+	.end_page = fbm_end_page, .close = fbm_close,
+};

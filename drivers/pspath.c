@@ -1,0 +1,265 @@
+/* pspath.c: the PostScript device's paths and graphics state as compact tokens. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "ps_int.h"
+
+/* A separator before the next token: a newline now and then (DSC lines stay under 255). */
+static void sep(ps_t *s)
+{
+	if (s->col > 120) {
+		pse_write(&s->p.out, "\n", 1);
+		s->col = 0;
+	} else if (s->col) {
+		pse_write(&s->p.out, " ", 1);
+		s->col++;
+	}
+}
+
+void psp_int(ps_t *s, long long v)
+{
+	sep(s);
+	pse_int(&s->p.out, v);
+	s->col += v < 0 ? 2 : 1;
+	for (long long a = v < 0 ? -v : v; a >= 10; a /= 10)
+		s->col++;
+}
+
+void psp_tok(ps_t *s, const char *t)
+{
+	sep(s);
+	pse_puts(&s->p.out, t);
+	s->col += (int)strlen(t);
+}
+
+void psp_newline(ps_t *s)
+{
+	if (s->col) {
+		pse_write(&s->p.out, "\n", 1);
+		s->col = 0;
+	}
+}
+
+
+/* Colours as 8-bit values, exactly: RGB as a hex string <rrggbb> K, grey as an integer G. */
+void psp_colour(ps_t *s, meta_rgb_t c)
+{
+	char b[16];
+	if (s->known && s->colour == c)
+		return;
+	if (s->p.grey) {
+		psp_int(s, psd_luma(c));
+		psp_tok(s, "G");
+	} else {
+		snprintf(b, sizeof b, "<%06x>", (unsigned)c & 0xffffff);
+		psp_tok(s, b);
+		psp_tok(s, "K");
+	}
+	s->colour = c;
+}
+
+void psp_line(ps_t *s, const dev_state_t *st)
+{
+	int64_t w = st->width > 1000 ? st->width : 1000;
+	if (!s->known || s->width != w) {
+		psp_int(s, psd_grid(w));
+		psp_tok(s, "W");
+		s->width = w;
+	}
+	if (!s->known || s->cap != st->cap) {
+		psp_int(s, st->cap);
+		psp_tok(s, "J");
+		s->cap = st->cap;
+	}
+	if (!s->known || s->join != st->join) {
+		psp_int(s, st->join);
+		psp_tok(s, "j");
+		s->join = st->join;
+	}
+	if (!s->known || s->miter != st->miter_limit) {
+		sep(s);
+		pse_fix(&s->p.out, st->miter_limit);
+		s->col += 6;
+		psp_tok(s, "X");
+		s->miter = st->miter_limit;
+	}
+	if (!s->known || s->ndash != st->ndash || memcmp(s->dash, st->dash, st->ndash * sizeof st->dash[0])) {
+		psp_tok(s, "[");
+		for (size_t k = 0; k < st->ndash; k++) {
+			sep(s);
+			pse_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
+			s->col += 6;
+		}
+		psp_tok(s, "] 0 setdash");
+		s->ndash = st->ndash;
+		memcpy(s->dash, st->dash, st->ndash * sizeof st->dash[0]);
+	}
+}
+
+/* ---- paths: absolute moves, relative integer draws in reversed chunks ---- */
+
+static int push_draw(ps_t *s, long long dx, long long dy)
+{
+	if (s->ndx + 2 > s->capdx) {
+		size_t n = s->capdx ? s->capdx * 2 : 256;
+		long long *q = realloc(s->dx, n * sizeof *q);
+		if (!q)
+			return dev_fail(s->p.dev, META_ENOMEM, "out of memory");
+		s->dx = q;
+		s->capdx = n;
+	}
+	s->dx[s->ndx++] = dx;
+	s->dx[s->ndx++] = dy;
+	return 0;
+}
+
+static void flush_draws(ps_t *s)
+{
+	size_t n = s->ndx / 2;
+	for (size_t at = 0; at < n;) {
+		size_t k = n - at > PSP_CHUNK ? PSP_CHUNK : n - at;
+		if (k < 3) {
+			for (size_t i = at; i < at + k; i++) {
+				psp_int(s, s->dx[2 * i]);
+				psp_int(s, s->dx[2 * i + 1]);
+				psp_tok(s, "l");
+			}
+		} else {
+			for (size_t i = at + k; i-- > at;) {
+				psp_int(s, s->dx[2 * i]);
+				psp_int(s, s->dx[2 * i + 1]);
+			}
+			psp_int(s, (long long)k);
+			psp_tok(s, "L");
+		}
+		at += k;
+	}
+	s->ndx = 0;
+}
+
+/* The path walker's position: the last grid point, when the interpreter's current point is
+ * exactly on it (not after an arc). */
+typedef struct {
+	long long x, y, sx, sy;
+	int on_grid, start_on_grid, cur;   /* cur: the meta path has a current point */
+} walk_t;
+
+static void move_abs(ps_t *s, walk_t *w, long long x, long long y, const char *op)
+{
+	flush_draws(s);
+	psp_int(s, x);
+	psp_int(s, y);
+	psp_tok(s, op);
+	w->x = x, w->y = y;
+	w->on_grid = 1;
+}
+
+static int draw_to(ps_t *s, walk_t *w, long long x, long long y)
+{
+	if (!w->on_grid) {
+		move_abs(s, w, x, y, "D");
+		return 0;
+	}
+	int rc = push_draw(s, x - w->x, y - w->y);
+	w->x = x, w->y = y;
+	return rc;
+}
+
+static void arc_start(ps_t *s, const dev_elem_t *e)
+{
+	double a = e->f[3] / 180000.0 * M_PI;
+	sep(s);
+	pse_real(&s->p.out, (e->f[0] + e->f[2] * cos(a)) * PSD_GRID / 1000.0, 2);
+	sep(s);
+	pse_real(&s->p.out, (e->f[1] + e->f[2] * sin(a)) * PSD_GRID / 1000.0, 2);
+	s->col += 20;
+	psp_tok(s, "M");
+}
+
+static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
+{
+	walk_t w = { 0, 0, 0, 0, 0, 0, 0 };
+	int ps_cur = 0;     /* the interpreter has a current point */
+	for (size_t k = 0; k < dp->nelems; k++) {
+		const dev_elem_t *e = &dp->elems[k];
+		long long x = psd_grid(e->f[0]), y = psd_grid(e->f[1]);
+		switch (e->op) {
+		case META_MOVE:
+			move_abs(s, &w, x, y, "M");
+			w.sx = x, w.sy = y;
+			w.start_on_grid = 1;
+			w.cur = ps_cur = 1;
+			break;
+		case META_DRAW:
+			if (draw_to(s, &w, x, y))
+				return META_ENOMEM;
+			break;
+		case META_ARC:
+			flush_draws(s);
+			if (!w.cur && ps_cur)
+				arc_start(s, e);
+			if (!w.cur)
+				w.start_on_grid = 0;
+			psp_int(s, x);
+			psp_int(s, y);
+			psp_int(s, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
+			sep(s);
+			pse_fix(&s->p.out, e->f[3]);
+			sep(s);
+			pse_fix(&s->p.out, (long long)e->f[3] + e->f[4]);
+			s->col += 16;
+			psp_tok(s, e->f[4] >= 0 ? "A" : "N");
+			w.on_grid = 0;
+			w.cur = ps_cur = 1;
+			break;
+		case META_CIRCLE:
+			flush_draws(s);
+			psp_int(s, x);
+			psp_int(s, y);
+			psp_int(s, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
+			psp_tok(s, "C");
+			w.on_grid = 0;
+			w.cur = 0;
+			ps_cur = 1;
+			break;
+		case META_CLOSE:
+			flush_draws(s);
+			/* fill closes every subpath itself: Z only where a draw or arc goes on from it */
+			if (!fill || (k + 1 < dp->nelems && (dp->elems[k + 1].op == META_DRAW || dp->elems[k + 1].op == META_ARC)))
+				psp_tok(s, "Z");
+			w.on_grid = w.start_on_grid;
+			w.x = w.sx, w.y = w.sy;
+			break;
+		default:
+			break;
+		}
+	}
+	flush_draws(s);
+	return 0;
+}
+
+static int path_flat(ps_t *s, const scan_path_t *f, int fill)
+{
+	walk_t w = { 0, 0, 0, 0, 0, 0, 0 };
+	for (size_t k = 0; k < f->nsubs; k++) {
+		const scan_pt_t *q = f->pts + f->subs[k].start;
+		size_t n = f->subs[k].n;
+		if (!n)
+			continue;
+		move_abs(s, &w, psd_grid(q[0].x), psd_grid(q[0].y), "M");
+		for (size_t i = 1; i < n; i++)
+			if (draw_to(s, &w, psd_grid(q[i].x), psd_grid(q[i].y)))
+				return META_ENOMEM;
+		flush_draws(s);
+		if (f->subs[k].closed && !fill)
+			psp_tok(s, "Z");
+	}
+	return 0;
+}
+
+int psp_path(ps_t *s, const dev_path_t *dp, int fill)
+{
+	return psd_native(dp) ? path_elems(s, dp, fill) : path_flat(s, dp->flat, fill);
+}
+

@@ -1,0 +1,64 @@
+/* quant_int.h: internals shared by quant.c and quant_map.c (histogram layout, nearest search). */
+#ifndef LOCUS_QUANT_INT_H
+#define LOCUS_QUANT_INT_H
+
+#include "quant.h"
+
+#define QBINS (1u << 18)
+#define QMIXED (1u << 24)       /* qbin_t.first: the bin holds more than one 24-bit colour */
+
+/* One DAC colour of the histogram. */
+typedef struct {
+	uint32_t count;
+	uint32_t first;             /* the first 24-bit colour seen, | QMIXED once another came */
+	uint64_t sum[3];            /* exact 8-bit values summed */
+} qbin_t;
+
+#define QXSLOTS (1u << 17)      /* the exact-colour table: open addressing ... */
+#define QXMAX (1u << 16)        /* ... for at most this many colours */
+
+struct quant_hist {
+	qbin_t *bin;                /* QBINS */
+	uint32_t *used;             /* keys of the bins in use, in the order first seen */
+	size_t nused;
+	unsigned long npix;
+	/* quant_hist_exact(): the exact 24-bit colours (| QMIXED marks a used slot) and counts */
+	uint32_t *xkey, *xcount;
+	size_t nx;
+	int xstate;                 /* 0 none counted, 1 valid, -1 too many colours */
+};
+
+/* The bin of an 8-bit colour. */
+static inline uint32_t quant_key(unsigned r, unsigned g, unsigned b)
+{
+	return (uint32_t)(quant_dac6(r) << 12 | quant_dac6(g) << 6 | quant_dac6(b));
+}
+
+/* 1 if the bin is flat for the histogram's threshold. */
+static inline int quant_bin_flat(const quant_hist_t *h, const qbin_t *q, unsigned long thr)
+{
+	(void)h;
+	return q->count >= thr && !(q->first & QMIXED);
+}
+
+/* Nearest-entry search: entries sorted by r + g + b, searched outwards from the nearest sum
+ * with the sum's distance as the bound. Units: 8-bit values times 4. */
+typedef struct {
+	unsigned n;
+	int c[QUANT_MAX][3];
+	int key[QUANT_MAX];         /* r + g + b */
+	uint8_t pos[QUANT_MAX];     /* where index k sits in the sorted order */
+	uint8_t idx[QUANT_MAX];
+} qnear_t;
+
+/* Fill q with n colours (units of 1/4 of an 8-bit step), remembering their indices. */
+void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n);
+/* Index (as given to quant_near_init) of the entry nearest to (r, g, b) in the same units. */
+unsigned quant_near_find(const qnear_t *q, int r, int g, int b);
+/* The same, starting from the guess hint (an index, or -1 for none): same answer, faster when
+ * the guess is near (k-means: the entry of the pass before). */
+unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
+/* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
+void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
+
+#endif
