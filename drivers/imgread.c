@@ -278,8 +278,9 @@ static int png_finish(dev_imgr_t *r)
 
 /* ---- the reader ---- */
 
-int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		dev_imgr_t **out, char *err, size_t errlen)
+/* Open, the format told by the magic, or forced (a dump of fsize bytes). */
+static int open_as(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		const imgr_fmt_t *force, uint64_t fsize, dev_imgr_t **out, char *err, size_t errlen)
 {
 	*out = NULL;
 	dev_imgr_t *r = calloc(1, sizeof *r);
@@ -309,7 +310,12 @@ int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, co
 		r->len += (size_t)n;
 	}
 	int rc = r->ioerr ? -74 : 0;
-	if (rc == 0) {
+	r->fsize = fsize;
+	if (rc == 0 && force) {
+		r->ops = force;
+		r->fmt = DEV_FMT_UNKNOWN;
+		rc = force->open(r);
+	} else if (rc == 0) {
 		const unsigned char *b = r->buf;
 		if (r->len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
 			r->fmt = DEV_FMT_PNG, rc = png_open(r);
@@ -337,6 +343,18 @@ int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, co
 	}
 	*out = r;
 	return 0;
+}
+
+int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		dev_imgr_t **out, char *err, size_t errlen)
+{
+	return open_as(fn, user, head, nhead, name, NULL, 0, out, err, errlen);
+}
+
+int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		uint64_t size, dev_imgr_t **out, char *err, size_t errlen)
+{
+	return open_as(fn, user, head, nhead, name, &imgr_fbdump, size, out, err, errlen);
 }
 
 unsigned dev_imgr_width(const dev_imgr_t *r)

@@ -31,6 +31,7 @@ struct dev_imgr {
 	unsigned channels;
 	const imgr_fmt_t *ops;  /* formats of rd-*.c files, else NULL */
 	void *st;               /* their state */
+	uint64_t fsize;         /* the file's size when known (framebuffer dumps), else 0 */
 	char err[512];
 };
 
@@ -48,11 +49,16 @@ int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what);
 int imgr_nomem(dev_imgr_t *r);
 
 /* The formats of the rd-*.c files: sniff (1 when the first n bytes of b are the format's). */
-extern const imgr_fmt_t imgr_pcx, imgr_bmp, imgr_dpx, imgr_cineon;
+extern const imgr_fmt_t imgr_pcx, imgr_bmp, imgr_dpx, imgr_cineon, imgr_fbdump;
 int imgr_is_pcx(const unsigned char *b, size_t n);
 int imgr_is_bmp(const unsigned char *b, size_t n);
 int imgr_is_dpx(const unsigned char *b, size_t n);
 int imgr_is_cineon(const unsigned char *b, size_t n);
+/* The framebuffer dump mode (rd-fbdump.c) of a file of size bytes, or -1: dumps have no header. */
+int imgr_fbdump_mode(uint64_t size);
+/* dev_imgr_open for a headerless framebuffer dump of size bytes (its mode follows from it). */
+int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		uint64_t size, dev_imgr_t **out, char *err, size_t errlen);
 
 /* Largest picture a buffered format (BMP stored bottom up, PCX with its palette at the end)
  * holds in memory, in pixels; the buffer grows with the rows decoded, never from the header. */

@@ -1,6 +1,7 @@
 /* main-diff.c: locus-diff, compare two outputs of one kind (rasters, HP-GL, PostScript/PDF, meta). */
 #include <errno.h>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <math.h>
@@ -143,6 +144,7 @@ typedef struct {
 	io_transport_t *t;
 	unsigned char head[64];
 	int kind;
+	uint64_t dump;              /* a framebuffer dump of this many bytes */
 	FILE *pipe;                 /* Ghostscript's PPM (--render) */
 	pid_t pid;
 	size_t nhead, headpos;
@@ -279,6 +281,7 @@ static int src_sniff(src_t *s, const char *path, unsigned page)
 	}
 	const unsigned char *h = s->head;
 	size_t n = s->nhead;
+	struct stat sb;
 	if ((n >= 10 && memcmp(h, "LOCUS-META", 10) == 0) || (n >= 4 && memcmp(h, "\x8bLMB", 4) == 0))
 		s->kind = K_META;
 	else if (n >= 5 && memcmp(h, "%PDF-", 5) == 0)
@@ -291,6 +294,9 @@ static int src_sniff(src_t *s, const char *path, unsigned page)
 		s->kind = K_RASTER;
 	else if (is_hpgl(h, n))
 		s->kind = K_HPGL;
+	else if (strcmp(path, "-") && !stat(path, &sb) && S_ISREG(sb.st_mode) &&
+			imgr_fbdump_mode((uint64_t)sb.st_size) >= 0)
+		s->kind = K_RASTER, s->dump = (uint64_t)sb.st_size;   /* headerless: told by its size */
 	else
 		s->kind = K_RASTER;   /* the image reader names what it expected */
 	return 0;
@@ -419,7 +425,8 @@ static int src_open(src_t *s, unsigned band_rows, size_t budget)
 		pthread_mutex_unlock(&s->mu);
 		return st;
 	}
-	int rc = dev_imgr_open(src_read, s, NULL, 0, s->name, &s->img, s->err, sizeof s->err);
+	int rc = s->dump ? imgr_open_fbdump(src_read, s, NULL, 0, s->name, s->dump, &s->img, s->err, sizeof s->err)
+		: dev_imgr_open(src_read, s, NULL, 0, s->name, &s->img, s->err, sizeof s->err);
 	if (rc)
 		return status_of(rc);
 	s->width = dev_imgr_width(s->img);
