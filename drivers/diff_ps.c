@@ -125,6 +125,10 @@ int diff_ps(const void *a, size_t na, const char *aname, const void *b, size_t n
 			snprintf(fb, sizeof fb, "%.*s", hb ? (int)(s[1].len > 120 ? 120 : s[1].len) : 5, hb ? s[1].buf : "(end)");
 		}
 	}
+	for (char *q = fa; *q; q++)   /* binary stream data shown as dots */
+		*q = (unsigned char)*q < 32 || (unsigned char)*q > 126 ? '.' : *q;
+	for (char *q = fb; *q; q++)
+		*q = (unsigned char)*q < 32 || (unsigned char)*q > 126 ? '.' : *q;
 	int pdf = na >= 5 && memcmp(a, "%PDF-", 5) == 0;
 	if (o->json) {
 		fprintf(out, "{\"kind\":\"%s\",\"a\":", pdf ? "pdf" : "postscript");
