@@ -37,6 +37,7 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 	for (size_t k = 0; k < d.nlabels; k++) {
 		const hpgl_rlabel_t *l = &d.labels[k];
 		x0 = fmin(x0, l->x), x1 = fmax(x1, l->x + (double)l->len * ch * 0.75);
+		y0 = fmin(y0, l->y - 2 * ch * (double)(memchr(l->text, '\n', l->len) != NULL));
 		y0 = fmin(y0, l->y), y1 = fmax(y1, l->y + ch);
 	}
 	if (!(x0 <= x1)) {   /* nothing drawn: an empty A4 landscape sheet */
@@ -78,16 +79,32 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 		const hpgl_rlabel_t *l = &d.labels[k];
 		if (l->pen != pen)
 			CK(meta_colour(w, pen_rgb(pen = l->pen)));
-		/* control bytes (CR, LF, BS) have no glyph: blanks in their place */
+		/* LF starts a new line below (twice the character height), CR goes back to the
+		 * label's start; other control bytes have no glyph and are left out */
 		char *t = malloc(l->len + 1);
 		if (!t) {
 			rc = META_ENOMEM;
 			goto fail;
 		}
-		for (size_t i = 0; i < l->len; i++)
-			t[i] = (unsigned char)l->text[i] < 32 || l->text[i] == 127 ? ' ' : l->text[i];
-		t[l->len] = 0;
-		rc = meta_text(w, (l->x - x0) * s, (l->y - y0) * s, ch * s, 0, t);
+		double lx = l->x, ly = l->y;
+		size_t i = 0;
+		rc = 0;
+		while (i <= l->len && rc >= 0) {
+			size_t k = 0;
+			while (i < l->len && l->text[i] != '\n' && l->text[i] != '\r') {
+				if ((unsigned char)l->text[i] >= 32 && l->text[i] != 127)
+					t[k++] = l->text[i];
+				i++;
+			}
+			t[k] = 0;
+			if (k)
+				rc = meta_text(w, (lx - x0) * s, (ly - y0) * s, ch * s, 0, t);
+			if (i < l->len && l->text[i] == '\n')
+				ly -= 2 * ch;
+			else if (i < l->len)
+				lx = l->x;
+			i++;
+		}
 		free(t);
 		if (rc < 0)
 			goto fail;
