@@ -48,4 +48,11 @@ head -c 40 "$T/g1.plot" > "$T/cut.plot"
 printf '#PLOT 2\no\nQ 1 2\nx\n' > "$T/q.plot"
 "$M" import "$T/q.plot" 2> "$T/err" > /dev/null; rc=$?
 [ $rc = 65 ] && grep -q "q.plot: byte 10: unknown plotutils op code" "$T/err" && ok "unknown op code: 65 at its byte" || notok "unknown op: $rc $(cat "$T/err")"
+# goldens (fixtures/import/, looked at; fixtures/README.md): two corpus files and graph's zigzag
+I=fixtures/import
+for f in hp2xx-arcs.hp inkscape-hpgl_output-shapes.hpgl; do
+	"$M" import $C/$f -o "$T/$f.meta" && same_file "golden: $f" "$T/$f.meta" $I/$f.meta
+done
+"$M" import $I/zigzag.plot -o "$T/z.meta" && same_file "golden: graph's portable zigzag" "$T/z.meta" $I/zigzag.meta
+plot -T meta $I/zigzag.plot > "$T/zb.plot" && "$M" import "$T/zb.plot" -o "$T/zb.meta" && same_file "its binary form (plot -T meta): the same golden" "$T/zb.meta" $I/zigzag.meta
 done_tests
