@@ -22,6 +22,7 @@ typedef struct {
 	int strict_order;           /* HP-GL: stroke order and direction count */
 	double hpgl_tol;            /* HP-GL: how far a point may move, plotter units */
 	unsigned nfirst;            /* differing pixels / strokes listed with verbose */
+	int qdf;                    /* PDF: both given in qpdf's QDF form (lines and bytes are of it) */
 } diff_opts_t;
 
 /* Defaults: exact, one-line report, 0.5 plotter units, 10 listed. */

@@ -8,7 +8,7 @@
 static int ignorable(const char *l, size_t n)
 {
 	static const char *const pre[] = { "%%Creator", "%%CreationDate", "%%Title", "%%For",
-		"%%ModDate", "%%Producer", "%%DocumentData" };
+		"%%ModDate", "%%Producer", "%%DocumentData", "%% Original object ID", "%PDF-" };
 	for (size_t k = 0; k < sizeof pre / sizeof *pre; k++)
 		if (n >= strlen(pre[k]) && memcmp(l, pre[k], strlen(pre[k])) == 0)
 			return 1;
@@ -131,7 +131,7 @@ int diff_ps(const void *a, size_t na, const char *aname, const void *b, size_t n
 		*q = (unsigned char)*q < 32 || (unsigned char)*q > 126 ? '.' : *q;
 	int pdf = na >= 5 && memcmp(a, "%PDF-", 5) == 0;
 	if (o->json) {
-		fprintf(out, "{\"kind\":\"%s\",\"a\":", pdf ? "pdf" : "postscript");
+		fprintf(out, "{\"kind\":\"%s\",\"qdf\":%s,\"a\":", pdf ? "pdf" : "postscript", o->qdf ? "true" : "false");
 		diff_json_str(out, aname);
 		fprintf(out, ",\"b\":");
 		diff_json_str(out, bname);
@@ -147,10 +147,10 @@ int diff_ps(const void *a, size_t na, const char *aname, const void *b, size_t n
 		fprintf(out, "}\n");
 	} else if (!ndiff) {
 		fprintf(out, "%s %s: %s, the same after normalising (%zu lines)\n", aname, bname,
-			pdf ? "PDF" : "PostScript", count);
+			pdf ? (o->qdf ? "PDF (qpdf's QDF form)" : "PDF") : "PostScript", count);
 	} else {
 		fprintf(out, "%s %s: %s, %zu of %zu normalised lines differ, the first at line %zu (byte %zu) "
-			"and line %zu (byte %zu)\n", aname, bname, pdf ? "PDF" : "PostScript", ndiff, count,
+			"and line %zu (byte %zu)\n", aname, bname, pdf ? (o->qdf ? "PDF (qpdf's QDF form)" : "PDF") : "PostScript", ndiff, count,
 			fl[0], fo[0], fl[1], fo[1]);
 		if (o->verbose)
 			fprintf(out, "  A: %s\n  B: %s\n  (--render compares the pictures)\n", fa, fb);

@@ -370,3 +370,68 @@ int dsrc_fail(const dsrc_t *s, int st)
 	return st;
 }
 
+
+/* Run argv (a program reading file in) with its standard output to file out; 0 when it exited 0
+ * (or 3, qpdf's "succeeded with warnings"). */
+static int run_to(char *const argv[], const char *out)
+{
+	pid_t pid = fork();
+	if (pid == 0) {
+		int fd = open(out, O_WRONLY | O_TRUNC);
+		int nul = open("/dev/null", O_WRONLY);
+		if (fd < 0 || nul < 0)
+			_exit(127);
+		dup2(fd, 1);
+		dup2(nul, 2);
+		execvp(argv[0], argv);
+		_exit(127);
+	}
+	int ws;
+	if (pid < 0 || waitpid(pid, &ws, 0) < 0)
+		return -1;
+	return WIFEXITED(ws) && (WEXITSTATUS(ws) == 0 || WEXITSTATUS(ws) == 3) ? 0 : -1;
+}
+
+int dsrc_qdf(unsigned char **buf, size_t *len)
+{
+	char in[] = "/tmp/locus-diff-pdf-XXXXXX", out[] = "/tmp/locus-diff-qdf-XXXXXX";
+	int fi = mkstemp(in), fo = fi >= 0 ? mkstemp(out) : -1;
+	int rc = -1;
+	if (fi >= 0 && fo >= 0 && write(fi, *buf, *len) == (ssize_t)*len) {
+		close(fi), close(fo);
+		fi = fo = -1;
+		char *argv[] = { "qpdf", "--qdf", "--object-streams=disable", in, "-", NULL };
+		FILE *f = run_to(argv, out) == 0 ? fopen(out, "rb") : NULL;
+		if (f) {
+			size_t cap = 1 << 16, n = 0;
+			unsigned char *b = malloc(cap);
+			while (b) {
+				size_t k = fread(b + n, 1, cap - n, f);
+				n += k;
+				if (n < cap)
+					break;
+				unsigned char *q = realloc(b, cap * 2);
+				if (!q)
+					free(b);
+				b = q;
+				cap *= 2;
+			}
+			if (b && !ferror(f) && n > 0) {
+				free(*buf);
+				*buf = b;
+				*len = n;
+				rc = 0;
+			} else {
+				free(b);
+			}
+			fclose(f);
+		}
+	}
+	if (fi >= 0)
+		close(fi);
+	if (fo >= 0)
+		close(fo);
+	unlink(in);
+	unlink(out);
+	return rc;
+}

@@ -60,6 +60,10 @@ int dsrc_row(dsrc_t *s, const uint8_t **row);
 int dsrc_finish(dsrc_t *s);
 /* Stop and free everything (the player thread, Ghostscript, the temporary file). */
 void dsrc_close(dsrc_t *s);
+/* Rewrite a PDF held in buf, len (malloc'd) as qpdf's QDF form (streams uncompressed, objects
+ * renumbered in order, no object streams), so that a text comparison sees the drawing operators;
+ * 0, or -1 (qpdf missing or failing: the buffer is left as it was). */
+int dsrc_qdf(unsigned char **buf, size_t *len);
 /* Print the error of a source (one line) and return st. */
 int dsrc_fail(const dsrc_t *s, int st);
 

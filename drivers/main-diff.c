@@ -194,12 +194,15 @@ static int compare_mem(dsrc_t *src, const char *const *file, const opts_t *o, FI
 	for (int k = 0; k < 2 && !st; k++)
 		if ((st = dsrc_slurp(&src[k], &buf[k], &len[k])))
 			dsrc_fail(&src[k], st);
+	diff_opts_t d = o->d;
+	if (!st && src[0].kind == DSRC_PDF)   /* uncompressed and renumbered by qpdf, where it is there */
+		d.qdf = dsrc_qdf(&buf[0], &len[0]) == 0 && dsrc_qdf(&buf[1], &len[1]) == 0;
 	if (!st) {
 		char err[700] = "";
 		int kind = src[0].kind;
-		int rc = kind == DSRC_HPGL ? diff_hpgl(buf[0], len[0], file[0], buf[1], len[1], file[1], &o->d, rep, err, sizeof err)
-			: kind == DSRC_META ? diff_meta(buf[0], len[0], file[0], buf[1], len[1], file[1], &o->d, rep, err, sizeof err)
-			: diff_ps(buf[0], len[0], file[0], buf[1], len[1], file[1], &o->d, rep, err, sizeof err);
+		int rc = kind == DSRC_HPGL ? diff_hpgl(buf[0], len[0], file[0], buf[1], len[1], file[1], &d, rep, err, sizeof err)
+			: kind == DSRC_META ? diff_meta(buf[0], len[0], file[0], buf[1], len[1], file[1], &d, rep, err, sizeof err)
+			: diff_ps(buf[0], len[0], file[0], buf[1], len[1], file[1], &d, rep, err, sizeof err);
 		if (rc < 0) {
 			fprintf(stderr, "%s\n", err);
 			st = 65;
