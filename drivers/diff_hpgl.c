@@ -130,19 +130,27 @@ static int take(side_t *b, const seg_t *g, double tol)
 		else
 			hi = mid;
 	}
-	for (size_t i = lo; i < b->nseg; i++) {
+	seg_t *best = NULL;
+	double bestd = INFINITY;
+	for (size_t i = lo; i < b->nseg; i++) {   /* the nearest unused one: greedy but not blind */
 		seg_t *m = &b->seg[b->order[i]];
 		if (m->pen != g->pen || minx(m) > x + tol)
 			break;
 		if (m->used)
 			continue;
-		if ((near(g->x0, g->y0, m->x0, m->y0, tol) && near(g->x1, g->y1, m->x1, m->y1, tol)) ||
-				(near(g->x0, g->y0, m->x1, m->y1, tol) && near(g->x1, g->y1, m->x0, m->y0, tol))) {
-			m->used = 1;
-			return 1;
+		double d1 = fmax(fmax(fabs(g->x0 - m->x0), fabs(g->y0 - m->y0)), fmax(fabs(g->x1 - m->x1), fabs(g->y1 - m->y1)));
+		double d2 = fmax(fmax(fabs(g->x0 - m->x1), fabs(g->y0 - m->y1)), fmax(fabs(g->x1 - m->x0), fabs(g->y1 - m->y0)));
+		double d = fmin(d1, d2);
+		if (d <= tol && d < bestd) {
+			best = m;
+			bestd = d;
+			if (d == 0)
+				break;
 		}
 	}
-	return 0;
+	if (best)
+		best->used = 1;
+	return best != NULL;
 }
 
 /* Is stroke j of b stroke i of a moved by a constant offset (either direction)? */

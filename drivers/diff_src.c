@@ -95,16 +95,21 @@ static void *player(void *arg)
 static int is_hpgl(const unsigned char *h, size_t n)
 {
 	size_t i = 0;
-	while (i < n && (h[i] == ' ' || h[i] == '\t' || h[i] == '\r' || h[i] == '\n' || h[i] == ';'))
+	while (i < n && ((h[i] < 32 && h[i] != 27) || h[i] == ' ' || h[i] == ';'))   /* blanks, ETX, ... */
 		i++;
 	if (i < n && h[i] == 27)
 		return 1;
 	if (i + 2 >= n)
 		return 0;
-	int a = h[i] | 32, b = h[i + 1] | 32, c = h[i + 2];
-	return a >= 'a' && a <= 'z' && b >= 'a' && b <= 'z' && (c == ';' || c == '-' || c == '+' ||
-		c == '.' || c == ' ' || c == ',' || c == '\r' || c == '\n' || (c >= '0' && c <= '9') ||
-		((c | 32) >= 'a' && (c | 32) <= 'z'));
+	/* the commands a plot file starts with (the corpus: IN, BP, SP, PU, DF, ...) */
+	static const char first[] = "IN DF SP PU PD PA PR IP SC BP PS PG LT VS CO RO IW SI DT LB PE "
+		"CI AA NP PC PW WU MC CT FT PT ";
+	char m[3] = { (char)(h[i] & ~32), (char)(h[i + 1] & ~32), 0 };
+	int c = h[i + 2];
+	if (!strstr(first, m) || ((strstr(first, m) - first) % 3) != 0)
+		return 0;
+	return c == ';' || c == '-' || c == '+' || c == '.' || c == ' ' || c == ',' || c == '\r' ||
+		c == '\n' || (c >= '0' && c <= '9') || ((c | 32) >= 'a' && (c | 32) <= 'z');
 }
 
 /* Open path and read its first bytes to tell its kind; 0 or an exit status with s->err. */
