@@ -11,6 +11,8 @@ typedef struct {
 	int filled;                     /* 10-bit: samples in 32-bit words, left justified */
 	size_t stride;                  /* bytes of one row */
 	unsigned char *line;
+	uint8_t *pix;                   /* planar DPX: the whole picture (R, G, B planes merged) */
+	int planar_done;                /* pix holds all of it: rows come from there */
 } film_t;
 
 int imgr_is_dpx(const unsigned char *b, size_t n)
@@ -63,9 +65,63 @@ static int setup(dev_imgr_t *r, film_t *f, uint32_t w, uint32_t ht, uint32_t dat
 	return (f->line = malloc(f->stride)) ? 0 : imgr_nomem(r);
 }
 
+static int film_row(dev_imgr_t *r, uint8_t *row);
+
+/* Planar DPX: elements R, G and B (descriptors 1, 2, 3), alike, stored one after the other: the
+ * planes are decoded into one buffer (bounded as the buffered formats are), then served. */
+static int planar(dev_imgr_t *r, film_t *f, const unsigned char *h, uint32_t w, uint32_t ht)
+{
+	int le = f->le;
+	uint32_t off[3];
+	unsigned ch[3];
+	for (int k = 0; k < 3; k++) {
+		const unsigned char *e = h + 780 + 72 * k;
+		unsigned d = e[20];
+		if (d < 1 || d > 3 || e[23] != f->bits || rd16(e + 24, le) != rd16(h + 804, le) || rd16(e + 26, le))
+			return imgr_bad(r, 780 + 72 * (unsigned)k, "planar DPX elements must be R, G, B alike");
+		ch[k] = d - 1;
+		off[k] = rd32(e + 28, le);
+		if (k && off[k] <= off[k - 1])
+			return imgr_bad(r, 808 + 72 * (unsigned)k, "planar DPX elements out of order");
+	}
+	if ((uint64_t)w * ht > IMGR_BUFFERED_MAX)
+		return imgr_bad(r, 772, "planar DPX too large to buffer");
+	f->nch = 1;
+	int rc = setup(r, f, w, ht, off[0], 772);
+	size_t n = (size_t)w * 3;
+	uint8_t *row = rc ? NULL : malloc(n);
+	if (!rc && !row)
+		return imgr_nomem(r);
+	for (int k = 0; k < 3 && !rc; k++) {
+		uint64_t at = imgr_offset(r);
+		if (k && (rc = off[k] < at ? imgr_bad(r, 808 + 72 * (unsigned)k, "planar DPX elements overlap")
+				: imgr_skip(r, off[k] - at, "truncated before an image element")))
+			break;
+		for (unsigned y = 0; y < ht && !rc; y++) {
+			if (!f->pix || (k == 0 && y % 64 == 0)) {   /* grow with the rows decoded */
+				size_t rows = (size_t)y + 64 < ht ? (size_t)y + 64 : ht;
+				uint8_t *q = realloc(f->pix, rows * n);
+				if (!q) {
+					rc = imgr_nomem(r);
+					break;
+				}
+				f->pix = q;
+			}
+			r->y = y;
+			if (!(rc = film_row(r, row)))
+				for (unsigned x = 0; x < w; x++)
+					f->pix[(size_t)y * n + 3 * x + ch[k]] = row[3 * x];
+		}
+	}
+	r->y = 0;
+	free(row);
+	f->planar_done = rc == 0;
+	return rc;
+}
+
 static int dpx_open(dev_imgr_t *r)
 {
-	unsigned char h[812];
+	unsigned char h[1024];
 	film_t *f = calloc(1, sizeof *f);
 	if (!f)
 		return imgr_nomem(r);
@@ -81,8 +137,8 @@ static int dpx_open(dev_imgr_t *r)
 	uint32_t eloff = rd32(h + 808, le);
 	if (orient != 0)
 		return imgr_bad(r, 768, "only DPX stored left to right, top to bottom is supported");
-	if (nel != 1)
-		return imgr_bad(r, 770, "only DPX of one image element is supported (not planar)");
+	if (nel != 1 && nel != 3)
+		return imgr_bad(r, 770, "only DPX of one image element, or three (planar R, G, B)");
 	if (enc != 0)
 		return imgr_bad(r, 806, "run-length encoded DPX is not supported");
 	if (desc == 50)
@@ -97,6 +153,8 @@ static int dpx_open(dev_imgr_t *r)
 		return imgr_bad(r, 804, "10-bit DPX must be filled (packing method A)");
 	f->bits = bits;
 	f->filled = bits == 10;
+	if (nel == 3)
+		return planar(r, f, h, w, ht);
 	return setup(r, f, w, ht, eloff ? eloff : dataoff, 772);
 }
 
@@ -136,6 +194,10 @@ static uint8_t to8(unsigned v, unsigned max)
 static int film_row(dev_imgr_t *r, uint8_t *row)
 {
 	film_t *f = r->st;
+	if (f->planar_done) {
+		memcpy(row, f->pix + (size_t)r->y * r->width * 3, (size_t)r->width * 3);
+		return 0;
+	}
 	long got = imgr_take(r, f->line, f->stride);
 	if (got < 0)
 		return (int)got;
@@ -171,6 +233,7 @@ static void film_done(dev_imgr_t *r)
 	film_t *f = r->st;
 	if (f) {
 		free(f->line);
+		free(f->pix);
 		free(f);
 	}
 	r->st = NULL;

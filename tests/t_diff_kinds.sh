@@ -20,6 +20,13 @@ $BIN/locus-film --size 160x120 -o "$T/f.dpx" $F && $BIN/locus-film --size 160x12
 $BIN/locus-film --size 160x120 -f cineon -o "$T/f.cin" $F || notok "locus-film"
 expect_exit 0 "DPX big-endian = little-endian" "$D" "$T/f.dpx" "$T/fl.dpx"
 expect_exit 0 "DPX 10-bit = Cineon 10-bit (the same log codes)" "$D" "$T/f.dpx" "$T/f.cin"
+# the film goldens: the planar file and each separation hold the RGB frame's codes
+FG=fixtures/film
+expect_exit 0 "planar DPX (R, G, B elements) = the RGB DPX" "$D" $FG/f-test.film.planar.dpx $FG/f-test.film.dpx
+expect_exit 0 "red separation = the red channel (G, B ignored by --tolerance)" "$D" --tolerance 0,255,255 $FG/f-test.film.sep-r.dpx $FG/f-test.film.dpx
+expect_exit 0 "green separation = the green channel" "$D" --tolerance 255,0,255 $FG/f-test.film.sep-g.dpx $FG/f-test.film.dpx
+expect_exit 0 "blue separation = the blue channel" "$D" --tolerance 255,255,0 $FG/f-test.film.sep-b.dpx $FG/f-test.film.dpx
+expect_exit 1 "a separation is not the colour frame" "$D" $FG/f-test.film.sep-r.dpx $FG/f-test.film.dpx
 # framebuffer dumps (no header: told by their size) against the driver's PNG, PCX, BMP
 for m in 13h 12h; do
 	zcat fixtures/fb/f-test.$m.dump.gz > "$T/$m.dump"
