@@ -73,6 +73,11 @@ check: all $(TESTPROGS)
 	@scripts/deps.sh check
 	@BIN=$(BINDIR) TESTBIN=$(B)/tests SANITIZE=$(SANITIZE) LOCUS_LDLIBS="$(LDLIBS_ALL)" tests/run.sh
 
+# Re-record the expected outputs on purpose and print what changed through locus-diff.
+.PHONY: fixtures
+fixtures: all $(TESTPROGS)
+	@BIN=$(BINDIR) TESTBIN=$(B)/tests scripts/fixtures.sh
+
 bench: all
 	@scripts/deps.sh bench
 	@BIN=$(BINDIR) scripts/bench.sh

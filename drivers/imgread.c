@@ -1,43 +1,26 @@
-/* imgread.c: streaming PNG (libpng), PPM (P6) and RLE image readers: one row in memory at a time. */
+/* imgread.c: streaming PNG (libpng), PPM (P6) and RLE image readers (PCX, BMP, DPX, Cineon in rd-*.c). */
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "image.h"
+#include "imgread_int.h"
 
 #define INBUF ((size_t)1 << 16)
 
-struct dev_imgr {
-	dev_read_fn fn;
-	void *user;
-	char name[256];
-	int fmt;
-	unsigned width, height, y;
-	unsigned char *buf;     /* input bytes buf[pos, len) not consumed yet */
-	size_t pos, len, cap;
-	uint64_t base;          /* stream offset of buf[0] */
-	int eof, ioerr;
-	png_structp png;
-	png_infop info;
-	unsigned char *prow;    /* one PNG row after the transforms (RGB or RGBA, 8 bits) */
-	unsigned channels;
-	char err[512];
-};
-
-static uint64_t offset(const dev_imgr_t *r)
+uint64_t imgr_offset(const dev_imgr_t *r)
 {
 	return r->base + r->pos;
 }
 
-static int bad(dev_imgr_t *r, uint64_t off, const char *what)
+int imgr_bad(dev_imgr_t *r, uint64_t off, const char *what)
 {
 	snprintf(r->err, sizeof r->err, "%s: byte %llu: %s", r->name, (unsigned long long)off, what);
 	return -65;
 }
 
-/* Make at least one unconsumed byte available: 1, 0 at the end of the stream, <0 on error. */
-static int fill(dev_imgr_t *r)
+int imgr_fill(dev_imgr_t *r)
 {
 	if (r->pos < r->len)
 		return 1;
@@ -60,12 +43,11 @@ static int fill(dev_imgr_t *r)
 	return 1;
 }
 
-/* Copy up to n bytes into dst; the count copied (short at the end), or <0 on error. */
-static long take(dev_imgr_t *r, void *dst, size_t n)
+long imgr_take(dev_imgr_t *r, void *dst, size_t n)
 {
 	size_t got = 0;
 	while (got < n) {
-		int rc = fill(r);
+		int rc = imgr_fill(r);
 		if (rc <= 0)
 			return rc < 0 ? rc : (long)got;
 		size_t k = r->len - r->pos < n - got ? r->len - r->pos : n - got;
@@ -76,17 +58,36 @@ static long take(dev_imgr_t *r, void *dst, size_t n)
 	return (long)got;
 }
 
+int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what)
+{
+	while (n) {
+		int rc = imgr_fill(r);
+		if (rc <= 0)
+			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), what);
+		size_t k = r->len - r->pos < n ? r->len - r->pos : (size_t)n;
+		r->pos += k;
+		n -= k;
+	}
+	return 0;
+}
+
+int imgr_nomem(dev_imgr_t *r)
+{
+	snprintf(r->err, sizeof r->err, "%s: out of memory", r->name);
+	return -70;
+}
+
 /* ---- PPM ---- */
 
 static int ppm_number(dev_imgr_t *r, unsigned *v)
 {
 	int rc;
 	for (;;) {
-		if ((rc = fill(r)) <= 0)
-			return rc < 0 ? rc : bad(r, offset(r), "truncated PPM header");
+		if ((rc = imgr_fill(r)) <= 0)
+			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "truncated PPM header");
 		unsigned char c = r->buf[r->pos];
 		if (c == '#') {
-			while ((rc = fill(r)) > 0 && r->buf[r->pos] != '\n')
+			while ((rc = imgr_fill(r)) > 0 && r->buf[r->pos] != '\n')
 				r->pos++;
 			if (rc < 0)
 				return rc;
@@ -97,12 +98,12 @@ static int ppm_number(dev_imgr_t *r, unsigned *v)
 		}
 	}
 	if (r->buf[r->pos] < '0' || r->buf[r->pos] > '9')
-		return bad(r, offset(r), "expected a number in the PPM header");
-	uint64_t at = offset(r);
+		return imgr_bad(r, imgr_offset(r), "expected a number in the PPM header");
+	uint64_t at = imgr_offset(r);
 	unsigned long x = 0;
-	while ((rc = fill(r)) > 0 && r->buf[r->pos] >= '0' && r->buf[r->pos] <= '9') {
+	while ((rc = imgr_fill(r)) > 0 && r->buf[r->pos] >= '0' && r->buf[r->pos] <= '9') {
 		if (x > 1000000)
-			return bad(r, at, "number too large in the PPM header");
+			return imgr_bad(r, at, "number too large in the PPM header");
 		x = x * 10 + (unsigned)(r->buf[r->pos++] - '0');
 	}
 	if (rc < 0)
@@ -120,13 +121,13 @@ static int ppm_open(dev_imgr_t *r)
 		if (rc)
 			return rc;
 		if (k == 1 && (v[0] == 0 || v[1] == 0 || v[0] > DEV_IMAGE_MAX_DIM || v[1] > DEV_IMAGE_MAX_DIM))
-			return bad(r, 3, "bad or too large PPM size (each side 1 to 65536)");
+			return imgr_bad(r, 3, "bad or too large PPM size (each side 1 to 65536)");
 	}
 	if (v[2] != 255)
-		return bad(r, offset(r), "only PPM with maxval 255 is supported");
-	int rc = fill(r);
+		return imgr_bad(r, imgr_offset(r), "only PPM with maxval 255 is supported");
+	int rc = imgr_fill(r);
 	if (rc <= 0)
-		return rc < 0 ? rc : bad(r, offset(r), "truncated PPM header");
+		return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "truncated PPM header");
 	r->pos++;   /* the single whitespace byte before the pixels */
 	r->width = v[0];
 	r->height = v[1];
@@ -136,10 +137,10 @@ static int ppm_open(dev_imgr_t *r)
 static int ppm_row(dev_imgr_t *r, uint8_t *row)
 {
 	size_t n = (size_t)r->width * 3;
-	long got = take(r, row, n);
+	long got = imgr_take(r, row, n);
 	if (got < 0)
 		return (int)got;
-	return (size_t)got < n ? bad(r, offset(r), "truncated PPM pixel data") : 0;
+	return (size_t)got < n ? imgr_bad(r, imgr_offset(r), "truncated PPM pixel data") : 0;
 }
 
 /* ---- RLE (docs/rle-format.md) ---- */
@@ -152,16 +153,16 @@ static uint32_t be32(const unsigned char *p)
 static int rle_open(dev_imgr_t *r)
 {
 	unsigned char h[DEV_RLE_HEADER];
-	long got = take(r, h, sizeof h);
+	long got = imgr_take(r, h, sizeof h);
 	if (got < 0)
 		return (int)got;
 	if ((size_t)got < sizeof h)
-		return bad(r, offset(r), "truncated RLE header");
+		return imgr_bad(r, imgr_offset(r), "truncated RLE header");
 	if (h[4] != DEV_RLE_VERSION)
-		return bad(r, 4, "unsupported RLE version");
+		return imgr_bad(r, 4, "unsupported RLE version");
 	uint32_t w = be32(h + 5), ht = be32(h + 9);
 	if (w == 0 || ht == 0 || w > DEV_IMAGE_MAX_DIM || ht > DEV_IMAGE_MAX_DIM)
-		return bad(r, 5, "bad or too large RLE size (each side 1 to 65536)");
+		return imgr_bad(r, 5, "bad or too large RLE size (each side 1 to 65536)");
 	r->width = w;
 	r->height = ht;
 	return 0;
@@ -172,15 +173,15 @@ static int rle_row(dev_imgr_t *r, uint8_t *row)
 	unsigned x = 0;
 	while (x < r->width) {
 		unsigned char q[4];
-		uint64_t at = offset(r);
-		long got = take(r, q, 4);
+		uint64_t at = imgr_offset(r);
+		long got = imgr_take(r, q, 4);
 		if (got < 0)
 			return (int)got;
 		if (got < 4)
-			return bad(r, at, "truncated RLE data");
+			return imgr_bad(r, at, "truncated RLE data");
 		unsigned c = (unsigned)q[0] + 1;
 		if (x + c > r->width)
-			return bad(r, at, "RLE run crosses the end of its row");
+			return imgr_bad(r, at, "RLE run crosses the end of its row");
 		for (unsigned k = 0; k < c; k++)
 			memcpy(row + 3 * (x + k), q + 1, 3);
 		x += c;
@@ -193,7 +194,7 @@ static int rle_row(dev_imgr_t *r, uint8_t *row)
 static void png_in(png_structp png, png_bytep data, size_t n)
 {
 	dev_imgr_t *r = png_get_io_ptr(png);
-	long got = take(r, data, n);
+	long got = imgr_take(r, data, n);
 	if (got < 0)
 		png_error(png, "read error");
 	if ((size_t)got < n)
@@ -205,7 +206,7 @@ static void png_rerr(png_structp png, png_const_charp msg)
 	dev_imgr_t *r = png_get_error_ptr(png);
 	if (!r->ioerr)
 		snprintf(r->err, sizeof r->err, "%s: byte %llu: bad PNG: %s", r->name,
-			(unsigned long long)offset(r), msg);
+			(unsigned long long)imgr_offset(r), msg);
 	png_longjmp(png, 1);
 }
 
@@ -237,14 +238,14 @@ static int png_open(dev_imgr_t *r)
 	int depth, type, interlace;
 	png_get_IHDR(r->png, r->info, &w, &h, &depth, &type, &interlace, NULL, NULL);
 	if (interlace != PNG_INTERLACE_NONE)
-		return bad(r, 28, "interlaced PNG is not supported (it cannot be read a row at a time)");
+		return imgr_bad(r, 28, "interlaced PNG is not supported (it cannot be read a row at a time)");
 	png_set_expand(r->png);
 	png_set_scale_16(r->png);
 	png_set_gray_to_rgb(r->png);
 	png_read_update_info(r->png, r->info);
 	r->channels = png_get_channels(r->png, r->info);
 	if (r->channels != 3 && r->channels != 4)
-		return bad(r, 16, "unexpected PNG channel count");
+		return imgr_bad(r, 16, "unexpected PNG channel count");
 	r->width = w;
 	r->height = h;
 	r->prow = malloc((size_t)w * r->channels);
@@ -277,8 +278,9 @@ static int png_finish(dev_imgr_t *r)
 
 /* ---- the reader ---- */
 
-int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		dev_imgr_t **out, char *err, size_t errlen)
+/* Open, the format told by the magic, or forced (a dump of fsize bytes). */
+static int open_as(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		const imgr_fmt_t *force, uint64_t fsize, dev_imgr_t **out, char *err, size_t errlen)
 {
 	*out = NULL;
 	dev_imgr_t *r = calloc(1, sizeof *r);
@@ -308,7 +310,12 @@ int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, co
 		r->len += (size_t)n;
 	}
 	int rc = r->ioerr ? -74 : 0;
-	if (rc == 0) {
+	r->fsize = fsize;
+	if (rc == 0 && force) {
+		r->ops = force;
+		r->fmt = DEV_FMT_UNKNOWN;
+		rc = force->open(r);
+	} else if (rc == 0) {
 		const unsigned char *b = r->buf;
 		if (r->len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
 			r->fmt = DEV_FMT_PNG, rc = png_open(r);
@@ -316,8 +323,18 @@ int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, co
 			r->fmt = DEV_FMT_PPM, rc = ppm_open(r);
 		else if (r->len >= 4 && memcmp(b, DEV_RLE_MAGIC, 4) == 0)
 			r->fmt = DEV_FMT_RLE, rc = rle_open(r);
+		else if (imgr_is_pcx(b, r->len))
+			r->ops = &imgr_pcx;
+		else if (imgr_is_bmp(b, r->len))
+			r->ops = &imgr_bmp;
+		else if (imgr_is_dpx(b, r->len))
+			r->ops = &imgr_dpx;
+		else if (imgr_is_cineon(b, r->len))
+			r->ops = &imgr_cineon;
 		else
-			rc = bad(r, 0, "not a PNG, PPM (P6) or Locus RLE image");
+			rc = imgr_bad(r, 0, "not a PNG, PPM (P6), Locus RLE, PCX, BMP, DPX or Cineon image");
+		if (r->ops)
+			r->fmt = DEV_FMT_UNKNOWN, rc = r->ops->open(r);
 	}
 	if (rc) {
 		snprintf(err, errlen, "%s", r->err);
@@ -326,6 +343,18 @@ int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, co
 	}
 	*out = r;
 	return 0;
+}
+
+int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		dev_imgr_t **out, char *err, size_t errlen)
+{
+	return open_as(fn, user, head, nhead, name, NULL, 0, out, err, errlen);
+}
+
+int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		uint64_t size, dev_imgr_t **out, char *err, size_t errlen)
+{
+	return open_as(fn, user, head, nhead, name, &imgr_fbdump, size, out, err, errlen);
 }
 
 unsigned dev_imgr_width(const dev_imgr_t *r)
@@ -344,7 +373,7 @@ int dev_imgr_row(dev_imgr_t *r, uint8_t *row)
 		snprintf(r->err, sizeof r->err, "%s: read past the last row", r->name);
 		return -70;
 	}
-	int rc = r->fmt == DEV_FMT_PNG ? png_row(r, row) : r->fmt == DEV_FMT_PPM ? ppm_row(r, row)
+	int rc = r->ops ? r->ops->row(r, row) : r->fmt == DEV_FMT_PNG ? png_row(r, row) : r->fmt == DEV_FMT_PPM ? ppm_row(r, row)
 		: rle_row(r, row);
 	if (rc == 0)
 		r->y++;
@@ -353,12 +382,14 @@ int dev_imgr_row(dev_imgr_t *r, uint8_t *row)
 
 int dev_imgr_end(dev_imgr_t *r)
 {
+	if (r->ops)
+		return r->ops->end ? r->ops->end(r) : 0;
 	if (r->fmt == DEV_FMT_PNG)
 		return png_finish(r);
 	if (r->fmt == DEV_FMT_RLE) {
-		int rc = fill(r);
+		int rc = imgr_fill(r);
 		if (rc)
-			return rc < 0 ? rc : bad(r, offset(r), "trailing bytes after the RLE image");
+			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "trailing bytes after the RLE image");
 	}
 	return 0;
 }
@@ -372,6 +403,8 @@ void dev_imgr_free(dev_imgr_t *r)
 {
 	if (!r)
 		return;
+	if (r->ops && r->ops->done)
+		r->ops->done(r);
 	if (r->png)
 		png_destroy_read_struct(&r->png, r->info ? &r->info : NULL, NULL);
 	free(r->prow);

@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include "locus_meta.h"
 #include "transport.h"
+#include "meta_import.h"
 
 #define EX_USAGE 64
 #define EX_DATAERR 65
@@ -21,6 +22,7 @@ static const char usage_text[] =
 	"       locus-meta fmt [IN] [-o OUT]\n"
 	"       locus-meta info FILE\n"
 	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
+	"       locus-meta import [IN] [-o OUT]   (HP-GL, HP-GL/2, plotutils metafiles)\n"
 	"Check, canonically format, describe or convert a Locus meta-language file\n"
 	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
 	"file is written to a new temporary beside it and renamed only when the whole\n"
@@ -368,6 +370,8 @@ int main(int argc, char **argv)
 		return cmd_copy(in ? in : "-", out, META_ENC_TEXT);
 	if (strcmp(sub, "convert") == 0)
 		return cmd_copy(in ? in : "-", out, enc);
+	if (strcmp(sub, "import") == 0)
+		return mimp_run(in ? in : "-", out);   /* drivers/import.c */
 	fprintf(stderr, "locus-meta: unknown subcommand '%s'\n", sub);
 	return usage(NULL);
 }

@@ -1,5 +1,5 @@
 #!/bin/sh
-# t_diff.sh: locus-diff compares PNG/PPM/RLE/meta pictures; exit 0 same, 1 differs, 65 bad, 66 missing.
+# t_diff.sh: locus-diff compares PNG/PPM/RLE/meta pictures; exit 0 same, 1 differs, 2 trouble (bad, missing).
 . tests/lib.sh
 D=$BIN/locus-diff
 G=fixtures/raster
@@ -10,7 +10,7 @@ check "--help" "$D" --help
 expect_exit 0 "PNG = RLE" "$D" $G/f-test.raster.png $G/f-test.raster.rle
 expect_exit 0 "meta file rendered = its golden" "$D" fixtures/meta/f-test.meta $G/f-test.raster.png
 expect_exit 0 "page 2 of a meta file = its golden" "$D" --page 2 fixtures/meta/multipage.meta $G/multipage.raster-002.png
-expect_exit 65 "no page 4" "$D" --page 4 fixtures/meta/multipage.meta $G/multipage.raster-002.png
+expect_exit 2 "no page 4" "$D" --page 4 fixtures/meta/multipage.meta $G/multipage.raster-002.png
 # change 3 pixels of the PPM by hand: 3 differ, max difference and PSNR reported
 cp $G/f-test.raster.ppm "$T/m.ppm"
 printf '\000\000\000\000\000\000\000\000\000' | dd of="$T/m.ppm" bs=1 seek=15 conv=notrunc 2>/dev/null
@@ -25,10 +25,10 @@ expect_exit 0 "--max-diff 232 ignores them" "$D" --max-diff 232 $G/f-test.raster
 expect_exit 1 "different sizes differ" "$D" $G/f-test.raster.png $G/fills.raster.png
 head -c 100 $G/f-test.raster.rle > "$T/t.rle"
 "$D" "$T/t.rle" $G/f-test.raster.png 2> "$T/err"
-[ $? = 65 ] && grep -q "byte [0-9]*: truncated RLE data" "$T/err" && ok "truncated RLE: 65 with byte offset" || notok "truncated RLE: $(cat "$T/err")"
+[ $? = 2 ] && grep -q "byte [0-9]*: truncated RLE data" "$T/err" && ok "truncated RLE: 2 with byte offset" || notok "truncated RLE: $(cat "$T/err")"
 echo "hello" > "$T/x.txt"
-expect_exit 65 "not a picture: 65" "$D" "$T/x.txt" $G/f-test.raster.png
-expect_exit 65 "bad meta: 65" "$D" fixtures/bad/bad-colour.meta $G/f-test.raster.png
-expect_exit 66 "missing file: 66" "$D" "$T/none.png" $G/f-test.raster.png
-expect_exit 64 "one file: 64" "$D" $G/f-test.raster.png
+expect_exit 2 "not a picture: 2" "$D" "$T/x.txt" $G/f-test.raster.png
+expect_exit 2 "bad meta: 2" "$D" fixtures/bad/bad-colour.meta $G/f-test.raster.png
+expect_exit 2 "missing file: 2" "$D" "$T/none.png" $G/f-test.raster.png
+expect_exit 2 "one file: 2" "$D" $G/f-test.raster.png
 done_tests
