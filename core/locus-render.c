@@ -1,6 +1,7 @@
 /* locus-render.c: render a scene file into a meta file (ray tracing, octree, contours, Voronoi, wireframes). */
 #include "scene.h"
 #include "transport.h"
+#include "run.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -99,7 +100,11 @@ int main(int argc, char **argv)
 	int rc = scene_load(in, &sc, err, sizeof err);
 	if (rc < 0) {
 		fprintf(stderr, "%s\n", err);
-		return rc == -2 ? EX_NOINPUT : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+		/* memory running out while opening or parsing is 70, whatever scene_load returned:
+		 * core/expr.c reports it as "expected memory for the expression" (code -1) */
+		if (rc == SCENE_ENOMEM || dev_err_is_oom(err) || strstr(err, ": expected memory for "))
+			return EX_SOFTWARE;
+		return rc == -2 ? EX_NOINPUT : EX_DATAERR;
 	}
 	if (!quiet)
 		for (size_t i = 0; i < sc->nwarnings; i++)
@@ -112,7 +117,7 @@ int main(int argc, char **argv)
 	if (!f) {
 		fprintf(stderr, "%s\n", err);
 		scene_free(sc);
-		return EX_IOERR;
+		return dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, binary ? META_ENC_BINARY : META_ENC_TEXT);
 	scene_opts_t o = {(unsigned)threads, NULL, NULL};
@@ -125,15 +130,16 @@ int main(int argc, char **argv)
 		status = EX_SOFTWARE;
 	} else if ((rc = scene_render(sc, w, &o, &st, err, sizeof err)) < 0) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : err);
-		status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+		status = io_failed(f) ? (dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR)
+			: rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");
-		status = EX_IOERR;
+		status = io_failed(f) && dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR;
 	}
 	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
 		fprintf(stderr, "%s\n", err);
-		status = EX_IOERR;
+		status = dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 	}
 	if (!status && !quiet)
 		for (size_t i = nw0; i < sc->nwarnings; i++)
