@@ -127,6 +127,8 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 				snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
 		}
 	}
+	if (status == 74 && dev_err_is_oom(err))
+		status = 70;   /* a device's write path that ran out of memory (a PNG writer, say) */
 	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
 	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
