@@ -120,11 +120,11 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 			if (status == 74 && out && io_failed(out)) {
 				snprintf(err, errlen, "%s", io_error(out));   /* names the output and the cause */
 				status = io_status(err, 74);
-			}
-			else if (d->reader_error || status != 65)
+			} else if (d->reader_error || status != 65) {
 				snprintf(err, errlen, "%s", dev_error(d));
-			else
+			} else {
 				snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
+			}
 		}
 	}
 	if (status == 74 && dev_err_is_oom(err))

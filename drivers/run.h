@@ -16,7 +16,9 @@ typedef struct {
 
 /* Run the job. A file output gets one file per page: out itself when the input has one page,
  * else out with -001, -002 ... before its suffix; all are written to temporaries and renamed
- * only when the whole input replayed without error (transport.h). An output written in place
+ * only when the whole input replayed without error (transport.h); every page name is made before
+ * the first rename, and a page that cannot be renamed removes the pages renamed before it, so a
+ * job leaves all its pages or none. An output written in place
  * (stdout, a device node, a FIFO, a socket) takes the pages one after another. Returns a
  * sysexits status (0 ok, 64 bad device option, 65 bad input, 66 no input, 70 out of memory,
  * 74 I/O: the message then names the output and the cause) with a one-line message in err. */
