@@ -3,6 +3,7 @@
 #include "scene.h"
 #include "scene_lex.h"
 #include "transport.h"
+#include "run.h"
 
 #include <errno.h>
 #include <math.h>
@@ -208,7 +209,11 @@ int main(int argc, char **argv)
 		free(text);
 	if (rc < 0) {
 		say(err);
-		return rc == -2 ? EX_NOINPUT : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+		/* memory running out while opening or parsing is 70, whatever the parser returned:
+		 * core/expr.c reports it as "expected memory for the expression" (code -1) */
+		if (rc == SCENE_ENOMEM || dev_err_is_oom(err) || strstr(err, ": expected memory for "))
+			return EX_SOFTWARE;
+		return rc == -2 ? EX_NOINPUT : EX_DATAERR;
 	}
 	if (!quiet)
 		for (size_t i = 0; i < sc->nwarnings; i++)
@@ -227,7 +232,7 @@ int main(int argc, char **argv)
 		say(err);
 		scene_free(sc);
 		free(text);
-		return EX_IOERR;
+		return dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, binary ? META_ENC_BINARY : META_ENC_TEXT);
 	scene_opts_t o = {(unsigned)threads, NULL, NULL};
@@ -248,7 +253,7 @@ int main(int argc, char **argv)
 				scene_t *next;
 				if ((rc = scene_parse_frame(text, name, fr * dt, &next, err, sizeof err)) < 0) {
 					say(err);
-					status = rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+					status = rc == SCENE_ENOMEM || dev_err_is_oom(err) ? EX_SOFTWARE : EX_DATAERR;
 					break;
 				}
 				scene_free(sc);
@@ -256,7 +261,8 @@ int main(int argc, char **argv)
 			}
 			if ((rc = scene_render(sc, w, &o, &one, err, sizeof err)) < 0) {
 				say(io_failed(f) ? io_error(f) : err);
-				status = io_failed(f) ? EX_IOERR : rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
+				status = io_failed(f) ? (dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR)
+					: rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 				break;
 			}
 			add_stats(&st, &one);
@@ -270,11 +276,11 @@ int main(int argc, char **argv)
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");
-		status = EX_IOERR;
+		status = io_failed(f) && dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR;
 	}
 	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
 		say(err);
-		status = EX_IOERR;
+		status = dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 	}
 	if (!status && !quiet && frame1 == frame0)
 		for (size_t i = nw0; i < sc->nwarnings; i++)

@@ -61,8 +61,7 @@ static void begin_obj(pdf_t *s, unsigned n)
 static int failed(pdf_t *s)
 {
 	if (s->p.out.err)
-		return dev_fail(s->p.dev, s->p.out.err == META_ENOMEM ? META_ENOMEM : META_EIO,
-			"%s: write failed", io_name(s->p.dev->out));
+		return psd_out_fail(&s->p);
 	return 0;
 }
 

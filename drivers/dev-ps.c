@@ -36,7 +36,7 @@ static int ps_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *s
 		return rc;
 	psp_tok(s, "S");
 	psp_newline(s);
-	return s->p.out.err ? dev_fail(d, META_EIO, "%s: write failed", io_name(d->out)) : 0;
+	return s->p.out.err ? psd_out_fail(&s->p) : 0;
 }
 
 static int ps_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
@@ -51,7 +51,7 @@ static int ps_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 		return rc;
 	psp_tok(s, st->rule == META_RULE_EVEN_ODD ? "E" : "F");
 	psp_newline(s);
-	return s->p.out.err ? dev_fail(d, META_EIO, "%s: write failed", io_name(d->out)) : 0;
+	return s->p.out.err ? psd_out_fail(&s->p) : 0;
 }
 
 /* ---- rasters ---- */
@@ -138,7 +138,7 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 	pse_puts(o, "grestore\n");
 	s->known = 0;   /* setcolorspace reset the colour */
 	if (o->err)
-		rc = dev_fail(p->dev, META_EIO, "%s: write failed", io_name(p->dev->out));
+		rc = psd_out_fail(p);
 done:
 	free(sm.owned);
 	free(rle);
@@ -319,7 +319,7 @@ static int ps_begin(dev_device_t *d, const dev_page_t *pg)
 		prolog_section(s);
 	}
 	start_page(s);
-	return p->out.err ? dev_fail(d, META_EIO, "%s: write failed", io_name(d->out)) : 0;
+	return p->out.err ? psd_out_fail(p) : 0;
 }
 
 static int finish_doc(ps_t *s)
@@ -382,7 +382,7 @@ static int ps_end(dev_device_t *d, const dev_page_t *pg)
 	if (p->per_page || p->form == PSD_EPS)
 		rc = finish_doc(s);
 	if (rc || o->err)
-		return dev_fail(d, META_EIO, "%s: write failed", io_name(d->out));
+		return o->err ? psd_out_fail(p) : dev_fail(d, META_EIO, "%s: write failed", io_name(d->out));
 	return 0;
 }
 
@@ -393,7 +393,7 @@ static int ps_close(dev_device_t *d)
 	int rc = 0;
 	if (p->doc_open && !p->per_page && d->out && p->form != PSD_EPS && p->out.t) {
 		if (finish_doc(s))
-			rc = dev_fail(d, META_EIO, "%s: write failed", io_name(d->out));
+			rc = p->out.err ? psd_out_fail(p) : dev_fail(d, META_EIO, "%s: write failed", io_name(d->out));
 	}
 	if (p->out.z)
 		pse_deflate_end(&p->out, NULL);   /* after a failure mid-page */

@@ -150,7 +150,7 @@ static void png_err(png_structp png, png_const_charp msg)
 {
 	wbuf_t *w = png_get_error_ptr(png);
 	if (!w->failed)
-		snprintf(w->err, w->errlen, "png: %s", msg);
+		snprintf(w->err, w->errlen, "png: %s", strstr(msg, "memory") ? "out of memory" : msg);   /* one wording: exit 70 */
 	w->failed = 1;
 	png_longjmp(png, 1);
 }

@@ -58,8 +58,10 @@ static void png_flush_cb(png_structp png)
 static void png_err(png_structp png, png_const_charp msg)
 {
 	dev_imgw_t *w = png_get_error_ptr(png);
+	/* libpng says "Out of memory", "insufficient memory", ...: one wording, so that the
+	 * programs tell it from an I/O error (exit 70, not 74) */
 	if (!w->io_failed)
-		snprintf(w->err, sizeof w->err, "png: %s", msg);
+		snprintf(w->err, sizeof w->err, "png: %s", strstr(msg, "memory") ? "out of memory" : msg);
 	png_longjmp(png, 1);
 }
 
@@ -78,8 +80,10 @@ static void put_be32(unsigned char *p, uint32_t v)
 static int png_start(dev_imgw_t *w)
 {
 	w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w, png_err, png_warn);
-	if (!w->png || !(w->info = png_create_info_struct(w->png)))
+	if (!w->png || !(w->info = png_create_info_struct(w->png))) {
+		snprintf(w->err, sizeof w->err, "png: out of memory");
 		return -1;
+	}
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
 	png_set_write_fn(w->png, w, png_out, png_flush_cb);
@@ -140,6 +144,11 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 		rc = w->rle ? io_write(t, h, sizeof h) : -1;
 	} else {
 		rc = png_start(w);
+	}
+	if (rc && fmt == DEV_FMT_RLE && !w->rle) {
+		snprintf(err, errlen, "out of memory");
+		dev_imgw_abort(w);
+		return NULL;
 	}
 	if (rc) {
 		snprintf(err, errlen, "%s", w->io_failed || fmt != DEV_FMT_PNG ? io_error(t) : w->err);

@@ -1,4 +1,5 @@
 /* main-ps.c: locus-ps, replay a meta file as EPS, printable PostScript or PDF. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -104,11 +105,11 @@ static int run_document(const dev_job_t *job, char *err, size_t errlen)
 {
 	meta_reader_t *r = meta_reader_open(job->in, err, errlen);
 	if (!r)
-		return 66;
+		return errno == ENOMEM ? 70 : 66;
 	io_transport_t *t = io_open_write(job->out, err, errlen);
 	if (!t) {
 		meta_reader_free(r);
-		return 74;
+		return dev_err_is_oom(err) ? 70 : 74;
 	}
 	dev_device_t *d = dev_new(job->ops, t);
 	if (!d) {
@@ -121,15 +122,16 @@ static int run_document(const dev_job_t *job, char *err, size_t errlen)
 	int status = 0, rc = dev_play(r, d);
 	if (rc) {
 		status = status_of(rc);
-		if (d->reader_error || status != 65)
+		if (status == 74 && io_failed(t)) {
+			snprintf(err, errlen, "%s", io_error(t));   /* names the output and the cause */
+			status = dev_err_is_oom(err) ? 70 : 74;
+		} else if (d->reader_error || status != 65)
 			snprintf(err, errlen, "%s", dev_error(d));
 		else
 			snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
 	}
-	if (io_close(t, status ? IO_ABORT : IO_COMMIT) && status == 0) {
-		snprintf(err, errlen, "%s: write failed", strcmp(job->out, "-") ? job->out : "<stdout>");
-		status = 74;
-	}
+	if (io_close_err(t, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen) && status == 0)
+		status = dev_err_is_oom(err) ? 70 : 74;   /* err names the output and the cause */
 	dev_free(d);
 	meta_reader_free(r);
 	return status;

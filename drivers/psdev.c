@@ -6,6 +6,7 @@
 #include <strings.h>
 #include <time.h>
 #include "psdev.h"
+#include "run.h"
 
 #define MM_PT (72.0 / 25.4)
 #define BLOCK_MAX ((size_t)4 << 20)    /* bytes of merged image rows held before emitting */
@@ -291,6 +292,18 @@ static int emit(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const 
 	if (k >= n)
 		return p->hooks.rect(p, x, y, w, h, (meta_rgb_t)rgb[0] << 16 | (meta_rgb_t)rgb[1] << 8 | rgb[2]);
 	return p->hooks.image(p, x, y, w, h, rgb);
+}
+
+int psd_out_fail(psd_t *p)
+{
+	io_transport_t *t = p->dev->out;
+	if (p->out.err == META_ENOMEM)
+		return dev_fail(p->dev, META_ENOMEM, "out of memory");
+	if (t && io_failed(t)) {
+		const char *m = io_error(t);
+		return dev_fail(p->dev, dev_err_is_oom(m) ? META_ENOMEM : META_EIO, "%s", m);
+	}
+	return dev_fail(p->dev, META_EIO, "%s: write failed", t ? io_name(t) : "<output>");
 }
 
 int psd_flush(psd_t *p)

@@ -106,6 +106,9 @@ int psd_row(psd_t *p, unsigned x, unsigned y, const meta_run_t *runs, size_t nru
 int psd_flush(psd_t *p);
 /* Free the block's memory. */
 void psd_release(psd_t *p);
+/* Report the writer's failure (p->out.err) on the device: out of memory as META_ENOMEM, a failed
+ * transport with its own line (the output and strerror), else "OUTPUT: write failed". */
+int psd_out_fail(psd_t *p);
 
 /* An image's samples as the device writes them: RGB, grey (luminance) or, with a dither,
  * one bit a printer dot (1 = white), rows top first, each row padded to whole bytes. */

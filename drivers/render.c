@@ -45,6 +45,8 @@ struct dev_render {
 	uint64_t spooled, spool_max; /* bytes in the spool; its limit */
 	char spool_dir[200];    /* where the (unlinked) spool file lives, for messages */
 	char err[320];          /* the last failure (dev_render_error) */
+	int clear_pending;      /* a spooled clear not written yet (with the next record) */
+	meta_rgb_t clear_rgb;
 	unsigned char *rbuf;    /* record payload while replaying */
 	size_t rcap;
 	/* split single-band page: a helper thread paints rows [0, mid) from records that the
@@ -331,6 +333,12 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 		return split_put(r, &h, a, na, b, nb, c, nc);
 	if (r->err[0])
 		return META_EIO;   /* sticky */
+	if (r->clear_pending) {
+		r->clear_pending = 0;
+		int rc = spool(r, REC_CLEAR, 0, r->height, &r->clear_rgb, sizeof r->clear_rgb, NULL, 0, NULL, 0);
+		if (rc)
+			return rc;
+	}
 	uint64_t need = sizeof h + na + nb + nc;
 	if (r->spooled + need > r->spool_max)
 		return spool_fail(r, 0, NULL);
@@ -400,6 +408,13 @@ int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 		scan_clear(&r->main.band, rgb);
 		if (!r->split)
 			return 0;
+	}
+	if (r->spool) {
+		/* written with the next record (or at the finish): a clear has no failure of its own
+		 * to report, so a spool write that fails is reported, as such, by what follows */
+		r->clear_pending = 1;
+		r->clear_rgb = rgb;
+		return 0;
 	}
 	return spool(r, REC_CLEAR, 0, r->height, &rgb, sizeof rgb, NULL, 0, NULL, 0);
 }
@@ -597,6 +612,11 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 			return rc;
 		out.nrows = r->height;
 		return fn(user, &out);
+	}
+	if (r->clear_pending) {
+		int rc = spool(r, REC_CLEAR, 0, r->height, &r->clear_rgb, sizeof r->clear_rgb, NULL, 0, NULL, 0);
+		if (rc)
+			return rc;
 	}
 	if (r->err[0])
 		return META_EIO;

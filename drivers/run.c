@@ -1,7 +1,9 @@
 /* run.c: one replay job for the programs: input, device, per-page outputs, exit status. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "run.h"
 
 typedef struct {
@@ -24,6 +26,21 @@ char *dev_page_name(const char *out, unsigned page)
 	return s;
 }
 
+int dev_err_is_oom(const char *msg)
+{
+	static const char tail[] = "out of memory";
+	size_t n = msg ? strlen(msg) : 0;
+	if (n >= sizeof tail - 1 && strcmp(msg + n - (sizeof tail - 1), tail) == 0)
+		return 1;
+	return n && strstr(msg, strerror(ENOMEM)) != NULL;
+}
+
+/* The status of a failure whose message is err: 70 when it says memory ran out, else io. */
+static int io_status(const char *err, int io)
+{
+	return dev_err_is_oom(err) ? 70 : io;
+}
+
 static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 {
 	job_state_t *js = d->user;
@@ -34,7 +51,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 		io_transport_t *t = d->out;
 		d->out = NULL;
 		if (io_close(t, IO_KEEP)) {
-			int rc = dev_fail(d, META_EIO, "%s", io_error(t));
+			int rc = dev_fail(d, dev_err_is_oom(io_error(t)) ? META_ENOMEM : META_EIO, "%s", io_error(t));
 			io_finish(t, 0, NULL, NULL, 0);
 			return rc;
 		}
@@ -52,7 +69,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 	char err[512];
 	d->out = io_open_write(js->job->out, err, sizeof err);
 	if (!d->out)
-		return dev_fail(d, META_EIO, "%s", err);
+		return dev_fail(d, dev_err_is_oom(err) ? META_ENOMEM : META_EIO, "%s", err);
 	if (io_in_place(d->out))
 		js->shared = d->out;   /* no file per page to rename: pages follow one another */
 	return 0;
@@ -76,7 +93,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	int status = 0;
 	meta_reader_t *r = meta_reader_open(job->in, err, errlen);
 	if (!r)
-		return 66;
+		return errno == ENOMEM ? 70 : 66;
 	dev_device_t *d = dev_new(job->ops, NULL);
 	if (!d) {
 		meta_reader_free(r);
@@ -92,7 +109,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	if (job->out && strcmp(job->out, "-") == 0) {
 		js.shared = io_open_write("-", err, errlen);
 		if (!js.shared)
-			status = 74;
+			status = io_status(err, 74);
 		d->out = js.shared;
 	}
 	if (status == 0) {
@@ -100,30 +117,55 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 		io_transport_t *out = d->out ? d->out : js.shared;
 		if (rc) {
 			status = status_of(rc);
-			if (status == 74 && out && io_failed(out))
+			if (status == 74 && out && io_failed(out)) {
 				snprintf(err, errlen, "%s", io_error(out));   /* names the output and the cause */
-			else if (d->reader_error || status != 65)
+				status = io_status(err, 74);
+			} else if (d->reader_error || status != 65) {
 				snprintf(err, errlen, "%s", dev_error(d));
-			else
+			} else {
 				snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
+			}
 		}
 	}
+	if (status == 74 && dev_err_is_oom(err))
+		status = 70;   /* a device's write path that ran out of memory (a PNG writer, say) */
 	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
 	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
 		&& status == 0)
-		status = 74;
-	/* every page replayed: rename them all (or remove them all) */
-	for (size_t k = 0; k < js.npages; k++) {
-		char *name = js.npages > 1 ? dev_page_name(job->out, (unsigned)k + 1) : NULL;
-		if (js.npages > 1 && !name && status == 0) {
-			snprintf(err, errlen, "out of memory");
+		status = io_status(err, 74);
+	/* every page replayed: name them all first (a name that cannot be made renames nothing),
+	 * then rename them all, or remove them all */
+	char **names = NULL;
+	if (status == 0 && js.npages > 1) {
+		names = calloc(js.npages, sizeof *names);
+		for (size_t k = 0; names && k < js.npages; k++)
+			if (!(names[k] = dev_page_name(job->out, (unsigned)k + 1))) {
+				for (size_t j = 0; j < k; j++)
+					free(names[j]);
+				free(names);
+				names = NULL;
+			}
+		if (!names) {
+			snprintf(err, errlen, "%s: out of memory for the page names", job->out);
 			status = 70;
 		}
-		if (io_finish(js.pages[k], status == 0, name, err, errlen) && status == 0)
-			status = 74;
-		free(name);
 	}
+	size_t done = 0;   /* pages renamed into place */
+	for (size_t k = 0; k < js.npages; k++) {
+		int commit = status == 0;
+		if (io_finish(js.pages[k], commit, names ? names[k] : NULL, err, errlen) && commit)
+			status = io_status(err, 74);
+		else if (commit)
+			done++;
+	}
+	/* a page that could not be renamed (its name resolved out of memory, say) takes the pages
+	 * before it away again: a job leaves all its pages or none */
+	for (size_t k = 0; names && status && k < done; k++)
+		unlink(names[k]);
+	for (size_t k = 0; names && k < js.npages; k++)
+		free(names[k]);
+	free(names);
 	free(js.pages);
 	dev_free(d);
 	meta_reader_free(r);

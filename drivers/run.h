@@ -16,11 +16,17 @@ typedef struct {
 
 /* Run the job. A file output gets one file per page: out itself when the input has one page,
  * else out with -001, -002 ... before its suffix; all are written to temporaries and renamed
- * only when the whole input replayed without error (transport.h). An output written in place
+ * only when the whole input replayed without error (transport.h); every page name is made before
+ * the first rename, and a page that cannot be renamed removes the pages renamed before it, so a
+ * job leaves all its pages or none. An output written in place
  * (stdout, a device node, a FIFO, a socket) takes the pages one after another. Returns a
  * sysexits status (0 ok, 64 bad device option, 65 bad input, 66 no input, 70 out of memory,
  * 74 I/O: the message then names the output and the cause) with a one-line message in err. */
 int dev_run(const dev_job_t *job, char *err, size_t errlen);
+/* 1 if a one-line message (a transport's, a reader's) says memory ran out: it ends in
+ * "out of memory" or carries strerror(ENOMEM). The transport keeps no error code, so the
+ * programs map such a message to exit 70 rather than 74 (or 66 for an input). */
+int dev_err_is_oom(const char *msg);
 /* "pic.png", 3 -> "pic-003.png" (malloc'd). */
 char *dev_page_name(const char *out, unsigned page);
 

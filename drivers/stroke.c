@@ -83,7 +83,7 @@ static void disc(stroker_t *s, scan_pt_t v)
 	if ((double)v.y + r < s->b->jlo * 1000.0 || (double)v.y - r > s->b->jhi * 1000.0 ||
 			(double)v.x + r < 0 || (double)v.x - r > s->b->width * 1000.0)
 		return;
-	if (!s->disc && (s->rc = make_disc(s)) != 0)
+	if (!s->disc && (s->rc = make_disc(s) ? META_ENOMEM : s->rc) != 0)   /* a success keeps an earlier failure */
 		return;
 	scan_path_t *pc = scan_ctx_piece(s->c);
 	scan_path_reset(pc);

@@ -9,6 +9,7 @@
 #include "locus_meta.h"
 #include "transport.h"
 #include "meta_import.h"
+#include "run.h"
 
 #define EX_USAGE 64
 #define EX_DATAERR 65
@@ -47,6 +48,12 @@ static int stdout_status(void)
 	return EX_IOERR;
 }
 
+/* The status of an output failure whose message is msg: 70 when memory ran out, else 74. */
+static int io_status(const char *msg)
+{
+	return dev_err_is_oom(msg) ? EX_SOFTWARE : EX_IOERR;
+}
+
 /* Map a reader/writer error code to an exit status. */
 static int status_of(int rc)
 {
@@ -58,8 +65,8 @@ static meta_reader_t *open_in(const char *path, int *status)
 	char err[512];
 	meta_reader_t *r = meta_reader_open(path, err, sizeof err);
 	if (!r) {
+		*status = errno == ENOMEM ? EX_SOFTWARE : EX_NOINPUT;
 		fprintf(stderr, "%s\n", err);
-		*status = EX_NOINPUT;
 	}
 	return r;
 }
@@ -78,7 +85,7 @@ static io_transport_t *out_open(const char *path, int *status)
 	io_transport_t *o = io_open_write(path ? path : "-", err, sizeof err);
 	if (!o) {
 		fprintf(stderr, "%s\n", err);
-		*status = EX_IOERR;
+		*status = io_status(err);
 	}
 	return o;
 }
@@ -89,7 +96,7 @@ static int out_close(io_transport_t *o, int status)
 	char err[600];
 	if (io_close_err(o, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && status == 0) {
 		fprintf(stderr, "%s\n", err);
-		status = EX_IOERR;
+		status = io_status(err);
 	}
 	return status;
 }
@@ -142,7 +149,7 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 				fprintf(stderr, "%s\n", io_error(o));
 			else
 				fprintf(stderr, "%s: %s\n", io_is_std(o) ? "<stdout>" : io_name(o), meta_writer_error(w));
-			status = status_of(rc);
+			status = io_failed(o) ? io_status(io_error(o)) : status_of(rc);
 			break;
 		}
 	}
@@ -152,7 +159,7 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 	}
 	if (w && (rc = meta_writer_close(w)) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : "locus-meta: write error");
-		status = EX_IOERR;
+		status = io_failed(o) ? io_status(io_error(o)) : EX_IOERR;
 	}
 	meta_reader_free(r);
 	return out_close(o, status);
@@ -296,8 +303,8 @@ static int cmd_info(const char *path)
 	}
 	(void)imgrow;
 	if (rc < 0) {
-		status = io_flush(o) < 0 ? EX_IOERR : status_of(rc);   /* what was read so far, first */
-		fprintf(stderr, "%s\n", status == EX_IOERR ? io_error(o) : meta_reader_error(r));
+		status = io_flush(o) < 0 ? io_status(io_error(o)) : status_of(rc);   /* what was read so far, first */
+		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : meta_reader_error(r));
 		meta_reader_free(r);
 		return out_close(o, status);
 	}

@@ -140,7 +140,8 @@ typedef struct meta_reader meta_reader_t;
  * the first bytes. Returns NULL only when out of memory. */
 meta_reader_t *meta_reader_new(meta_read_fn fn, void *user, const char *name);
 /* Convenience: open a path ("-" = stdin). On failure returns NULL and, if
- * err is non-NULL, copies a message into err (errlen bytes). */
+ * err is non-NULL, copies a message into err (errlen bytes); errno is then
+ * ENOMEM when memory ran out (exit 70), else the open's cause (exit 66). */
 meta_reader_t *meta_reader_open(const char *path, char *err, size_t errlen);
 /* Convenience: read from a memory buffer (not copied; it must outlive the
  * reader). name is used in messages (NULL: "<memory>"). NULL if out of memory. */

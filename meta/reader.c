@@ -82,6 +82,7 @@ meta_reader_t *meta_reader_open(const char *path, char *err, size_t errlen)
 			close(fd);
 		if (err && errlen)
 			meta_fmt(err, errlen, "%s: out of memory", path);
+		errno = ENOMEM;   /* tells the caller this from a missing file (locus_meta.h) */
 		return NULL;
 	}
 	r->fd = fd;
