@@ -584,17 +584,22 @@ static double or_opt(popt_set_t *s, popt_pt_t *F, popt_pt_t *L, popt_pt_t start,
 	return gained;
 }
 
-static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int window, double t0)
+/* Improve the order within the time budget; the passes made in *npasses. 0, or -1 when out of
+ * memory (the order is then the greedy one: the caller fails the page rather than plot it in
+ * another order than asked). */
+static int two_opt(popt_set_t *s, popt_pt_t start, double budget, int window, double t0,
+		unsigned *npasses)
 {
 	size_t n = s->npaths;
 	unsigned passes = 0;
+	*npasses = 0;
 	if (n < 3)
 		return 0;
 	popt_pt_t *F = malloc(n * sizeof *F), *L = malloc(n * sizeof *L);
 	if (!F || !L) {
 		free(F);
 		free(L);
-		return 0;
+		return -1;
 	}
 	unsigned char *act2 = malloc(n), *acto = malloc(n);
 	if (!act2 || !acto) {
@@ -602,7 +607,7 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 		free(L);
 		free(act2);
 		free(acto);
-		return 0;
+		return -1;
 	}
 	memset(act2, 1, n);
 	memset(acto, 1, n);
@@ -652,7 +657,8 @@ static unsigned two_opt(popt_set_t *s, popt_pt_t start, double budget, int windo
 	free(L);
 	free(act2);
 	free(acto);
-	return passes;
+	*npasses = passes;
+	return 0;
 }
 
 int popt_optimise(popt_set_t *s, popt_pt_t start, const popt_opts_t *o, popt_stats_t *st)
@@ -676,7 +682,8 @@ int popt_optimise(popt_set_t *s, popt_pt_t start, const popt_opts_t *o, popt_sta
 	}
 	st->travel_greedy = popt_travel(s, start);
 	if (o->reorder && o->budget_s > 0) {
-		st->twoopt_passes = two_opt(s, start, o->budget_s, o->window > 0 ? o->window : 64, t0);
+		if (two_opt(s, start, o->budget_s, o->window > 0 ? o->window : 64, t0, &st->twoopt_passes))
+			return -1;
 		rotate_closed(s, start);
 	}
 	st->travel_after = popt_travel(s, start);
