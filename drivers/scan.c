@@ -159,12 +159,10 @@ static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 
 static inline void edge_step(edge_t *e)
 {
-	e->i += e->sq;
-	e->r -= e->sr;
-	if (e->r < 0) {
-		e->r += e->d;
-		e->i++;
-	}
+	/* without a branch: whether the remainder went below zero is close to a coin toss */
+	int64_t r = e->r - e->sr, neg = -(int64_t)(r < 0);   /* -1 when r < 0 */
+	e->r = r + (e->d & neg);
+	e->i += e->sq - neg;
 }
 
 /* Paint pixels [a, b) of page row j (already known to be inside the band). */
