@@ -4,8 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 #include "cli.h"
+#include "device.h"
 
-enum { OPT_HELP = 0x1000, OPT_VERSION, OPT_BAND_ROWS, OPT_MEM_BUDGET };
+_Static_assert(CLI_AA_MAX == DEV_AA_MAX, "cli.h and device.h agree on the largest factor");
+
+enum { OPT_HELP = 0x1000, OPT_VERSION, OPT_BAND_ROWS, OPT_MEM_BUDGET, OPT_ANTIALIAS };
 
 static const struct option common[] = {
 	{ "output", required_argument, NULL, 'o' },
@@ -13,6 +16,7 @@ static const struct option common[] = {
 	{ "version", no_argument, NULL, OPT_VERSION },
 	{ "band-rows", required_argument, NULL, OPT_BAND_ROWS },
 	{ "mem-budget", required_argument, NULL, OPT_MEM_BUDGET },
+	{ "antialias", optional_argument, NULL, OPT_ANTIALIAS },
 };
 #define NCOMMON (sizeof common / sizeof common[0])
 
@@ -66,6 +70,28 @@ int cli_set_option(cli_t *c, const char *key, const char *value)
 	return 0;
 }
 
+/* The help line of --antialias, printed after a usage text that does not describe it. */
+static const char aa_help[] =
+	"  --antialias[=K]  raster devices: K x K samples per pixel averaged in linear light\n"
+	"                   (default K " CLI_AA_DEFAULT_STR "; 0 or 1 = exact, the default mode; at most 16)\n";
+
+/* --antialias[=K] or --antialias K (a separate word only when it is all digits, so that
+ * `--antialias in.meta` still reads in.meta): sets the device option antialias=K, which the
+ * framework checks and takes (docs/drivers.md, "Anti-aliasing"). */
+static int antialias(cli_t *c, int argc, char **argv)
+{
+	const char *k = optarg;
+	if (!k && optind < argc && argv[optind][0] >= '0' && argv[optind][0] <= '9' &&
+			strspn(argv[optind], "0123456789") == strlen(argv[optind]))
+		k = argv[optind++];
+	unsigned long v;
+	if (!k)
+		k = CLI_AA_DEFAULT_STR;
+	else if (cli_number(k, 0, CLI_AA_MAX, &v))
+		return cli_fail(c, 64, "--antialias takes 0 (exact) or 2 to %d samples a side, not '%s'", CLI_AA_MAX, k);
+	return cli_set_option(c, "antialias", k) ? 64 : CLI_RUN;
+}
+
 /* -O a=1,b=2: each key=value through cli_set_option. */
 static int add_options(cli_t *c, const char *arg)
 {
@@ -106,6 +132,8 @@ int cli_parse(cli_t *c, int argc, char **argv)
 		switch (ch) {
 		case 'h': case OPT_HELP:
 			fputs(c->usage, stdout);
+			if (!strstr(c->usage, "--antialias"))
+				fputs(aa_help, stdout);
 			st = 0;
 			break;
 		case OPT_VERSION:
@@ -129,6 +157,9 @@ int cli_parse(cli_t *c, int argc, char **argv)
 				st = cli_fail(c, 64, "--mem-budget needs a size in MiB, not '%s'", optarg);
 			else
 				c->budget = (size_t)v << 20;
+			break;
+		case OPT_ANTIALIAS:
+			st = antialias(c, argc, argv);
 			break;
 		case ':':
 			st = cli_fail(c, 64, "option '%s' needs a value (try --help)", argv[optind - 1]);

@@ -6,6 +6,8 @@
  *   -O KEY=VALUE[,...]       device options (appended to cli_t.options)
  *   --band-rows N            raster devices: rows per band
  *   --mem-budget MIB         raster devices: page buffer budget
+ *   --antialias[=K]          raster devices: the device option antialias=K (default K 4;
+ *                            `--antialias K` also works when K is all digits)
  *   -h, --help, --version
  * Program options can turn themselves into device options with cli_set_option(), so that
  * `locus-vga --mode 12h` and `locus-play -d vga -O mode=12h` are the same job.
@@ -15,6 +17,12 @@
 
 #include <getopt.h>
 #include <stddef.h>
+
+/* The factor of a bare --antialias (4 x 4 samples a pixel), and the largest one taken
+ * (device.h's DEV_AA_MAX; the framework checks it again). */
+#define CLI_AA_DEFAULT 4
+#define CLI_AA_DEFAULT_STR "4"
+#define CLI_AA_MAX 16
 
 /* cli_parse() returns this when the program should go on and run the job. */
 #define CLI_RUN (-1)

@@ -5,6 +5,9 @@
 #include <string.h>
 #include "devaa.h"
 
+/* The steps of the table that starts to_byte near its answer. */
+#define AA_ENC 4096
+
 struct devaa {
 	unsigned k, width, height;   /* the factor; the device's raster */
 	double *acc;                 /* one output row being summed, width * 3 */
@@ -12,7 +15,10 @@ struct devaa {
 	uint8_t *out;                /* finished output rows not yet handed over */
 	unsigned out_rows, out_cap, y0;
 	float lin[256], mid[255];
+	uint8_t enc[AA_ENC + 1];     /* to_byte's start: the byte of v = i / AA_ENC */
 };
+
+static uint8_t search_byte(const devaa_t *a, double v);
 
 devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
 {
@@ -35,6 +41,8 @@ devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
 	}
 	for (int c = 0; c < 255; c++)
 		a->mid[c] = (float)(((double)a->lin[c] + a->lin[c + 1]) / 2.0);
+	for (int i = 0; i <= AA_ENC; i++)
+		a->enc[i] = search_byte(a, (double)i / AA_ENC);
 	return a;
 }
 
@@ -47,7 +55,8 @@ void devaa_free(devaa_t *a)
 	free(a);
 }
 
-static uint8_t to_byte(const devaa_t *a, double v)
+/* The byte whose linear value is nearest v: the first c with v <= mid[c] (ties go down). */
+static uint8_t search_byte(const devaa_t *a, double v)
 {
 	unsigned lo = 0, hi = 255;
 	while (lo < hi) {
@@ -58,6 +67,39 @@ static uint8_t to_byte(const devaa_t *a, double v)
 			hi = m;
 	}
 	return (uint8_t)lo;
+}
+
+/* search_byte(v) for v in [0, 1], started from the table and moved to the same answer (the
+ * table's neighbours bracket it, so this is a step or two, not eight). */
+static inline uint8_t to_byte(const devaa_t *a, double v)
+{
+	if (!(v > 0))
+		return search_byte(a, v);
+	if (v >= 1)
+		return 255;
+	unsigned c = a->enc[(unsigned)(v * AA_ENC)];
+	while (c < 255 && v > a->mid[c])
+		c++;
+	while (c > 0 && !(v > a->mid[c - 1]))
+		c--;
+	return (uint8_t)c;
+}
+
+/* Whether the n bytes at p and q are equal (n = 3k, a few words: inline, not memcmp). */
+static inline int same(const uint8_t *p, const uint8_t *q, size_t n)
+{
+	size_t i = 0;
+	for (; i + 8 <= n; i += 8) {
+		uint64_t u, v;
+		memcpy(&u, p + i, 8);
+		memcpy(&v, q + i, 8);
+		if (u != v)
+			return 0;
+	}
+	for (; i < n; i++)
+		if (p[i] != q[i])
+			return 0;
+	return 1;
 }
 
 static int hand_over(devaa_t *a, devaa_fn fn, void *user)
@@ -77,12 +119,17 @@ int devaa_band(devaa_t *a, const dev_band_t *in, devaa_fn fn, void *user)
 	double norm = 1.0 / ((double)k * k);
 	for (unsigned r = 0; r < in->nrows; r++) {
 		const uint8_t *q = in->pix + (size_t)r * in->stride;
-		for (unsigned x = 0; x < w; x++) {
-			double s0 = 0, s1 = 0, s2 = 0;
-			for (unsigned i = 0; i < k; i++, q += 3) {
-				s0 += a->lin[q[0]];
-				s1 += a->lin[q[1]];
-				s2 += a->lin[q[2]];
+		double s0 = 0, s1 = 0, s2 = 0;
+		size_t run = (size_t)k * 3;
+		for (unsigned x = 0; x < w; x++, q += run) {
+			/* the same k samples as the pixel before (flat areas): the same sums */
+			if (!x || !same(q, q - run, run)) {
+				s0 = s1 = s2 = 0;
+				for (unsigned i = 0; i < run; i += 3) {
+					s0 += a->lin[q[i]];
+					s1 += a->lin[q[i + 1]];
+					s2 += a->lin[q[i + 2]];
+				}
 			}
 			a->acc[3 * x] += s0;
 			a->acc[3 * x + 1] += s1;

@@ -50,7 +50,6 @@ static const struct option film_long[] = {
 	{ "display-gamma", required_argument, NULL, O_DGAMMA },
 	{ "calibration", required_argument, NULL, O_CAL },
 	{ "separations", optional_argument, NULL, O_SEP },
-	{ "antialias", required_argument, NULL, O_AA },
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -87,8 +86,6 @@ static int on_option(cli_t *c, int key, const char *arg)
 			return cli_fail(c, 64, "--size needs WxH with each side 1 to %d pixels, not '%s'",
 				META_MAX_DIM, arg);
 		return cli_set_option(c, "size", arg) ? 64 : CLI_RUN;
-	case O_AA:   /* the framework's option (docs/drivers.md, "Anti-aliasing"); it checks K */
-		return cli_set_option(c, "antialias", arg) ? 64 : CLI_RUN;
 	case O_CAL:
 		a->cal = arg;
 		return cli_set_option(c, "calibration", arg) ? 64 : CLI_RUN;

@@ -9,13 +9,15 @@
 extern const dev_ops_t dev_png_ops, dev_ppm_ops, dev_rle_ops;
 
 static const char usage[] =
-	"usage: locus-raster [-o OUT] [-f png|ppm|rle] [--band-rows N] [--mem-budget MIB] [IN]\n"
+	"usage: locus-raster [-o OUT] [-f png|ppm|rle] [--antialias[=K]] [--band-rows N] [--mem-budget MIB] [IN]\n"
 	"Replay a Locus meta file (IN, default stdin) at 24 bits per pixel into OUT (default\n"
 	"stdout). The format comes from -f, else from OUT's suffix, else PNG. With more than\n"
 	"one page, page k goes to OUT with -00k before its suffix (stdout, a device or a pipe:\n"
 	"pages in a row). A file OUT is written to a temporary beside it and renamed only when\n"
 	"the whole input replayed.\n"
 	"  -f FORMAT        png, ppm or rle\n"
+	"  --antialias[=K]  K x K samples per pixel averaged in linear light (K 2..16, default 4,\n"
+	"                   0 or 1 exact); without it the exact mode, the reference\n"
 	"  --band-rows N    render N rows at a time (default: whole page within the budget)\n"
 	"  --mem-budget MIB page buffer budget for automatic banding (default 64)\n"
 	"  --help, --version\n";

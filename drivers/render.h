@@ -10,7 +10,7 @@ typedef struct dev_render dev_render_t;
 typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
 
 /* A renderer for one page of width x height. band_rows 0 = whole page when width*height*3 fits
- * budget bytes, else as many rows as fit; band_rows >= height = whole page. A single-band page
+ * budget bytes and 16 MiB, else as many rows as fit the budget and (above 16 MiB) 8 MiB; band_rows >= height = whole page. A single-band page
  * is painted as the statements arrive (from 128 rows on by two threads: the caller's paints the
  * top 2/5, a helper thread the bottom 3/5 from the statements queued in memory, joined by
  * dev_render_finish or dev_render_free); a multi-band page spools them to a temporary file and

@@ -159,16 +159,38 @@ static int edge_init(edge_t *e, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 
 static inline void edge_step(edge_t *e)
 {
-	e->i += e->sq;
-	e->r -= e->sr;
-	if (e->r < 0) {
-		e->r += e->d;
-		e->i++;
+	/* without a branch: whether the remainder went below zero is close to a coin toss */
+	int64_t r = e->r - e->sr, neg = -(int64_t)(r < 0);   /* -1 when r < 0 */
+	e->r = r + (e->d & neg);
+	e->i += e->sq - neg;
+}
+
+/* A fill colour as 16 pixels of bytes, made once per statement so that spans are stored as
+ * 48-byte chunks (three 16-byte stores) with nothing built per row. */
+typedef struct {
+	uint8_t pat[48];
+} pen_t;
+
+static inline void pen_make(pen_t *pen, meta_rgb_t rgb)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+	for (int k = 0; k < 48; k += 3) {
+		pen->pat[k] = (uint8_t)(rgb >> 16);
+		pen->pat[k + 1] = (uint8_t)(rgb >> 8);
+		pen->pat[k + 2] = (uint8_t)rgb;
 	}
+#else
+	/* r g b r g b ... as three little-endian 64-bit words, twice (six stores, not 48: a pen
+	 * is made for every stroke piece) */
+	uint64_t c = (uint64_t)(rgb >> 16 & 255) | (uint64_t)(rgb >> 8 & 255) << 8 | (uint64_t)(rgb & 255) << 16;
+	uint64_t w[3] = { c | c << 24 | c << 48, c >> 16 | c << 8 | c << 32 | c << 56, c >> 8 | c << 16 | c << 40 };
+	memcpy(pen->pat, w, 24);
+	memcpy(pen->pat + 24, w, 24);
+#endif
 }
 
 /* Paint pixels [a, b) of page row j (already known to be inside the band). */
-static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, meta_rgb_t rgb)
+static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, const pen_t *pen)
 {
 	if (a < 0)
 		a = 0;
@@ -177,22 +199,45 @@ static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, meta
 	if (a >= e)
 		return;
 	uint8_t *p = b->pix + (size_t)(b->jhi - 1 - j) * b->stride + (size_t)a * 3;
-	uint8_t r = (uint8_t)(rgb >> 16), g = (uint8_t)(rgb >> 8), bl = (uint8_t)rgb;
 	int64_t n = e - a;
-	if (n <= 16) {
+	if (n < 16) {
+		uint8_t r = pen->pat[0], g = pen->pat[1], bl = pen->pat[2];
 		for (int64_t k = 0; k < n; k++) {
 			p[0] = r; p[1] = g; p[2] = bl;
 			p += 3;
 		}
 		return;
 	}
-	p[0] = r; p[1] = g; p[2] = bl;
-	size_t done = 3, total = (size_t)n * 3;
-	while (done < total) {
-		size_t c = done < total - done ? done : total - done;
-		memcpy(p + done, p, c);
-		done += c;
+	/* whole chunks, then one more ending at the span's end (it overlaps the last one with the
+	 * same bytes, as every chunk starts on a pixel); the doubling memmove this replaces was
+	 * most of the time of large fills */
+	uint8_t *end = p + (size_t)n * 3;
+	for (; n >= 16; n -= 16, p += 48)
+		memcpy(p, pen->pat, 48);
+	if (n)
+		memcpy(end - 48, pen->pat, 48);
+}
+
+/* paint() from a colour: short rows byte by byte, a pen only for a long one. */
+static inline void paint_rgb(const scan_band_t *b, int j, int64_t a, int64_t e, meta_rgb_t rgb)
+{
+	if (e - a < 16) {
+		if (a < 0)
+			a = 0;
+		if (e > b->width)
+			e = b->width;
+		if (a >= e)
+			return;
+		uint8_t *p = b->pix + (size_t)(b->jhi - 1 - j) * b->stride + (size_t)a * 3;
+		uint8_t r = (uint8_t)(rgb >> 16), g = (uint8_t)(rgb >> 8), bl = (uint8_t)rgb;
+		for (int64_t k = a; k < e; k++, p += 3) {
+			p[0] = r; p[1] = g; p[2] = bl;
+		}
+		return;
 	}
+	pen_t pen;
+	pen_make(&pen, rgb);
+	paint(b, j, a, e, &pen);
 }
 
 /* Insert crossing x into cr[0..n) kept sorted by pixel index (n is the count before). */
@@ -207,14 +252,14 @@ static inline void insert_crossing(cross_t *cr, size_t n, cross_t x)
 
 /* Paint row j between sorted crossings where the winding number is inside by the rule (§5.1). */
 static inline void paint_crossings(const scan_band_t *b, int j, const cross_t *cr, size_t na, int rule,
-		meta_rgb_t rgb)
+		const pen_t *pen)
 {
 	int w = 0;
 	for (size_t k = 0; k + 1 < na; k++) {
 		w += cr[k].dir;
 		int in = rule == META_RULE_EVEN_ODD ? (w & 1) : (w != 0);
 		if (in && cr[k + 1].i > cr[k].i)
-			paint(b, j, cr[k].i, cr[k + 1].i, rgb);
+			paint(b, j, cr[k].i, cr[k + 1].i, pen);
 	}
 }
 
@@ -223,14 +268,18 @@ void scan_span(const scan_band_t *b, int64_t x, int64_t y, int64_t n, meta_rgb_t
 	int lo = b->jlo < 0 ? 0 : b->jlo, hi = b->jhi > b->height ? b->height : b->jhi;
 	if (y < lo || y >= hi || n <= 0)
 		return;
-	paint(b, (int)y, x, x + n, rgb);
+	pen_t pen;
+	pen_make(&pen, rgb);
+	paint(b, (int)y, x, x + n, &pen);
 }
 
 void scan_clear(const scan_band_t *b, meta_rgb_t rgb)
 {
+	pen_t pen;
+	pen_make(&pen, rgb);
 	int lo = b->jlo < 0 ? 0 : b->jlo, hi = b->jhi > b->height ? b->height : b->jhi;
 	for (int j = lo; j < hi; j++)
-		paint(b, j, 0, b->width, rgb);
+		paint(b, j, 0, b->width, &pen);
 }
 
 static int cmp_edge(const void *a, const void *b)
@@ -242,6 +291,8 @@ static int cmp_edge(const void *a, const void *b)
 /* Few edges (stroke pieces): no sorting of edges, crossings by insertion. */
 static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, meta_rgb_t rgb)
 {
+	pen_t pen;
+	pen_make(&pen, rgb);
 	int j0 = e[0].jf, j1 = e[0].jl;
 	for (size_t k = 1; k < n; k++) {
 		if (e[k].jf < j0) j0 = e[k].jf;
@@ -258,13 +309,15 @@ static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, met
 			if (j < a->jl)
 				edge_step(a);
 		}
-		paint_crossings(b, j, cr, na, rule, rgb);
+		paint_crossings(b, j, cr, na, rule, &pen);
 	}
 }
 
 /* Convex polygons: every row crosses exactly two edges (or none), the span lies between. */
 static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, meta_rgb_t rgb)
 {
+	pen_t pen;
+	pen_make(&pen, rgb);
 	int j0 = e[0].jf, j1 = e[0].jl;
 	for (size_t k = 1; k < n; k++) {
 		if (e[k].jf < j0) j0 = e[k].jf;
@@ -282,7 +335,7 @@ static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, meta_rgb_t r
 				edge_step(a);
 		}
 		if (hi > lo)
-			paint(b, j, lo, hi, rgb);
+			paint(b, j, lo, hi, &pen);
 	}
 }
 
@@ -298,6 +351,8 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 	if (grow((void **)&c->active, &c->cap_active, n, sizeof(edge_t *)) ||
 			grow((void **)&c->cross, &c->cap_cross, n, sizeof(cross_t)))
 		return META_ENOMEM;
+	pen_t pen;
+	pen_make(&pen, rgb);
 	edge_t *e = c->edges;
 	if (n > 1)
 		qsort(e, n, sizeof(edge_t), cmp_edge);
@@ -320,7 +375,7 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 		for (size_t k = 0; k < na; k++) {
 			insert_crossing(cr, k, (cross_t){ act[k]->i, act[k]->dir });
 		}
-		paint_crossings(b, j, cr, na, rule, rgb);
+		paint_crossings(b, j, cr, na, rule, &pen);
 		/* step and retire */
 		size_t keep = 0;
 		for (size_t k = 0; k < na; k++) {
@@ -361,6 +416,11 @@ static inline int64_t tiny_ceil(int64_t n, int64_t d, double inv)
 static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
 		meta_rgb_t rgb, int convex, int lo, int hi)
 {
+	/* stroke pieces are small: a pen only for the pieces that sort crossings, convex ones
+	 * paint their (mostly short) rows from the colour */
+	pen_t pen;
+	if (!convex)
+		pen_make(&pen, rgb);
 	tedge_t e[SMALL_EDGES];
 	size_t ne = 0;
 	int jmin = INT32_MAX, jmax = INT32_MIN;
@@ -405,7 +465,7 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 				if (i > r) r = i;
 			}
 			if (r > l)
-				paint(b, j, l, r, rgb);
+				paint_rgb(b, j, l, r, rgb);
 			continue;
 		}
 		cross_t cr[SMALL_EDGES];
@@ -417,7 +477,7 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 			insert_crossing(cr, na++, (cross_t){ tiny_ceil(t->n, t->d, t->inv), t->dir });
 			t->n += t->s;
 		}
-		paint_crossings(b, j, cr, na, rule, rgb);
+		paint_crossings(b, j, cr, na, rule, &pen);
 	}
 }
 
