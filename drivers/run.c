@@ -120,6 +120,9 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 			if (status == 74 && out && io_failed(out)) {
 				snprintf(err, errlen, "%s", io_error(out));   /* names the output and the cause */
 				status = io_status(err, 74);
+				/* a device away, busy or dropped: try again later (or --resume a journal) */
+				if (status == 74 && io_temporary(out))
+					status = 75;
 			} else if (d->reader_error || status != 65) {
 				snprintf(err, errlen, "%s", dev_error(d));
 			} else {

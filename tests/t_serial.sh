@@ -65,8 +65,8 @@ fi
 # (a job larger than the pseudo-terminal's own buffer, which takes a small job whole).
 sh tests/emu/bigjob.sh 6000 > "$T/big.meta"
 "$EMU" --speed 1 --pen-change 0 -- "$H" --no-optimize "$T/big.meta" -o "serial:@TTY@?baud=115200&flow=xonxoff&timeout=1" > "$T/held" 2> "$T/held.err"
-[ "$(word child "$T/held")" = 74 ] && [ "$(wc -l < "$T/held.err")" = 1 ] && grep -q "took nothing for 1 s (XOFF held" "$T/held.err" \
-	&& ok "XOFF held for good: exit 74 after timeout=1, one line: $(cat "$T/held.err")" || notok "held: $(cat "$T/held" "$T/held.err")"
+[ "$(word child "$T/held")" = 75 ] && [ "$(wc -l < "$T/held.err")" = 1 ] && grep -q "took nothing for 1 s (XOFF held" "$T/held.err" \
+	&& ok "XOFF held for good: exit 75 (EX_TEMPFAIL: try again, or resume) after timeout=1, one line: $(cat "$T/held.err")" || notok "held: $(cat "$T/held" "$T/held.err")"
 # A one-way cable: the HP-GL handshake gets no answer.
 "$EMU" --mute -- "$H" "$META" -o "serial:@TTY@?flow=escb" > "$T/mute" 2> "$T/mute.err"
 [ "$(word child "$T/mute")" = 74 ] && grep -q "no answer to ESC.L" "$T/mute.err" && [ "$(word accepted "$T/mute")" = 0 ] \
