@@ -222,6 +222,7 @@ int main(int argc, char **argv)
 	if (mesh_format_of(out) >= 0) {
 		int status = write_mesh(sc, out, mesh_format_of(out), stats, t_start);
 		scene_free(sc);
+		free(text);
 		return status;
 	}
 

@@ -144,7 +144,7 @@ int psd_options(psd_t *p, dev_device_t *d)
 		for (const char *c = t; *c; c++)
 			if ((unsigned char)*c < 0x20 || (unsigned char)*c > 0x7e)
 				return dev_fail(d, DEV_EUSAGE, "option title: printable ASCII only");
-		snprintf(p->title, sizeof p->title, "%s", t);
+		memcpy(p->title, t, strlen(t) + 1);   /* fits: checked above */
 	}
 	if (p->date) {
 		const char *e = getenv("SOURCE_DATE_EPOCH");

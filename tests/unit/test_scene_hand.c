@@ -2,6 +2,7 @@
 #include "unit.h"
 #include "scene.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 /* Mean column of the red pixels of the scene's first object, ray traced (-1: none). */
