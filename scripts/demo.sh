@@ -23,7 +23,7 @@ fi
 	# every raster output at the model's size must hold the same pixels as the reference PNG;
 	# the other devices (vector files, rasters of their own size) are checked by their own
 	# demo lines below and by their tests
-	case $ext in
+	case $dev in
 	png|ppm|rle)
 		if [ "$dev" = png ]; then
 			same="the reference"
