@@ -134,6 +134,14 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 		status = 70;   /* a device's write path that ran out of memory (a PNG writer, say) */
 	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
+	/* the last bytes of an in-place output (a device link) go out before the close, so that a
+	 * device that went away then is still known to be a temporary failure (75) */
+	if (js.shared && status == 0 && io_flush(js.shared)) {
+		snprintf(err, errlen, "%s", io_error(js.shared));
+		status = io_status(err, 74);
+		if (status == 74 && io_temporary(js.shared))
+			status = 75;
+	}
 	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
 		&& status == 0)
 		status = io_status(err, 74);

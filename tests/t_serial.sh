@@ -80,7 +80,7 @@ rm -f "$T/j"
 "$EMU" --handshake n --pen-scale 4 --hangup-after 5000 --record "$T/p1" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&journal=$T/j" > "$T/h1" 2> "$T/h1.all"
 safe=$(sed -n 's/^safe //p' "$T/j")
 grep -v warning "$T/h1.all" > "$T/h1.err"
-[ "$(word child "$T/h1")" = 74 ] && [ "$(wc -l < "$T/h1.err")" = 1 ] && grep -q "(byte $safe of the job) reached; resume with -o 'serial:.*resume=$T/j'" "$T/h1.err" \
+[ "$(word child "$T/h1")" = 75 ] && [ "$(wc -l < "$T/h1.err")" = 1 ] && grep -q "(byte $safe of the job) reached; resume with -o 'serial:.*resume=$T/j'" "$T/h1.err" \
 	&& ok "cable pulled mid-job: one line with the byte reached ($safe, confirmed by ESC.B) and the resume name" || notok "hangup: $(cat "$T/h1" "$T/h1.err" "$T/j")"
 "$EMU" --handshake n --pen-scale 4 --record "$T/p2" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&resume=$T/j" > "$T/h2" 2>&1
 head -c "$safe" "$T/p1" > "$T/p1.cut"
