@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "grow.h"
 #include "hpgl_read_int.h"
 
 int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
@@ -25,17 +26,7 @@ int hpgl_rd_nomem(hpgl_rd_t *r)
 
 int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size)
 {
-	if (need <= *cap)
-		return 0;
-	size_t n = *cap ? *cap : 64;
-	while (n < need)
-		n *= 2;
-	void *q = realloc(*p, n * size);
-	if (!q)
-		return -1;
-	*p = q;
-	*cap = n;
-	return 0;
+	return dev_grow(p, cap, need, size, 64);
 }
 
 /* ---- strokes ---- */

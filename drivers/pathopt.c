@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include "grow.h"
 #include "pathopt.h"
 
 static double now_s(void)
@@ -35,17 +36,7 @@ void popt_free(popt_set_t *s)
 
 static int grow(void **p, size_t *cap, size_t need, size_t size)
 {
-	if (need <= *cap)
-		return 0;
-	size_t n = *cap ? *cap : 256;
-	while (n < need)
-		n *= 2;
-	void *q = realloc(*p, n * size);
-	if (!q)
-		return -1;
-	*p = q;
-	*cap = n;
-	return 0;
+	return dev_grow(p, cap, need, size, 256);
 }
 
 int popt_add(popt_set_t *s, const popt_pt_t *pts, size_t n, int closed)

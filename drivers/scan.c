@@ -1,6 +1,7 @@
 /* scan.c: exact polygon coverage (spec §5.1) with an active edge table and integer DDA. */
 #include <stdlib.h>
 #include <string.h>
+#include "grow.h"
 #include "scan.h"
 #include "scan_int.h"
 
@@ -60,17 +61,7 @@ scan_path_t *scan_ctx_dashed(scan_ctx_t *c)
 
 static int grow(void **p, size_t *cap, size_t need, size_t elem)
 {
-	if (need <= *cap)
-		return 0;
-	size_t n = *cap ? *cap : 64;
-	while (n < need)
-		n *= 2;
-	void *q = realloc(*p, n * elem);
-	if (!q)
-		return META_ENOMEM;
-	*p = q;
-	*cap = n;
-	return 0;
+	return dev_grow(p, cap, need, elem, 64) ? META_ENOMEM : 0;
 }
 
 /* ceil(a / b) for b > 0. */

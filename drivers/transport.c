@@ -21,30 +21,34 @@ int io_set_err(io_transport_t *t, const char *what)
 	return -1;
 }
 
+/* "NAME: message" into t->err; the transport has failed (temporary: the failure may pass). */
+static int link_fail(io_transport_t *t, int temporary, const char *fmt, va_list ap)
+{
+	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
+	if (n > 0 && (size_t)n < sizeof t->err)
+		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	t->failed = 1;
+	t->temporary |= temporary;   /* a later message does not make a passing failure final */
+	errno = EIO;
+	return -1;
+}
+
 int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
 {
 	va_list ap;
-	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
 	va_start(ap, fmt);
-	if (n > 0 && (size_t)n < sizeof t->err)
-		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	int rc = link_fail(t, 1, fmt, ap);
 	va_end(ap);
-	t->failed = t->temporary = 1;
-	errno = EIO;
-	return -1;
+	return rc;
 }
 
 int io_link_fail(io_transport_t *t, const char *fmt, ...)
 {
 	va_list ap;
-	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
 	va_start(ap, fmt);
-	if (n > 0 && (size_t)n < sizeof t->err)
-		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
+	int rc = link_fail(t, 0, fmt, ap);
 	va_end(ap);
-	t->failed = 1;
-	errno = EIO;
-	return -1;
+	return rc;
 }
 
 /* The device links (a NULL open: reserved, "not supported yet"). */
