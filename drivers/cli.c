@@ -5,10 +5,11 @@
 #include <string.h>
 #include "cli.h"
 #include "device.h"
+#include "transport.h"
 
 _Static_assert(CLI_AA_MAX == DEV_AA_MAX, "cli.h and device.h agree on the largest factor");
 
-enum { OPT_HELP = 0x1000, OPT_VERSION, OPT_BAND_ROWS, OPT_MEM_BUDGET, OPT_ANTIALIAS };
+enum { OPT_HELP = 0x1000, OPT_VERSION, OPT_BAND_ROWS, OPT_MEM_BUDGET, OPT_ANTIALIAS, OPT_JOURNAL, OPT_RESUME };
 
 static const struct option common[] = {
 	{ "output", required_argument, NULL, 'o' },
@@ -17,6 +18,8 @@ static const struct option common[] = {
 	{ "band-rows", required_argument, NULL, OPT_BAND_ROWS },
 	{ "mem-budget", required_argument, NULL, OPT_MEM_BUDGET },
 	{ "antialias", optional_argument, NULL, OPT_ANTIALIAS },
+	{ "journal", required_argument, NULL, OPT_JOURNAL },
+	{ "resume", required_argument, NULL, OPT_RESUME },
 };
 #define NCOMMON (sizeof common / sizeof common[0])
 
@@ -92,6 +95,81 @@ static int antialias(cli_t *c, int argc, char **argv)
 	return cli_set_option(c, "antialias", k) ? 64 : CLI_RUN;
 }
 
+/* The help lines of --journal and --resume, printed after a usage text that does not describe them. */
+static const char journal_help[] =
+	"  --journal FILE   device links: keep a job journal in FILE (as NAME?journal=FILE)\n"
+	"  --resume FILE    device links: go on with the job FILE journaled (as NAME?resume=FILE)\n";
+
+/* --journal FILE / --resume FILE: folded into the output name as journal=FILE / resume=FILE,
+ * which the transport reads (transport.h); the name may say the same, not something else. */
+static int fold_journal(cli_t *c)
+{
+	const char *key = c->resume ? "resume" : "journal", *file = c->resume ? c->resume : c->journal;
+	if (!file)
+		return CLI_RUN;
+	if (c->resume && c->journal)
+		return cli_fail(c, 64, "--journal and --resume: give one (a resumed job goes on journaling in its file)");
+	if (!c->out || !io_is_link_name(c->out))
+		return cli_fail(c, 64, "--%s needs a device link output (-o serial:..., tcp:..., usb:..., hid:...)", key);
+	if (!file[0] || strpbrk(file, "&?"))
+		return cli_fail(c, 64, "--%s FILE: the file name may not be empty or hold '&' or '?'", key);
+	const char *q = strchr(c->out, '?');
+	for (const char *p = q; p; p = strchr(p + 1, '&')) {
+		size_t n = strcspn(p + 1, "&");
+		for (int k = 0; k < 2; k++) {
+			const char *w = k ? "resume=" : "journal=";
+			if (strncmp(p + 1, w, strlen(w)))
+				continue;
+			if (!strcmp(w, c->resume ? "resume=" : "journal=") && n - strlen(w) == strlen(file)
+				&& !strncmp(p + 1 + strlen(w), file, strlen(file)))
+				return CLI_RUN;   /* the name says the same */
+			return cli_fail(c, 64, "-o '%s' already says %.*s, and --%s %s: give one", c->out, (int)n, p + 1, key, file);
+		}
+	}
+	int w = snprintf(c->outname, sizeof c->outname, "%s%c%s=%s", c->out, q ? '&' : '?', key, file);
+	if (w < 0 || (size_t)w >= sizeof c->outname)
+		return cli_fail(c, 64, "the output name with --%s is too long", key);
+	c->out = c->outname;
+	return CLI_RUN;
+}
+
+/* 1 when the character needs no quoting in a shell word. */
+static int plain(char ch)
+{
+	return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || strchr("_./:=,@%+-", ch);
+}
+
+/* The command that resumes this one, for the line of a job that stopped (io_set_resume_command):
+ * argv quoted for a shell, --journal turned into --resume and journal= of a link into resume=. */
+static void resume_command(int argc, char **argv)
+{
+	char cmd[1024];
+	size_t n = 0;
+	for (int k = 0; k < argc && n < sizeof cmd; k++) {
+		char word[600];
+		const char *a = argv[k];
+		if (!strcmp(a, "--journal"))
+			a = "--resume";
+		snprintf(word, sizeof word, "%s", a);
+		if (!strncmp(word, "--journal=", 10))
+			snprintf(word, sizeof word, "--resume=%s", a + 10);
+		char *j = strstr(word, "journal=");
+		if (j && j > word && (j[-1] == '?' || j[-1] == '&') && strchr(word, ':')) {
+			memmove(j + 7, j + 8, strlen(j + 8) + 1);   /* journal= -> resume= */
+			memcpy(j, "resume=", 7);
+		}
+		int quote = !word[0];
+		for (const char *p = word; *p; p++)
+			quote |= !plain(*p);
+		n += (size_t)snprintf(cmd + n, sizeof cmd - n, "%s%s", k ? " " : "", quote ? "'" : "");
+		for (const char *p = word; *p && n < sizeof cmd; p++)
+			n += (size_t)snprintf(cmd + n, sizeof cmd - n, *p == '\'' ? "'\\''" : "%c", *p);
+		if (quote && n < sizeof cmd)
+			n += (size_t)snprintf(cmd + n, sizeof cmd - n, "'");
+	}
+	io_set_resume_command(n < sizeof cmd ? cmd : NULL);
+}
+
 /* -O a=1,b=2: each key=value through cli_set_option. */
 static int add_options(cli_t *c, const char *arg)
 {
@@ -134,6 +212,8 @@ int cli_parse(cli_t *c, int argc, char **argv)
 			fputs(c->usage, stdout);
 			if (!strstr(c->usage, "--antialias"))
 				fputs(aa_help, stdout);
+			if (!strstr(c->usage, "--journal"))
+				fputs(journal_help, stdout);
 			st = 0;
 			break;
 		case OPT_VERSION:
@@ -161,6 +241,12 @@ int cli_parse(cli_t *c, int argc, char **argv)
 		case OPT_ANTIALIAS:
 			st = antialias(c, argc, argv);
 			break;
+		case OPT_JOURNAL:
+			c->journal = optarg;
+			break;
+		case OPT_RESUME:
+			c->resume = optarg;
+			break;
 		case ':':
 			st = cli_fail(c, 64, "option '%s' needs a value (try --help)", argv[optind - 1]);
 			break;
@@ -176,8 +262,11 @@ int cli_parse(cli_t *c, int argc, char **argv)
 		}
 	}
 	free(opts);
+	if (st == CLI_RUN)
+		st = fold_journal(c);
 	if (st != CLI_RUN)
 		return st;
+	resume_command(argc, argv);
 	size_t max = c->max_inputs ? c->max_inputs : 1;
 	if (max > sizeof c->in / sizeof c->in[0])
 		max = sizeof c->in / sizeof c->in[0];

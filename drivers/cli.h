@@ -8,6 +8,9 @@
  *   --mem-budget MIB         raster devices: page buffer budget
  *   --antialias[=K]          raster devices: the device option antialias=K (default K 4;
  *                            `--antialias K` also works when K is all digits)
+ *   --journal FILE           device links: journal=FILE in the output name (transport.h)
+ *   --resume FILE            device links: resume=FILE in the output name; either one given
+ *                            in the name too must say the same, else a usage error (64)
  *   -h, --help, --version
  * Program options can turn themselves into device options with cli_set_option(), so that
  * `locus-vga --mode 12h` and `locus-play -d vga -O mode=12h` are the same job.
@@ -42,7 +45,10 @@ struct cli {
 	/* results */
 	const char *in[4];           /* positional arguments; in[0] defaults to "-" */
 	size_t nin;
-	const char *out;             /* -o, or NULL */
+	const char *out;             /* -o (with --journal/--resume folded in: outname), or NULL */
+	const char *journal;         /* --journal FILE, or NULL */
+	const char *resume;          /* --resume FILE, or NULL */
+	char outname[1200];          /* the output name with journal=/resume= added */
 	unsigned band_rows;          /* 0 = automatic */
 	size_t budget;               /* bytes, 0 = default */
 	char options[1024];          /* device options "k=v,k=v" (from -O and cli_set_option) */

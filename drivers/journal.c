@@ -228,6 +228,7 @@ static jn_t *alloc(const char *path, const char *name, char *err, size_t errlen)
 		free(j);
 	}
 	snprintf(err, errlen, "%s: out of memory", path);
+	errno = ENOMEM;
 	return NULL;
 }
 
@@ -317,8 +318,21 @@ int jn_ack(jn_t *j, const void *p, size_t n)
 	return save(j, "running");
 }
 
+/* The program's resume command (jn_set_command), or "". */
+static char resume_cmd[1024];
+
+void jn_set_command(const char *cmd)
+{
+	snprintf(resume_cmd, sizeof resume_cmd, "%s", cmd ? cmd : "");
+}
+
 void jn_where(const jn_t *j, char *buf, size_t len)
 {
+	if (resume_cmd[0]) {
+		snprintf(buf, len, "page %lu, command %lu (byte %llu of the job) reached; resume with: %s",
+			j->safe_st.pages ? j->safe_st.pages : 1, j->safe_st.cmds, j->safe, resume_cmd);
+		return;
+	}
 	char name[600];
 	const char *q = strstr(j->name, "journal=");
 	if (q)

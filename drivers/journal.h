@@ -27,9 +27,12 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 int jn_skipping(const jn_t *j);
 /* The device acknowledged the job's next n bytes p. 0, or -1 when the file cannot be written. */
 int jn_ack(jn_t *j, const void *p, size_t n);
-/* Words for where the job stopped: "page P, command C (byte B of the job); resume with -o
- * 'NAME'" where NAME is the output name with journal= turned into resume=. */
+/* Words for where the job stopped: "page P, command C (byte B of the job) reached; resume
+ * with: CMD" (the command jn_set_command gave), or without one "...; resume with -o 'NAME'"
+ * where NAME is the output name with journal= turned into resume=. */
 void jn_where(const jn_t *j, char *buf, size_t len);
+/* The command that resumes a job (copied, up to 1023 bytes); NULL or "" forgets it. */
+void jn_set_command(const char *cmd);
 /* End: done (1) marks the journal complete; 0 leaves it resumable. Frees j. 0 or -1. */
 int jn_close(jn_t *j, int done);
 

@@ -35,10 +35,18 @@ int dev_err_is_oom(const char *msg)
 	return n && strstr(msg, strerror(ENOMEM)) != NULL;
 }
 
-/* The status of a failure whose message is err: 70 when it says memory ran out, else io. */
+/* The status of a failure whose message is err: 70 when it says memory ran out, else io (for
+ * the messages of renames and page names, which no transport object carries). */
 static int io_status(const char *err, int io)
 {
 	return dev_err_is_oom(err) ? 70 : io;
+}
+
+/* The status of a failed transport, by its errno: 70 out of memory, 75 a failure that may pass
+ * (a device away, busy, dropped, a signal: resumable), else 74. */
+static int tr_status(const io_transport_t *t)
+{
+	return io_errno(t) == ENOMEM ? 70 : io_temporary(t) ? 75 : 74;
 }
 
 static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
@@ -51,7 +59,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 		io_transport_t *t = d->out;
 		d->out = NULL;
 		if (io_close(t, IO_KEEP)) {
-			int rc = dev_fail(d, dev_err_is_oom(io_error(t)) ? META_ENOMEM : META_EIO, "%s", io_error(t));
+			int rc = dev_fail(d, io_errno(t) == ENOMEM ? META_ENOMEM : META_EIO, "%s", io_error(t));
 			io_finish(t, 0, NULL, NULL, 0);
 			return rc;
 		}
@@ -69,7 +77,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 	char err[512];
 	d->out = io_open_write(js->job->out, err, sizeof err);
 	if (!d->out)
-		return dev_fail(d, dev_err_is_oom(err) ? META_ENOMEM : META_EIO, "%s", err);
+		return dev_fail(d, errno == ENOMEM ? META_ENOMEM : META_EIO, "%s", err);
 	if (io_in_place(d->out))
 		js->shared = d->out;   /* no file per page to rename: pages follow one another */
 	return 0;
@@ -109,7 +117,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	if (job->out && strcmp(job->out, "-") == 0) {
 		js.shared = io_open_write("-", err, errlen);
 		if (!js.shared)
-			status = io_status(err, 74);
+			status = errno == ENOMEM ? 70 : 74;
 		d->out = js.shared;
 	}
 	if (status == 0) {
@@ -119,10 +127,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 			status = status_of(rc);
 			if (status == 74 && out && io_failed(out)) {
 				snprintf(err, errlen, "%s", io_error(out));   /* names the output and the cause */
-				status = io_status(err, 74);
-				/* a device away, busy or dropped: try again later (or --resume a journal) */
-				if (status == 74 && io_temporary(out))
-					status = 75;
+				status = tr_status(out);   /* 75: try again later, or --resume a journal */
 			} else if (d->reader_error || status != 65) {
 				snprintf(err, errlen, "%s", dev_error(d));
 			} else {
@@ -134,13 +139,12 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 		status = 70;   /* a device's write path that ran out of memory (a PNG writer, say) */
 	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
-	/* the last bytes of an in-place output (a device link) go out before the close, so that a
-	 * device that went away then is still known to be a temporary failure (75) */
-	if (js.shared && status == 0 && io_flush(js.shared)) {
+	/* the last bytes of an in-place output (a device link) go out, and the device confirms them,
+	 * before the close, so that a device that went away then (a printer that dropped the
+	 * connection at the end) is still known to be a temporary failure (75) */
+	if (js.shared && status == 0 && io_drain(js.shared)) {
 		snprintf(err, errlen, "%s", io_error(js.shared));
-		status = io_status(err, 74);
-		if (status == 74 && io_temporary(js.shared))
-			status = 75;
+		status = tr_status(js.shared);
 	}
 	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
 		&& status == 0)

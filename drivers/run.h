@@ -21,11 +21,12 @@ typedef struct {
  * job leaves all its pages or none. An output written in place
  * (stdout, a device node, a FIFO, a socket) takes the pages one after another. Returns a
  * sysexits status (0 ok, 64 bad device option, 65 bad input, 66 no input, 70 out of memory,
- * 74 I/O: the message then names the output and the cause) with a one-line message in err. */
+ * 74 I/O: the message then names the output and the cause; 75 a device link's failure that may
+ * pass, io_temporary(): resumable) with a one-line message in err. */
 int dev_run(const dev_job_t *job, char *err, size_t errlen);
-/* 1 if a one-line message (a transport's, a reader's) says memory ran out: it ends in
- * "out of memory" or carries strerror(ENOMEM). The transport keeps no error code, so the
- * programs map such a message to exit 70 rather than 74 (or 66 for an input). */
+/* 1 if a one-line message (a reader's, a rename's) says memory ran out: it ends in
+ * "out of memory" or carries strerror(ENOMEM), so that a program maps it to exit 70 rather than
+ * 74 (or 66 for an input). A transport's failure is decided by value instead: io_errno(). */
 int dev_err_is_oom(const char *msg);
 /* "pic.png", 3 -> "pic-003.png" (malloc'd). */
 char *dev_page_name(const char *out, unsigned page);

@@ -146,7 +146,7 @@ static int open_temp(io_transport_t *t, target_t *tg, char *err, size_t errlen)
 	size_t n = strlen(tg->path) + 32;
 	char *tmp = malloc(n);
 	if (!tmp) {
-		snprintf(err, errlen, "%s: out of memory", t->name);
+		io_oom(err, errlen, t->name);
 		return -1;
 	}
 	int fd = -1, e = 0;

@@ -109,7 +109,7 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	if (!s) {
 		hid_close(dev);
 		hid_exit();
-		snprintf(err, errlen, "%s: out of memory", t->name);
+		io_oom(err, errlen, t->name);
 		return -1;
 	}
 	s->dev = dev;

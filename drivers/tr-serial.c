@@ -250,7 +250,7 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 	path[pl] = 0;
 	serial_t *s = calloc(1, sizeof *s);
 	if (!s) {
-		snprintf(err, errlen, "%s: out of memory", t->name);
+		io_oom(err, errlen, t->name);
 		return -1;
 	}
 	s->flow = FLOW_XONXOFF;

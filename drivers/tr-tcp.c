@@ -9,7 +9,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <linux/sockios.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
+#include <time.h>
 #include <unistd.h>
 #include "tr_link.h"
 
@@ -17,6 +20,8 @@ typedef struct {
 	int fd;
 	long timeout_ms;
 	long long sent;
+	int fin;              /* the half-close went out (its FIN counts in the send queue) */
+	long long acked;      /* the last count the peer had acknowledged */
 } tcp_t;
 
 /* Connect to one address within ms: the descriptor, or -1 with errno. */
@@ -112,16 +117,28 @@ int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	tcp_t *s = calloc(1, sizeof *s);
 	if (!s) {
 		close(fd);
-		snprintf(err, errlen, "%s: out of memory", t->name);
+		io_oom(err, errlen, t->name);
 		return -1;
 	}
 	s->fd = fd;
 	s->timeout_ms = timeout * 1000;
 	t->link_state = s;
+	if (t->journal) {
+		/* what waits unacknowledged is kept for the journal: keep that queue modest */
+		int sb = 65536;
+		setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &sb, sizeof sb);
+	}
 	return 0;
 bad_port:
 	snprintf(err, errlen, "%s: bad port: tcp:HOST[:PORT] with PORT 1-65535", t->name);
 	return -1;
+}
+
+/* 10 ms. */
+static void sleep_brief(void)
+{
+	struct timespec ts = { 0, 10000000L };
+	nanosleep(&ts, NULL);
 }
 
 long tr_tcp_write(io_transport_t *t, const void *buf, size_t n)
@@ -135,12 +152,24 @@ long tr_tcp_write(io_transport_t *t, const void *buf, size_t n)
 		}
 		if (w < 0 && errno != EAGAIN && errno != EINTR) {
 			if (errno == EPIPE || errno == ECONNRESET)
-				return io_link_tempfail(t, "the printer dropped the connection after %lld bytes: "
-					"the job is incomplete, send it again", s->sent);
+				return io_link_tempfail(t, "the printer dropped the connection having taken %lld of "
+					"%lld bytes sent", tr_tcp_acked(t), s->sent);
 			return io_link_fail(t, "send failed: %s", strerror(errno));
 		}
-		struct pollfd pf = { s->fd, POLLOUT, 0 };
+		if (tr_check_interrupt(t))
+			return -1;
+		/* wait for room; a printer that closes its side meanwhile has dropped the job */
+		struct pollfd pf = { s->fd, POLLOUT | POLLIN, 0 };
 		int r = poll(&pf, 1, (int)s->timeout_ms);
+		char c;
+		ssize_t g = 1;
+		if (r > 0 && (pf.revents & (POLLIN | POLLHUP | POLLERR)) && !(pf.revents & POLLOUT))
+			g = recv(s->fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
+		if (g == 0 || (g < 0 && errno != EAGAIN && errno != EINTR))
+			return io_link_tempfail(t, "the printer closed the connection having taken %lld of %lld "
+				"bytes sent", tr_tcp_acked(t), s->sent);
+		if (r > 0 && !(pf.revents & POLLOUT))
+			sleep_brief();   /* a reply waits unread: no busy loop while the queue is full */
 		if (r == 0)
 			return io_link_tempfail(t, "the printer took nothing for %ld s after %lld bytes (busy or "
 				"out of paper?)", s->timeout_ms / 1000, s->sent);
@@ -157,31 +186,71 @@ long tr_tcp_read(io_transport_t *t, void *buf, size_t n)
 	return r < 0 && errno == EAGAIN ? 0 : (long)r;
 }
 
+long long tr_tcp_acked(io_transport_t *t)
+{
+	tcp_t *s = t->link_state;
+	int q = 0;
+	/* SIOCOUTQ: what the peer has not acknowledged (after the half-close, the FIN too); it stays
+	 * readable after a reset, so the count is known after a drop as well */
+	if (ioctl(s->fd, SIOCOUTQ, &q) < 0 || q < 0)
+		return s->acked;
+	long long a = s->sent - q + s->fin;
+	if (a > s->sent)
+		a = s->sent;
+	if (a > s->acked)
+		s->acked = a;
+	return s->acked;
+}
+
+int tr_tcp_drain(io_transport_t *t)
+{
+	tcp_t *s = t->link_state;
+	/* Half-close, then wait for the printer's close: a printer that closes has read everything
+	 * it acknowledged. A reset, or a close before the last byte was acknowledged, is a drop. */
+	if (shutdown(s->fd, SHUT_WR) == 0)
+		s->fin = 1;
+	char tmp[512];
+	int reset = 0, closed = 0;
+	long long last = tr_now_ms(), had = tr_tcp_acked(t);
+	for (;;) {
+		if (tr_check_interrupt(t))
+			return -1;
+		long long a = tr_tcp_acked(t);
+		if (a > had)
+			had = a, last = tr_now_ms();   /* progress: the wait starts again */
+		long left = (long)(last + s->timeout_ms - tr_now_ms());
+		struct pollfd pf = { s->fd, POLLIN, 0 };
+		if (left <= 0)
+			break;   /* a printer that keeps the connection open, having it all, is no error */
+		int r = poll(&pf, 1, left < 200 ? (int)left : 200);
+		if (r <= 0)
+			continue;
+		ssize_t g = recv(s->fd, tmp, sizeof tmp, 0);
+		if (g == 0) {
+			closed = 1;
+			break;
+		}
+		if (g < 0 && errno != EAGAIN && errno != EINTR) {
+			reset = errno == ECONNRESET || errno == EPIPE;
+			if (!reset)
+				return io_link_tempfail(t, "waiting for the printer to confirm the job: %s", strerror(errno));
+			break;
+		}
+	}
+	long long a = tr_tcp_acked(t);
+	if (a < s->sent && (reset || closed))
+		return io_link_tempfail(t, "the printer %s the connection having taken %lld of %lld "
+			"bytes sent", reset ? "dropped" : "closed", a, s->sent);
+	if (a < s->sent)
+		return io_link_tempfail(t, "the printer acknowledged only %lld of %lld bytes within %ld s",
+			a, s->sent, s->timeout_ms / 1000);
+	return 0;
+}
+
 int tr_tcp_close(io_transport_t *t)
 {
 	tcp_t *s = t->link_state;
 	int rc = 0;
-	if (!t->failed && t->writing) {
-		/* Half-close, then wait for the printer to close: it has read everything by then. */
-		shutdown(s->fd, SHUT_WR);
-		char tmp[512];
-		long long end = tr_now_ms() + s->timeout_ms;
-		for (;;) {
-			struct pollfd pf = { s->fd, POLLIN, 0 };
-			long left = (long)(end - tr_now_ms());
-			if (left <= 0 || poll(&pf, 1, (int)left) <= 0)
-				break;   /* a printer that keeps the connection open is not an error */
-			ssize_t r = recv(s->fd, tmp, sizeof tmp, 0);
-			if (r == 0)
-				break;
-			if (r < 0 && errno != EAGAIN && errno != EINTR) {
-				if (errno == ECONNRESET)
-					rc = io_link_tempfail(t, "the printer dropped the connection before it confirmed "
-						"the end of the job: send it again");
-				break;
-			}
-		}
-	}
 	close(s->fd);
 	free(s);
 	t->link_state = NULL;

@@ -18,6 +18,11 @@ int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 long tr_tcp_write(io_transport_t *t, const void *buf, size_t n);
 long tr_tcp_read(io_transport_t *t, void *buf, size_t n);
 int tr_tcp_close(io_transport_t *t);
+/* The bytes the peer acknowledged (SIOCOUTQ: sent less what waits in the send queue). */
+long long tr_tcp_acked(io_transport_t *t);
+/* Half-close, then wait (bounded) for the peer's close; -1 (message set) when it did not take
+ * every byte, or reset the connection before it had them all. */
+int tr_tcp_drain(io_transport_t *t);
 
 /* tr-usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
 int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
@@ -47,6 +52,9 @@ int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
+/* A signal arrived during the job (io_interrupted): a temporary failure "interrupted by SIGINT
+ * after N bytes" (io_errno EINTR) and -1; else 0. Links call it in every wait. */
+int tr_check_interrupt(io_transport_t *t);
 /* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
  * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);

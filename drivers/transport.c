@@ -2,6 +2,7 @@
  * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c). */
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,9 +17,100 @@
 int io_set_err(io_transport_t *t, const char *what)
 {
 	const char *name = t->std ? (t->writing ? "<stdout>" : "<stdin>") : t->name;
+	t->io_errno = errno;
 	snprintf(t->err, sizeof t->err, "%s: %s: %s", name, what, strerror(errno));
 	t->failed = 1;
 	return -1;
+}
+
+/* The errno an open that returned NULL leaves (ENOMEM from io_oom, else EIO). */
+static _Thread_local int open_errno;
+
+int io_oom(char *err, size_t errlen, const char *name)
+{
+	snprintf(err, errlen, "%s: out of memory", name);
+	open_errno = ENOMEM;
+	return -1;
+}
+
+/* Signals during a device job (io_interrupted): the first one is noted, a second one ends the
+ * program as the signal does. */
+static volatile sig_atomic_t got_signal;
+static const int caught[] = { SIGINT, SIGTERM, SIGHUP };
+#define NCAUGHT (sizeof caught / sizeof caught[0])
+static struct sigaction sig_old[NCAUGHT];
+static int sig_ours[NCAUGHT], sig_links;
+
+static void on_signal(int sig)
+{
+	if (got_signal) {
+		signal(sig, SIG_DFL);
+		raise(sig);
+		return;
+	}
+	got_signal = sig;
+}
+
+/* A device link opens for writing: catch the signals the program leaves at their default. */
+static void signals_take(void)
+{
+	if (sig_links++)
+		return;
+	got_signal = 0;
+	for (size_t k = 0; k < NCAUGHT; k++) {
+		struct sigaction sa, old;
+		if (sigaction(caught[k], NULL, &old) < 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL)
+			continue;
+		memset(&sa, 0, sizeof sa);
+		sa.sa_handler = on_signal;   /* no SA_RESTART: a wait in a link ends with EINTR */
+		sigemptyset(&sa.sa_mask);
+		if (sigaction(caught[k], &sa, NULL) == 0) {
+			sig_old[k] = old;
+			sig_ours[k] = 1;
+		}
+	}
+}
+
+/* The last writing link closed: the signals as they were. */
+static void signals_give(void)
+{
+	if (--sig_links)
+		return;
+	for (size_t k = 0; k < NCAUGHT; k++)
+		if (sig_ours[k]) {
+			sigaction(caught[k], &sig_old[k], NULL);
+			sig_ours[k] = 0;
+		}
+}
+
+int io_interrupted(void)
+{
+	return got_signal;
+}
+
+int tr_check_interrupt(io_transport_t *t)
+{
+	int sig = got_signal;
+	if (!sig)
+		return 0;
+	io_link_tempfail(t, "interrupted by %s after %llu bytes", sig == SIGINT ? "SIGINT (Ctrl-C)"
+		: sig == SIGTERM ? "SIGTERM" : "SIGHUP", t->link_out);
+	t->io_errno = EINTR;
+	return -1;
+}
+
+void io_set_resume_command(const char *cmd)
+{
+	jn_set_command(cmd);
+}
+
+int io_is_link_name(const char *name)
+{
+	static const char *const schemes[] = { "serial:", "tcp:", "usb:", "hid:" };
+	for (size_t k = 0; k < sizeof schemes / sizeof schemes[0]; k++)
+		if (strncmp(name, schemes[k], strlen(schemes[k])) == 0)
+			return 1;
+	return 0;
 }
 
 /* "NAME: message" into t->err; the transport has failed (temporary: the failure may pass). */
@@ -29,7 +121,7 @@ static int link_fail(io_transport_t *t, int temporary, const char *fmt, va_list 
 		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
 	t->failed = 1;
 	t->temporary |= temporary;   /* a later message does not make a passing failure final */
-	errno = EIO;
+	t->io_errno = errno = EIO;
 	return -1;
 }
 
@@ -53,10 +145,10 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 
 /* The device links (a NULL open: reserved, "not supported yet"). */
 static const io_link_t links[] = {
-	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close },
-	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close },
-	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close },
-	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close },
+	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close, NULL, NULL },
+	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close, tr_tcp_acked, tr_tcp_drain },
+	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close, NULL, NULL },
+	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close, NULL, NULL },
 };
 
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen)
@@ -117,7 +209,7 @@ static io_transport_t *alloc(const char *name, int writing, char *err, size_t er
 		free(t->buf);
 		free(t);
 	}
-	snprintf(err, errlen, "%s: out of memory", name);
+	io_oom(err, errlen, name);
 	return NULL;
 }
 
@@ -127,6 +219,7 @@ static void destroy(io_transport_t *t)
 	free(t->name);
 	free(t->target);
 	free(t->buf);
+	free(t->pend);
 	free(t);
 }
 
@@ -172,6 +265,7 @@ static io_transport_t *open_link(const io_link_t *l, const char *name, int writi
 	if (jpath[0] && writing) {
 		t->journal = resume ? jn_resume(jpath, name, err, errlen) : jn_create(jpath, name, err, errlen);
 		if (!t->journal) {
+			open_errno = errno == ENOMEM ? ENOMEM : EIO;
 			destroy(t);
 			return NULL;
 		}
@@ -183,10 +277,12 @@ static io_transport_t *open_link(const io_link_t *l, const char *name, int writi
 		destroy(t);
 		return NULL;
 	}
+	if (writing)
+		signals_take();
 	return t;
 }
 
-io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
+static io_transport_t *open_write(const char *name, char *err, size_t errlen)
 {
 	const io_link_t *l = link_of(name);
 	if (l)
@@ -200,9 +296,21 @@ io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
 		return t;
 	}
 	if (io_file_open(t, err, errlen) < 0) {
+		int e = errno;   /* the cause the file's open met */
 		destroy(t);
+		if (!open_errno)
+			open_errno = e;
 		return NULL;
 	}
+	return t;
+}
+
+io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
+{
+	open_errno = 0;
+	io_transport_t *t = open_write(name, err, errlen);
+	if (!t)
+		errno = open_errno ? open_errno : EIO;
 	return t;
 }
 
@@ -228,14 +336,84 @@ io_transport_t *io_open_read(const char *name, char *err, size_t errlen)
 	return t;
 }
 
-/* A link failed mid-job: add where the journal says the job stopped to its line. Returns -1. */
+/* The journal hears that the device has the job's next n bytes p. 0, or -1 (message set). */
+static int journal_ack(io_transport_t *t, const unsigned char *p, size_t n)
+{
+	if (jn_ack(t->journal, p, n) == 0)
+		return 0;
+	int e = errno;
+	io_link_fail(t, "cannot write the job journal: %s", strerror(e));
+	t->io_errno = e;
+	return -1;
+}
+
+/* Feed the journal what the device has confirmed of the pending bytes (links with acked). */
+static int confirm(io_transport_t *t)
+{
+	if (!t->journal || !t->link || !t->link->acked || !t->npend)
+		return 0;
+	long long a = t->link->acked(t);
+	if (a < 0 || (unsigned long long)a <= t->pend_at)
+		return 0;
+	unsigned long long k = (unsigned long long)a - t->pend_at;
+	if (k > t->npend)
+		k = t->npend;
+	if (journal_ack(t, t->pend, (size_t)k))
+		return -1;
+	memmove(t->pend, t->pend + k, t->npend - (size_t)k);
+	t->npend -= (size_t)k;
+	t->pend_at += k;
+	return 0;
+}
+
+/* The link took w job bytes p: the journal hears of them when the device confirms them (at once,
+ * for a link whose write count is the confirmation). 0, or -1 (message set). */
+static int took(io_transport_t *t, const unsigned char *p, size_t w)
+{
+	unsigned long long at = t->link_out;
+	t->link_out += w;
+	if (!t->journal)
+		return 0;
+	if (!t->link->acked)
+		return journal_ack(t, p, w);
+	if (t->npend + w > t->cappend) {
+		size_t c = t->cappend ? t->cappend : 65536;
+		while (c < t->npend + w)
+			c *= 2;
+		unsigned char *b = realloc(t->pend, c);
+		if (!b) {
+			errno = ENOMEM;
+			return io_set_err(t, "cannot keep the unconfirmed bytes for the journal");
+		}
+		t->pend = b;
+		t->cappend = c;
+	}
+	if (t->npend == 0)
+		t->pend_at = at;
+	memcpy(t->pend + t->npend, p, w);
+	t->npend += w;
+	return confirm(t);
+}
+
+/* A link failed mid-job: the journal as far as the device confirmed, and where it says the job
+ * stopped, added to the line (or that no journal was kept, after a signal). Returns -1. */
 static int journal_where(io_transport_t *t)
 {
+	size_t n = strlen(t->err);
 	if (t->journal) {
-		char where[700];
-		size_t n = strlen(t->err);
+		char where[1400];
+		int e = t->io_errno;
+		int f = t->failed, tmp = t->temporary;
+		char keep[sizeof t->err];
+		memcpy(keep, t->err, sizeof keep);
+		confirm(t);   /* a journal that cannot be written keeps the first failure's line */
+		memcpy(t->err, keep, sizeof keep);
+		t->io_errno = e, t->failed = f, t->temporary = tmp;
 		jn_where(t->journal, where, sizeof where);
 		snprintf(t->err + n, sizeof t->err - n, "; %s", where);
+	} else if (t->io_errno == EINTR) {
+		snprintf(t->err + n, sizeof t->err - n, "; no journal was kept: send the job again (with "
+			"--journal FILE it could be resumed)");
 	}
 	return -1;
 }
@@ -250,6 +428,7 @@ static int send_all(io_transport_t *t, const char *p, size_t n)
 				io_set_err(t, "write failed");
 			return -1;
 		}
+		t->link_out += (unsigned long long)w;
 		p += w;
 		n -= (size_t)w;
 	}
@@ -262,6 +441,8 @@ int io_flush(io_transport_t *t)
 		return t->failed ? -1 : 0;
 	size_t off = 0;
 	while (off < t->nbuf) {
+		if (t->link && tr_check_interrupt(t))
+			return journal_where(t);
 		if (t->journal && jn_skipping(t->journal)) {
 			/* resuming: the device has these bytes; then the state is restored */
 			const char *restore;
@@ -272,15 +453,13 @@ int io_flush(io_transport_t *t)
 			}
 			off += (size_t)k;
 			if (restore && send_all(t, restore, strlen(restore)))
-				return -1;
+				return journal_where(t);
 			continue;
 		}
 		ssize_t w = t->link ? t->link->write(t, t->buf + off, t->nbuf - off)
 			: write(t->fd, t->buf + off, t->nbuf - off);
-		if (w > 0 && t->journal && jn_ack(t->journal, t->buf + off, (size_t)w) < 0) {
-			io_link_fail(t, "cannot write the job journal: %s", strerror(errno));
+		if (w > 0 && t->link && took(t, t->buf + off, (size_t)w) < 0)
 			return -1;
-		}
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
@@ -303,6 +482,8 @@ int io_write(io_transport_t *t, const void *buf, size_t n)
 	const unsigned char *p = buf;
 	if (t->failed)
 		return -1;
+	if (t->link && t->writing && tr_check_interrupt(t))
+		return journal_where(t);
 	while (n > 0) {
 		if (t->nbuf == t->cap && io_flush(t))
 			return -1;
@@ -368,22 +549,45 @@ long io_read(io_transport_t *t, void *buf, size_t n)
 	}
 }
 
+int io_drain(io_transport_t *t)
+{
+	if (io_flush(t))
+		return -1;
+	if (!t->link || !t->writing || t->drained)
+		return 0;
+	t->drained = 1;
+	if (t->link->drain && t->link->drain(t) < 0)
+		return journal_where(t);
+	if (confirm(t) < 0)
+		return -1;
+	if (t->link && tr_check_interrupt(t))
+		return journal_where(t);
+	return 0;
+}
+
 /* Flush (unless aborting) and close the descriptor; standard output stays open, but a close
  * of a copy of it still reports what a close would (NFS reports late write errors there). */
 static int finish_fd(io_transport_t *t, int how)
 {
 	int rc = 0;
 	if (t->writing && how != IO_ABORT)
-		rc = io_flush(t);
+		rc = io_drain(t);
 	if (rc == 0 && how != IO_ABORT && t->journal && jn_skipping(t->journal))
 		rc = io_link_fail(t, "the job ended before the point the journal reached: resume with the "
 			"same input and options");
 	if (t->link) {
+		if (how == IO_ABORT && !t->failed)
+			confirm(t);   /* the journal as far as the device got */
 		if (t->link->close(t) < 0 && rc == 0 && how != IO_ABORT)
 			rc = t->failed ? -1 : io_set_err(t, "close failed");
 		t->link = NULL;
-		if (t->journal && jn_close(t->journal, rc == 0 && how != IO_ABORT && !t->failed) < 0 && rc == 0)
-			rc = io_link_fail(t, "cannot write the job journal: %s", strerror(errno));
+		if (t->writing)
+			signals_give();
+		if (t->journal && jn_close(t->journal, rc == 0 && how != IO_ABORT && !t->failed) < 0 && rc == 0) {
+			int e = errno;
+			rc = io_link_fail(t, "cannot write the job journal: %s", strerror(e));
+			t->io_errno = e;
+		}
 		t->journal = NULL;
 		return rc;
 	}
@@ -456,6 +660,11 @@ int io_failed(const io_transport_t *t)
 int io_temporary(const io_transport_t *t)
 {
 	return t->failed && t->temporary;
+}
+
+int io_errno(const io_transport_t *t)
+{
+	return t->failed ? (t->io_errno ? t->io_errno : EIO) : 0;
 }
 
 const char *io_name(const io_transport_t *t)

@@ -36,7 +36,12 @@ enum {
 	IO_KEEP = 2      /* flush and close, keep the temporary for io_finish() later */
 };
 
-/* Open name for writing. Returns NULL with a one-line message in err on failure. */
+/* Open name for writing. Returns NULL with a one-line message in err on failure, and errno
+ * ENOMEM when memory ran out (else another errno, EIO when none fits). While a device link is
+ * open for writing, SIGINT, SIGTERM and SIGHUP (unless ignored or handled by the program) stop
+ * the job instead of the program: the next write or wait fails as a temporary failure
+ * ("interrupted by SIGINT", io_errno EINTR) that says where the job stopped; a second signal
+ * ends the program. */
 io_transport_t *io_open_write(const char *name, char *err, size_t errlen);
 /* Open name for reading ("-" = stdin). */
 io_transport_t *io_open_read(const char *name, char *err, size_t errlen);
@@ -53,6 +58,10 @@ int io_printf(io_transport_t *t, const char *fmt, ...)
 long io_read(io_transport_t *t, void *buf, size_t n);
 /* Push buffered bytes to the device/file. 0 or <0. */
 int io_flush(io_transport_t *t);
+/* The job is complete: io_flush, then (device links) wait, bounded, until the device confirms
+ * it has every byte (tcp: the printer's close after a half-close), so that a failure there is
+ * still seen with io_temporary() and io_errno() before io_close. io_close does it too. 0 or <0. */
+int io_drain(io_transport_t *t);
 /* End the transport (see IO_*). Frees it unless IO_KEEP. 0 or <0 (message in io_error; on
  * IO_COMMIT and IO_ABORT the transport is freed anyway, so copy the message first with
  * io_close_err). After IO_KEEP the caller still owns t, failed or not: io_finish() frees it. */
@@ -72,6 +81,14 @@ int io_failed(const io_transport_t *t);
  * paper, a line held too long, a dropped connection. A program then exits 75 (EX_TEMPFAIL)
  * rather than 74, and a job with journal= can be resumed (docs/transports.md). */
 int io_temporary(const io_transport_t *t);
+/* The errno of the failure (ENOMEM when memory ran out, EINTR after a signal, EIO for a link's
+ * own failure, else the system call's), 0 while none: programs decide 70 or 74 by it. */
+int io_errno(const io_transport_t *t);
+/* 1 when name is a device link (serial:, tcp:, usb:, hid:), which takes journal= and resume=. */
+int io_is_link_name(const char *name);
+/* The command that resumes a journaled job (the program's command line with --journal turned
+ * into --resume), for the line of a job that stopped; NULL or "" gives "-o NAME?resume=FILE". */
+void io_set_resume_command(const char *cmd);
 /* The name the transport was opened with. */
 const char *io_name(const io_transport_t *t);
 /* 1 if this transport is standard output/input. */

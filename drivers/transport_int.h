@@ -19,6 +19,13 @@ typedef struct io_link {
 	long (*write)(io_transport_t *t, const void *buf, size_t n);
 	long (*read)(io_transport_t *t, void *buf, size_t n);
 	int (*close)(io_transport_t *t);
+	/* Optional (NULL: what write returned is confirmed): the bytes, counted over every write
+	 * since the open, that the device itself has confirmed, when that lags behind what the link
+	 * took (TCP: the peer's acknowledgements). -1 when it cannot be known now. */
+	long long (*acked)(io_transport_t *t);
+	/* Optional: the job is complete; wait (bounded) until the device confirms all of it (TCP:
+	 * half-close, then the peer's close). 0, or -1 with the message set. */
+	int (*drain)(io_transport_t *t);
 } io_link_t;
 
 struct io_transport {
@@ -37,11 +44,23 @@ struct io_transport {
 	size_t nbuf, cap;
 	int failed;
 	int temporary;      /* the failure may pass: device away, busy, dropped (io_temporary) */
+	int io_errno;       /* the failure's errno (ENOMEM, EIO, EPIPE ...): io_errno() */
+	int drained;        /* the link's drain ran (io_drain) */
+	/* links with acked: job bytes the link took that the device has not confirmed yet, fed to
+	 * the journal as confirmations come (at most the link's own send queue) */
+	unsigned char *pend;
+	size_t npend, cappend;
+	unsigned long long pend_at;   /* the link offset of pend[0] */
+	unsigned long long link_out;  /* bytes written through the link, restores included */
 	char err[512];
 };
 
-/* Record errno's cause as the transport's error: "NAME: what: strerror". Returns -1. */
+/* Record errno's cause as the transport's error: "NAME: what: strerror" (io_errno = errno).
+ * Returns -1. */
 int io_set_err(io_transport_t *t, const char *what);
+
+/* "NAME: out of memory" into err; the failed open leaves errno ENOMEM (io_open_write). -1. */
+int io_oom(char *err, size_t errlen, const char *name);
 
 /* tr-file.c: open t->name for writing: a regular file (or a name that does not exist yet)
  * through a new temporary beside it, anything else in place. 0, or -1 with a message in err. */
@@ -61,5 +80,11 @@ void io_temp_drop(io_temp_t *e);
 /* Block SIGINT, SIGTERM and SIGHUP in this thread (old mask saved), and restore it. */
 void io_signals_block(sigset_t *old);
 void io_signals_restore(const sigset_t *old);
+
+/* transport.c: the signal (SIGINT, SIGTERM, SIGHUP) that arrived during a device job, or 0.
+ * While a device link is open for writing those signals only set it (unless the program ignores
+ * or handles them): the link's waits end and the job stops with a temporary failure, its
+ * journal current, instead of the program dying mid-transfer; a second one ends the program. */
+int io_interrupted(void);
 
 #endif

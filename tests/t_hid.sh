@@ -3,18 +3,9 @@
 # CP2110 HID UART bridge emulated under umockdev (tests/emu/usbemu.c --cp2110): the UART enabled
 # and set up by feature reports (0x41, 0x50, 0x43), the job in reports whose ID is the byte count,
 # usbhid detached and given back; bad names in one line.
-. tests/lib.sh
-: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
-: "${TESTBIN:=build/native/tests}"
-EMU=$TESTBIN/emu-usb
-H=$BIN/locus-hpgl
-META=fixtures/contour/trifocal.meta
-if ! command -v umockdev-wrapper > /dev/null || [ ! -x "$EMU" ]; then
-	ok "CP2110 bridge # SKIP umockdev is not installed"
-	done_tests
-fi
-"$H" "$META" -o "$T/job.hpgl" 2>/dev/null || notok "locus-hpgl writes the contour plot to a file"
-word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
+. tests/emu/lib.sh
+EMU=$EMU_USB
+need_umockdev "CP2110 bridge"
 
 "$EMU" --cp2110 --expect "$T/job.hpgl" -- "$H" "$META" -o "hid:10c4:ea80?baud=115200&parity=even&bits=7&stop=2&flow=rtscts" > "$T/h" 2> "$T/h.err"
 [ "$(word child "$T/h")" = 0 ] && [ "$(word bytes "$T/h")" = same ] \
@@ -32,14 +23,7 @@ word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
 "$EMU" --cp2110 -- "$BIN/locus-play" --list-devices > "$T/list" 2>&1
 grep -qxF "hid:10c4:ea80:0001ABCD  HID UART bridge  Silicon Labs CP2110 HID USB-to-UART Bridge" "$T/list" \
 	&& ok "--list-devices names the bridge as -o takes it, with maker and product" || notok "list: $(cat "$T/list")"
-bad() {
-	desc=$1 name=$2 words=$3
-	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e.all"; rc=$?
-	grep -v warning "$T/e.all" > "$T/e"
-	[ $rc = 74 ] && [ "$(wc -l < "$T/e")" = 1 ] && grep -qF -- "$words" "$T/e" && [ ! -s "$T/o" ] \
-		&& ok "$desc: exit $rc, one line: $(cat "$T/e")" || notok "$desc: exit $rc: $(cat "$T/e")"
-}
-bad "absent bridge" "hid:10c4:ea80" "no HID bridge with that VID:PID"
-bad "bad name" "hid:cp2110" "name the bridge as hid:VID:PID"
-bad "bad setting" "hid:10c4:ea80?flow=xonxoff" "bad setting 'flow'"
+bad 74 "absent bridge" "hid:10c4:ea80" "no HID bridge with that VID:PID"
+bad 74 "bad name" "hid:cp2110" "name the bridge as hid:VID:PID"
+bad 74 "bad setting" "hid:10c4:ea80?flow=xonxoff" "bad setting 'flow'"
 done_tests

@@ -5,15 +5,8 @@
 # drains it; it reads what arrived with the HP-GL reader and compares bytes and strokes with the
 # HP-GL locus-hpgl writes to a file. Every flow mode delivers a whole contour plot; with pacing
 # off the loss is seen. Also: termios as asked, timeouts, and bad names in one line.
-. tests/lib.sh
-: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
-: "${TESTBIN:=build/native/tests}"
-EMU=$TESTBIN/emu-plotter
-H=$BIN/locus-hpgl
-META=fixtures/contour/trifocal.meta
-"$H" "$META" -o "$T/job.hpgl" 2>/dev/null || notok "locus-hpgl writes the contour plot to a file"
-# word KEY FILE: the value of KEY=... in the emulator's report
-word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
+. tests/emu/lib.sh
+EMU=$EMU_PLOTTER
 # deliver NAME FLOW HANDSHAKE [EMU OPTIONS...]: run the job through the emulator; report in $T/NAME
 deliver() {
 	n=$1 f=$2 h=$3; shift 3
@@ -75,14 +68,13 @@ sh tests/emu/bigjob.sh 6000 > "$T/big.meta"
 # The cable is pulled at byte 5000 of a flow=escb job with a journal; the job resumes on a new
 # line from the last point an ESC.B answer confirmed. Cut there, the two parts draw every segment
 # of the job once; what the plotter had beyond it, unconfirmed, is counted (drawn again).
-SEG=$TESTBIN/hpgl-segments
 rm -f "$T/j"
-"$EMU" --handshake n --pen-scale 4 --hangup-after 5000 --record "$T/p1" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&journal=$T/j" > "$T/h1" 2> "$T/h1.all"
+"$EMU" --handshake n --pen-scale 4 --hangup-after 5000 --record "$T/p1" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb" --journal "$T/j" > "$T/h1" 2> "$T/h1.all"
 safe=$(sed -n 's/^safe //p' "$T/j")
-grep -v warning "$T/h1.all" > "$T/h1.err"
-[ "$(word child "$T/h1")" = 75 ] && [ "$(wc -l < "$T/h1.err")" = 1 ] && grep -q "(byte $safe of the job) reached; resume with -o 'serial:.*resume=$T/j'" "$T/h1.err" \
-	&& ok "cable pulled mid-job: one line with the byte reached ($safe, confirmed by ESC.B) and the resume name" || notok "hangup: $(cat "$T/h1" "$T/h1.err" "$T/j")"
-"$EMU" --handshake n --pen-scale 4 --record "$T/p2" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb&resume=$T/j" > "$T/h2" 2>&1
+nowarn "$T/h1.all" "$T/h1.err"
+[ "$(word child "$T/h1")" = 75 ] && [ "$(wc -l < "$T/h1.err")" = 1 ] && grep -q "(byte $safe of the job) reached; resume with: $H -o 'serial:.*' --resume $T/j $META\$" "$T/h1.err" \
+	&& ok "cable pulled mid-job: one line with the byte reached ($safe, confirmed by ESC.B) and the resume command" || notok "hangup: $(cat "$T/h1" "$T/h1.err" "$T/j")"
+"$EMU" --handshake n --pen-scale 4 --record "$T/p2" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb" --resume "$T/j" > "$T/h2" 2>&1
 head -c "$safe" "$T/p1" > "$T/p1.cut"
 "$SEG" "$T/job.hpgl" | sort > "$T/seg.job"
 "$SEG" "$T/p1.cut" "$T/p2" | sort > "$T/seg.parts"
@@ -92,12 +84,6 @@ dup=$("$SEG" "$T/p1" "$T/p2" 2>/dev/null | sort | uniq -d | wc -l)
 	|| notok "serial resume: $(cat "$T/h2"; diff "$T/seg.job" "$T/seg.parts" | head -3)"
 
 # Bad names, absent devices, no terminal, no permission: one line that says what to do.
-bad() {
-	want=$1 desc=$2 name=$3 words=$4
-	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e"; rc=$?
-	[ $rc = "$want" ] && [ "$(wc -l < "$T/e")" = 1 ] && grep -qF -- "$words" "$T/e" && [ ! -s "$T/o" ] \
-		&& ok "$desc: exit $rc, one line: $(cat "$T/e")" || notok "$desc: exit $rc: $(cat "$T/e")"
-}
 bad 74 "unknown setting" "serial:$T/tty?speed=9600" "unknown setting 'speed'"
 bad 74 "bad baud" "serial:$T/tty?baud=9601" "no standard rate"
 bad 74 "bad flow" "serial:$T/tty?flow=dtr" "bad flow 'dtr'"

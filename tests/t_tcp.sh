@@ -3,15 +3,8 @@
 # address (tests/emu/plotemu.c --tcp): it reads slowly (a byte rate, a 1024-byte buffer that TCP
 # holds back from), drops the first connection once mid-job, and compares what arrived with the
 # HP-GL written to a file (bytes, and strokes through the HP-GL reader).
-. tests/lib.sh
-: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
-: "${TESTBIN:=build/native/tests}"
-EMU=$TESTBIN/emu-plotter
-H=$BIN/locus-hpgl
-META=fixtures/contour/trifocal.meta
-# (locus-hpgl warns that the contour plot's background is not drawn: the warning is left out)
-"$H" "$META" -o "$T/job.hpgl" 2>/dev/null || notok "locus-hpgl writes the contour plot to a file"
-word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
+. tests/emu/lib.sh
+EMU=$EMU_PLOTTER
 
 # A slow reader: 8 KB/s through a 1 KB buffer; the sender waits at the end for the printer's close.
 "$EMU" --tcp --rate 8000 --pen-scale 20 --expect "$T/job.hpgl" -- "$H" "$META" -o "tcp:127.0.0.1:@PORT@" > "$T/slow" 2> "$T/slow.err"
@@ -23,8 +16,8 @@ rc=$?
 awk -v s="$(word seconds "$T/slow")" 'BEGIN { exit !(s >= 1.0) }' && ok "the sender waited for the slow reader to finish ($(word seconds "$T/slow") s for 10.5 KB at 8 KB/s)" \
 	|| notok "the reader's rate did not hold the sender: $(cat "$T/slow")"
 
-# The printer drops the first connection after 3000 bytes; the job fails in one line, a second
-# run delivers it whole.
+# The printer drops the first connection after 3000 bytes (what its TCP acknowledged it keeps);
+# the job fails in one line with exit 75 (EX_TEMPFAIL), a second run delivers it whole.
 cat > "$T/twice.sh" <<EOF
 "$H" "$META" -o "tcp:127.0.0.1:\$1" 2> "$T/first.all"; echo \$? > "$T/first.rc"
 grep -v warning "$T/first.all" > "$T/first.err"
@@ -32,20 +25,44 @@ exec "$H" "$META" -o "tcp:127.0.0.1:\$1"
 EOF
 "$EMU" --tcp --rate 8000 --pen-scale 20 --drop-after 3000 --expect "$T/job.hpgl" -- sh "$T/twice.sh" @PORT@ > "$T/drop" 2> "$T/drop.err"
 rc=$?
-[ "$(cat "$T/first.rc")" = 74 ] && [ "$(wc -l < "$T/first.err")" = 1 ] && grep -q "dropped the connection" "$T/first.err" \
-	&& ok "a dropped connection: exit 74, one line: $(cat "$T/first.err")" || notok "drop: exit $(cat "$T/first.rc"): $(cat "$T/first.err")"
+[ "$(cat "$T/first.rc")" = 75 ] && [ "$(wc -l < "$T/first.err")" = 1 ] && grep -Eq "(closed|dropped) the connection having taken [0-9]+ of 10514 bytes" "$T/first.err" \
+	&& ok "a dropped connection, seen at the end: exit 75, one line: $(cat "$T/first.err")" || notok "drop: exit $(cat "$T/first.rc"): $(cat "$T/first.err")"
 [ $rc = 0 ] && [ "$(word connections "$T/drop")" = 2 ] && [ "$(word strokes "$T/drop")" = same ] \
 	&& ok "sent again after the drop, the job arrives whole (bytes and strokes)" || notok "after the drop: $(cat "$T/drop" "$T/drop.err")"
 
-# Bad names and absent printers: one line, and what to do.
-bad() {
-	desc=$1 name=$2 words=$3
-	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e"; rc=$?
-	[ $rc = 74 ] && [ "$(wc -l < "$T/e")" = 1 ] && grep -qF -- "$words" "$T/e" && [ ! -s "$T/o" ] \
-		&& ok "$desc: exit $rc, one line: $(cat "$T/e")" || notok "$desc: exit $rc: $(cat "$T/e")"
+# journal NAME META HPGL DROP-AFTER [LOCUS-HPGL OPTIONS]: a journaled job dropped after
+# DROP-AFTER bytes, then resumed with --resume: exit 75, the journal's acked count is what the
+# printer took (the peer's acknowledgements: SIOCOUTQ), the resume command in the line, and the
+# parts cut at the journal's point draw the whole job once.
+journal() {
+	n=$1 m=$2 hp=$3 after=$4; shift 4
+	f=$(echo "$n" | tr ' ' -)
+	rm -f "$T/$f.j"
+	"$EMU" --tcp --rate 200000 --pen-scale 1000 --drop-after "$after" --record "$T/$f.p1" -- "$H" "$@" "$m" \
+		-o "tcp:127.0.0.1:@PORT@" --journal "$T/$f.j" > "$T/$f.r1" 2> "$T/$f.all"
+	nowarn "$T/$f.all" "$T/$f.err"
+	took=$(word first "$T/$f.r1") acked=$(sed -n 's/^acked //p' "$T/$f.j") safe=$(sed -n 's/^safe //p' "$T/$f.j")
+	[ "$(word child "$T/$f.r1")" = 75 ] && [ "$(wc -l < "$T/$f.err")" = 1 ] && [ "$acked" = "$took" ] \
+		&& grep -q "having taken $took of [0-9]* bytes sent; page 1, command [0-9]* (byte $safe of the job) reached; resume with: .*--resume $T/$f.j" "$T/$f.err" \
+		&& grep -q "^state interrupted" "$T/$f.j" \
+		&& ok "$n: exit 75; the journal's point $safe is at the printer's $took bytes (acknowledged); one line: $(cut -c1-160 "$T/$f.err")..." \
+		|| notok "$n: $(cat "$T/$f.r1" "$T/$f.err" "$T/$f.j")"
+	"$EMU" --tcp --rate 200000 --pen-scale 1000 --record "$T/$f.p2" -- "$H" "$@" "$m" -o "tcp:127.0.0.1:@PORT@" --resume "$T/$f.j" > "$T/$f.r2" 2>&1
+	[ "$(word child "$T/$f.r2")" = 0 ] && grep -q "^state done" "$T/$f.j" && ok "$n: the resumed job completes, the journal says done" \
+		|| notok "$n resumed: $(cat "$T/$f.r2" "$T/$f.j")"
+	parts_whole "$n" "$hp" "$safe" "$T/$f.p1" "$T/$f.p2"
 }
-bad "no host" "tcp:" "name a host"
-bad "bad port" "tcp:127.0.0.1:99999" "bad port"
-bad "bad setting" "tcp:127.0.0.1?speed=1" "the one setting is timeout=SECONDS"
-bad "nobody listening" "tcp:127.0.0.1:1" "is the printer on"
+# Mid-job: a 122 KB job, dropped at 20000 bytes while the sender still writes (send fails).
+sh tests/emu/bigjob.sh 6000 > "$T/big.meta"
+"$H" --no-optimize "$T/big.meta" -o "$T/big.hpgl" 2>/dev/null
+journal "drop mid-job" "$T/big.meta" "$T/big.hpgl" 20000 --no-optimize
+# After the last byte: the contour plot is all in the sender's socket when the printer drops at
+# 7000; the sender learns it only from the half-close at the end (the peer's acknowledgements).
+journal "drop after the last byte" "$META" "$T/job.hpgl" 7000
+
+# Bad names and absent printers: one line, and what to do.
+bad 74 "no host" "tcp:" "name a host"
+bad 74 "bad port" "tcp:127.0.0.1:99999" "bad port"
+bad 74 "bad setting" "tcp:127.0.0.1?speed=1" "the one setting is timeout=SECONDS"
+bad 74 "nobody listening" "tcp:127.0.0.1:1" "is the printer on"
 done_tests

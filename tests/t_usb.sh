@@ -5,18 +5,9 @@
 # its little-endian variant), the kernel driver detached and given back, a stall, a short write,
 # a busy printer (transfers time out, partial counts kept), paper empty in words, an unplug
 # mid-job, serial-number matching, --list-devices, and bad names in one line.
-. tests/lib.sh
-: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
-: "${TESTBIN:=build/native/tests}"
-EMU=$TESTBIN/emu-usb
-H=$BIN/locus-hpgl
-META=fixtures/contour/trifocal.meta
-if ! command -v umockdev-wrapper > /dev/null || [ ! -x "$EMU" ]; then
-	ok "USB printer class # SKIP umockdev (umockdev-wrapper, libumockdev-dev) is not installed"
-	done_tests
-fi
-"$H" "$META" -o "$T/job.hpgl" 2>/dev/null || notok "locus-hpgl writes the contour plot to a file"
-word() { tr ' ' '\n' < "$2" | sed -n "s/^$1=//p" | head -1; }
+. tests/emu/lib.sh
+EMU=$EMU_USB
+need_umockdev "USB printer class"
 # job NAME [EMU OPTIONS...] -- OUTPUT: one job into the emulator; report in $T/NAME, errors in NAME.err
 job() {
 	n=$1; shift
@@ -69,15 +60,15 @@ job unplug --unplug-at 6000 -- usb:03f0:0107
 	&& [ "$(word received "$T/unplug")" = 6000 ] && ok "unplugged at byte 6000: one line naming how far it got, exit 75 (EX_TEMPFAIL)" \
 	|| notok "unplug: $(cat "$T/unplug" "$T/unplug.err")"
 
-# Unplugged mid-number with a journal, then resumed on a fresh device: the two parts hold every
-# pen-down segment of the job once (through the HP-GL reader), none redrawn, none skipped.
-SEG=$TESTBIN/hpgl-segments
+# Unplugged mid-number with --journal, then resumed with --resume on a fresh device: the two
+# parts hold every pen-down segment of the job once (through the HP-GL reader), none redrawn,
+# none skipped.
 rm -f "$T/j"
-"$EMU" --unplug-at 6003 --record "$T/part1" -- "$H" "$META" -o "usb:03f0:0107?journal=$T/j" > "$T/u1" 2> "$T/u1.all"
-grep -v warning "$T/u1.all" > "$T/u1.err"
+"$EMU" --unplug-at 6003 --record "$T/part1" -- "$H" "$META" -o usb:03f0:0107 --journal "$T/j" > "$T/u1" 2> "$T/u1.all"
+nowarn "$T/u1.all" "$T/u1.err"
 safe=$(sed -n 's/^safe //p' "$T/j")
-[ "$(word child "$T/u1")" = 75 ] && [ "$(wc -l < "$T/u1.err")" = 1 ] && grep -q "page 1, command [0-9]* (byte $safe of the job) reached; resume with -o 'usb:03f0:0107?resume=$T/j'" "$T/u1.err" 	&& [ "$safe" -le 6003 ] && [ "$safe" -gt 5900 ] 	&& ok "unplugged with journal=: one line with the page, command and byte reached (boundary $safe of 6003 sent) and the resume name" 	|| notok "journal: $(cat "$T/u1" "$T/u1.err" "$T/j")"
-"$EMU" --record "$T/part2" -- "$H" "$META" -o "usb:03f0:0107?resume=$T/j" > "$T/u2" 2> "$T/u2.all"
+[ "$(word child "$T/u1")" = 75 ] && [ "$(wc -l < "$T/u1.err")" = 1 ] && grep -qF "page 1, command $(sed -n 's/^command //p' "$T/j") (byte $safe of the job) reached; resume with: $H -o usb:03f0:0107 --resume $T/j $META" "$T/u1.err" 	&& [ "$safe" -le 6003 ] && [ "$safe" -gt 5900 ] 	&& ok "unplugged with --journal: one line with the page, command and byte reached (boundary $safe of 6003 sent) and the exact resume command" 	|| notok "journal: $(cat "$T/u1" "$T/u1.err" "$T/j")"
+"$EMU" --record "$T/part2" -- "$H" "$META" -o usb:03f0:0107 --resume "$T/j" > "$T/u2" 2> "$T/u2.all"
 head -c "$safe" "$T/part1" > "$T/part1.cut"
 "$SEG" "$T/job.hpgl" | sort > "$T/seg.job"
 "$SEG" "$T/part1.cut" "$T/part2" | sort > "$T/seg.parts"
@@ -92,6 +83,24 @@ rm -f "$T/j2"
 "$EMU" -- "$H" fixtures/meta/f-test.meta -o "usb:03f0:0107?resume=$T/j2" > "$T/u4" 2> "$T/u4.all"
 grep -Eq "the job differs from the journaled one|the job ended before the point the journal reached" "$T/u4.all" && [ "$(word received "$T/u4")" = 0 ] 	&& ok "resuming with another job: refused in one line, nothing sent" || notok "other job: $(cat "$T/u4" "$T/u4.all")"
 
+# --journal and --resume in every program that sends jobs, the same as the name parameters.
+rm -f "$T/jp"
+"$EMU" --unplug-at 3000 -- "$BIN/locus-play" -d hpgl "$META" -o usb:03f0:0107 --journal "$T/jp" > "$T/pl1" 2>&1
+"$EMU" --expect "$T/job.hpgl" -- "$BIN/locus-play" -d hpgl "$META" -o "usb:03f0:0107?resume=$T/jp" --resume "$T/jp" > "$T/pl2" 2>&1
+[ "$(word child "$T/pl1")" = 75 ] && [ "$(word child "$T/pl2")" = 0 ] && grep -q "^state done" "$T/jp" \
+	&& ok "locus-play -d hpgl: --journal, then --resume with the same resume= in the name too" || notok "locus-play journal: $(cat "$T/pl1" "$T/pl2" "$T/jp")"
+for p in locus-hpgl locus-ps locus-play; do
+	"$BIN/$p" --help | grep -q -- "--resume FILE" || notok "$p --help: no --resume"
+	"$BIN/$p" -d hpgl "$META" -o "usb:03f0:0107?journal=$T/a" --journal "$T/b" > /dev/null 2> "$T/cl.err"; rc=$?
+	[ "$p" = locus-play ] || { "$BIN/$p" "$META" -o "usb:03f0:0107?journal=$T/a" --journal "$T/b" > /dev/null 2> "$T/cl.err"; rc=$?; }
+	[ $rc = 64 ] && grep -q "already says journal=$T/a, and --journal $T/b: give one" "$T/cl.err" \
+		&& ok "$p: --journal against another journal= in the name: usage error 64, one line" || notok "$p conflict: exit $rc $(cat "$T/cl.err")"
+done
+"$H" "$META" -o "$T/x.hpgl" --resume "$T/j" 2> "$T/cl.err"; rc=$?
+[ $rc = 64 ] && grep -q "needs a device link output" "$T/cl.err" && [ ! -e "$T/x.hpgl" ] && ok "--resume into a file: usage error 64" || notok "resume file: $rc $(cat "$T/cl.err")"
+"$H" "$META" -o usb:03f0:0107 --resume "$T/j" --journal "$T/j" 2> "$T/cl.err"; rc=$?
+[ $rc = 64 ] && ok "--journal and --resume together: usage error 64: $(cat "$T/cl.err")" || notok "both: $rc $(cat "$T/cl.err")"
+
 # Recorded sessions (fixtures/usb/*.pcap, usbmon link type 220) replayed by umockdev-run -p: the
 # replay completes only if the program makes the same transfers with the same bytes, in order.
 SYS=/sys/devices/pci0000:00/0000:00:14.0/usb1/1-1
@@ -105,17 +114,10 @@ replay f-test-job.pcap fixtures/meta/strokes.meta > /dev/null 2> "$T/r3"; rc=$?
 	|| notok "replay control: exit $rc, $(tail -2 "$T/r3")"
 
 # No such device (no emulator at all), bad names.
-bad() {
-	desc=$1 name=$2 words=$3
-	"$H" "$META" -o "$name" > "$T/o" 2> "$T/e.all"; rc=$?
-	grep -v warning "$T/e.all" > "$T/e"
-	[ $rc = 74 ] && [ "$(wc -l < "$T/e")" = 1 ] && grep -qF -- "$words" "$T/e" && [ ! -s "$T/o" ] \
-		&& ok "$desc: exit $rc, one line: $(cat "$T/e")" || notok "$desc: exit $rc: $(cat "$T/e")"
-}
 "$EMU" -- "$H" "$META" -o usb:03f0:0999 > "$T/absent" 2> "$T/absent.all"
 grep -q "no USB printer-class device with that VID:PID: is it plugged in and on?" "$T/absent.all" && [ "$(word child "$T/absent")" = 74 ] \
 	&& ok "an absent VID:PID: one line that says to plug it in, and how to list or wait" || notok "absent: $(cat "$T/absent" "$T/absent.all")"
-bad "a VID that is no hex" "usb:zz:0107" "name the printer as usb:VID:PID"
-bad "no PID" "usb:03f0" "name the printer as usb:VID:PID"
-bad "an unknown setting" "usb:03f0:0107?speed=1" "settings are wait=SECONDS"
+bad 74 "a VID that is no hex" "usb:zz:0107" "name the printer as usb:VID:PID"
+bad 74 "no PID" "usb:03f0" "name the printer as usb:VID:PID"
+bad 74 "an unknown setting" "usb:03f0:0107?speed=1" "settings are wait=SECONDS"
 done_tests

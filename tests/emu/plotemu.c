@@ -12,8 +12,10 @@
  *   --pen-change S  seconds per pen change (0.5)    --mute  answer no query (one-way cable)
  *   --pen-scale F   the pen works F times faster than a real one (the line does not)
  *   --deadline S    kill the command after S seconds (60)
- *   --tcp           listen on 127.0.0.1 instead; --drop-after N: close the first connection
- *                   after N bytes; --rate B/S: the network's byte rate
+ *   --tcp           listen on 127.0.0.1 instead; --drop-after N: drop the first connection
+ *                   after N bytes (what its TCP already acknowledged is still taken: the
+ *                   printer has it; the rest is refused with a reset); --rate B/S: the
+ *                   network's byte rate; --rcvbuf N: the socket's receive buffer (4096)
  *   --hangup-after N  the line goes away (the pseudo-terminal closes) after N accepted bytes
  *   --record FILE   the HP-GL received (escapes and output instructions left out)
  *   --expect FILE   compare with this HP-GL: bytes, and strokes through the HP-GL reader
@@ -355,6 +357,7 @@ int main(int argc, char **argv)
 	const char *rec_path = NULL, *expect = NULL;
 	int tcp = 0;
 	long long drop_after = -1, hangup_after = -1;
+	int rcvbuf = 4096;
 	double deadline = 60;
 	int i;
 	for (i = 1; i < argc && strcmp(argv[i], "--"); i++) {
@@ -373,6 +376,7 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--pen-scale")) e.scale = atof(v), i++;
 		else if (!strcmp(a, "--deadline")) deadline = atof(v), i++;
 		else if (!strcmp(a, "--tcp")) tcp = 1;
+		else if (!strcmp(a, "--rcvbuf")) rcvbuf = atoi(v), i++;
 		else {
 			fprintf(stderr, "emu-plotter: unknown option %s\n", a);
 			return 64;
@@ -390,6 +394,8 @@ int main(int argc, char **argv)
 		struct sockaddr_in sa = { .sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK) };
 		socklen_t sl = sizeof sa;
 		lsock = socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+		if (lsock >= 0 && rcvbuf > 0)   /* a printer's small network buffer (accepted sockets inherit it) */
+			setsockopt(lsock, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
 		if (lsock < 0 || bind(lsock, (struct sockaddr *)&sa, sizeof sa) || listen(lsock, 4)
 			|| getsockname(lsock, (struct sockaddr *)&sa, &sl)) {
 			perror("emu-plotter: listen");
@@ -421,7 +427,7 @@ int main(int argc, char **argv)
 	double credit = 0, last = now_s(), first_at = 0, last_at = 0;
 	long baud = 0;
 	int bpc = 10, connections = 0;
-	long long conn_bytes = 0;
+	long long conn_bytes = 0, first_bytes = -1;   /* first: what the dropped connection took */
 	for (;;) {
 		if (!exited && waitpid(pid, &status, WNOHANG) == pid)
 			exited = 1;
@@ -486,8 +492,24 @@ int main(int argc, char **argv)
 					break;
 				}
 				if (tcp && drop_after >= 0 && connections == 1 && conn_bytes >= drop_after) {
-					close(conn);   /* the printer drops the first job once */
+					/* The printer drops the first job once. Shut down first: from then on its TCP
+					 * refuses new data with a reset instead of acknowledging it; what it had
+					 * acknowledged already is in its buffer, and it plots that. */
+					shutdown(conn, SHUT_RDWR);
+					for (;;) {
+						ssize_t g = read(conn, tmp, sizeof tmp);
+						if (g <= 0)
+							break;
+						for (ssize_t k = 0; k < g; k++) {
+							if (e.count == e.bufsize)
+								consume(&e);   /* the pen makes room */
+							arrive(&e, tmp[k]);
+						}
+						conn_bytes += g;
+					}
+					close(conn);
 					conn = -1;
+					first_bytes = conn_bytes;
 					continue;
 				}
 			} else if (tcp && r == 0) {
@@ -544,9 +566,10 @@ int main(int argc, char **argv)
 	double secs = last_at - first_at;
 	int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 	printf("child=%d received=%lld accepted=%zu dropped=%lld peak=%zu xoff=%lld escapes=%lld "
-		"queries=%zu baud=%ld bits=%d seconds=%.3f rate=%.0f line=%.0f connections=%d", code,
+		"queries=%zu baud=%ld bits=%d seconds=%.3f rate=%.0f line=%.0f connections=%d first=%lld", code,
 		e.received, e.nrec, e.dropped, e.peak, e.xoffs, e.escapes, e.ncut, baud, bpc, secs,
-		secs > 0 ? (double)e.received / secs : 0, e.rate > 0 ? e.rate : (double)baud / bpc, connections);
+		secs > 0 ? (double)e.received / secs : 0, e.rate > 0 ? e.rate : (double)baud / bpc, connections,
+		first_bytes);
 	int bad = code != 0;
 	if (expect)
 		bad |= emu_compare(job, nj, expect);
