@@ -1,11 +1,14 @@
 /* tr-hid.c: the HID UART bridge link (Silicon Labs CP2110 and work-alikes) through hidapi:
  * the UART enabled and set up by feature reports (0x41 enable, 0x50 configuration, 0x43 purge),
- * data sent in interrupt reports whose report ID is the byte count (1..63), replies read back. */
+ * data sent in interrupt reports whose report ID is the byte count (1..63), replies read back;
+ * with flow=escb HP-GL's own pacing through the bridge's replies (ESC.L once, ESC.B before each
+ * chunk of at most half the buffer and after it, as on a serial line). */
 #include <errno.h>
 #include <hidapi.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <wchar.h>
 #include "tr_link.h"
 
@@ -15,7 +18,76 @@ typedef struct {
 	long long sent;
 	unsigned char in[64];   /* a reply report's bytes not yet read */
 	size_t nin, pos;
+	int escb;               /* flow=escb: HP-GL pacing */
+	long bufsize, space;    /* ESC.L's answer; the last ESC.B answer (-1: used) */
+	char ident[64];         /* OI's answer */
 } hid_t_;
+
+/* Send all n bytes in reports of at most 63 (report ID = count). 0, or -1 (message set). */
+static int hid_put(io_transport_t *t, hid_t_ *s, const void *buf, size_t n)
+{
+	const unsigned char *p = buf;
+	while (n > 0) {
+		unsigned char rep[64];
+		size_t k = n < 63 ? n : 63;
+		rep[0] = (unsigned char)k;
+		memcpy(rep + 1, p, k);
+		if (hid_write(s->dev, rep, k + 1) < 0)
+			return io_link_tempfail(t, "the bridge went away after %lld bytes (unplugged?)", s->sent);
+		p += k;
+		n -= k;
+	}
+	return 0;
+}
+
+/* Read one reply up to CR (or LF) within ms, through the bridge's input reports. */
+static int hid_reply(io_transport_t *t, hid_t_ *s, const char *what, char *buf, size_t len, long ms)
+{
+	size_t n = 0;
+	long long end = tr_now_ms() + ms;
+	for (;;) {
+		if (tr_check_interrupt(t))
+			return -1;
+		while (s->pos < s->nin) {
+			char c = (char)s->in[s->pos++];
+			if (c == '\r' || c == '\n') {
+				if (n == 0)
+					continue;
+				buf[n] = 0;
+				return 0;
+			}
+			if (n + 1 < len)
+				buf[n++] = c;
+		}
+		long left = (long)(end - tr_now_ms());
+		if (left <= 0)
+			return io_link_tempfail(t, "no answer to %s within %ld ms through the bridge: is the plotter "
+				"on, and does the cable carry its replies?", what, ms);
+		unsigned char rep[64];
+		int r = hid_read_timeout(s->dev, rep, sizeof rep, left < 200 ? (int)left : 200);
+		if (r < 0)
+			return io_link_tempfail(t, "reading from the bridge failed (unplugged?)");
+		if (r > 0) {
+			size_t c = rep[0] < (size_t)r ? rep[0] : (size_t)r - 1;
+			memcpy(s->in, rep + 1, c);
+			s->nin = c;
+			s->pos = 0;
+		}
+	}
+}
+
+/* A query and its numeric answer (stale replies read first are dropped). */
+static int hid_ask(io_transport_t *t, hid_t_ *s, const char *q, const char *what, long ms, long *out)
+{
+	char rep[64], *e;
+	s->pos = s->nin = 0;
+	if (hid_put(t, s, q, strlen(q)) || hid_reply(t, s, what, rep, sizeof rep, ms))
+		return -1;
+	*out = strtol(rep, &e, 10);
+	if (e == rep)
+		return io_link_fail(t, "the answer to %s is no number: '%s'", what, rep);
+	return 0;
+}
 
 static int parse_hex4(const char *s, size_t n, unsigned *v)
 {
@@ -35,7 +107,7 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	unsigned vid, pid;
 	char serial[64] = "", key[32], val[64];
 	long baud = 9600, bits = 8, stop = 1, timeout = 30;
-	int parity = 0, rtscts = 0;
+	int parity = 0, rtscts = 0, escb = 0;
 	const char *q = strchr(rest, '?'), *end = q ? q : rest + strlen(rest);
 	const char *c1 = memchr(rest, ':', (size_t)(end - rest));
 	const char *c2 = c1 ? memchr(c1 + 1, ':', (size_t)(end - c1 - 1)) : NULL;
@@ -63,13 +135,14 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 			parity = !strcmp(val, "none") ? 0 : !strcmp(val, "odd") ? 1 : !strcmp(val, "even") ? 2 : -1;
 			bad = parity < 0;
 		} else if (!bad && !strcmp(key, "flow")) {
-			rtscts = !strcmp(val, "none") ? 0 : !strcmp(val, "rtscts") ? 1 : -1;
+			escb = !strcmp(val, "escb");
+			rtscts = escb || !strcmp(val, "none") ? 0 : !strcmp(val, "rtscts") ? 1 : -1;
 			bad = rtscts < 0;
 		} else
 			bad = 1;
 		if (bad) {
 			snprintf(err, errlen, "%s: bad setting '%s' (baud 300-1000000, parity none|odd|even, bits 5-8, "
-				"stop 1|2, flow none|rtscts, timeout seconds)", t->name, key);
+				"stop 1|2, flow none|rtscts|escb, timeout seconds)", t->name, key);
 			return -1;
 		}
 	}
@@ -114,13 +187,65 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	}
 	s->dev = dev;
 	s->timeout_ms = timeout * 1000;
+	s->escb = escb;
+	s->space = -1;
 	t->link_state = s;
+	if (escb) {
+		/* HP-GL's own handshake through the bridge: learn the buffer, identify the plotter */
+		char rep[64];
+		if (hid_ask(t, s, "\033.L", "ESC.L (buffer size)", 3000, &s->bufsize) || (s->bufsize < 2
+				&& io_link_fail(t, "the plotter reports a buffer of %ld bytes", s->bufsize))
+			|| (s->pos = s->nin = 0, hid_put(t, s, "OI;", 3))
+			|| hid_reply(t, s, "OI (identification)", rep, sizeof rep, 3000)) {
+			snprintf(err, errlen, "%s", t->err);
+			t->failed = 0;
+			t->link_state = NULL;
+			hid_close(dev);
+			hid_exit();
+			free(s);
+			return -1;
+		}
+		snprintf(s->ident, sizeof s->ident, "%s", rep);
+	}
 	return 0;
+}
+
+/* flow=escb: ESC.B before each chunk of at most half the buffer (waiting while there is no
+ * room), and after it: its answer, read behind the chunk, confirms the chunk reached the plotter
+ * (the journal counts what this returns), and serves as the next chunk's free space. */
+static long escb_write(io_transport_t *t, hid_t_ *s, const void *buf, size_t n)
+{
+	size_t chunk = (size_t)s->bufsize / 2, want = n < chunk ? n : chunk;
+	long long start = tr_now_ms();
+	long space = s->space;
+	s->space = -1;
+	for (;;) {
+		if (space < 0 && hid_ask(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &space))
+			return -1;
+		if (space >= (long)want)
+			break;
+		space = -1;
+		if (tr_check_interrupt(t))
+			return -1;
+		if (tr_now_ms() - start > s->timeout_ms)
+			return io_link_tempfail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
+				"of paper?)", s->timeout_ms / 1000);
+		struct timespec ts = { 0, 20000000L };
+		nanosleep(&ts, NULL);
+	}
+	if (hid_put(t, s, buf, want))
+		return -1;
+	s->sent += (long long)want;
+	if (hid_ask(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &s->space))
+		return -1;
+	return (long)want;
 }
 
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n)
 {
 	hid_t_ *s = t->link_state;
+	if (s->escb)
+		return escb_write(t, s, buf, n);
 	unsigned char rep[64];
 	size_t k = n < 63 ? n : 63;
 	rep[0] = (unsigned char)k;   /* the report ID is the byte count */
@@ -155,11 +280,18 @@ long tr_hid_read(io_transport_t *t, void *buf, size_t n)
 int tr_hid_close(io_transport_t *t)
 {
 	hid_t_ *s = t->link_state;
+	int rc = 0;
+	long code = 0;
+	if (s->escb && !t->failed && t->writing && hid_ask(t, s, "OE;", "OE (error)", s->timeout_ms, &code) == 0
+		&& code != 0)
+		rc = io_link_fail(t, "the plotter (%s) reports error %ld after the job", s->ident[0] ? s->ident : "?", code);
+	else if (t->failed)
+		rc = -1;
 	hid_close(s->dev);
 	hid_exit();
 	free(s);
 	t->link_state = NULL;
-	return 0;
+	return rc;
 }
 
 void tr_hid_list(io_transport_t *out)

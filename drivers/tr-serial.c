@@ -66,6 +66,8 @@ static int put_all(io_transport_t *t, serial_t *s, const void *buf, size_t n)
 				return io_link_tempfail(t, "the line went away mid-job (unplugged?): %s", strerror(errno));
 			return io_link_fail(t, "write failed: %s", strerror(errno));
 		}
+		if (tr_check_interrupt(t))
+			return -1;
 		long left = s->timeout_ms - (long)(tr_now_ms() - last);
 		if (left <= 0)
 			return io_link_tempfail(t, "the device took nothing for %ld s (%s held: is it online "
@@ -83,6 +85,8 @@ static int get_reply(io_transport_t *t, serial_t *s, const char *what, char *buf
 	size_t n = 0;
 	long long end = tr_now_ms() + ms;
 	for (;;) {
+		if (tr_check_interrupt(t))
+			return -1;
 		long left = (long)(end - tr_now_ms());
 		if (left <= 0)
 			return io_link_tempfail(t, "no answer to %s within %ld ms: is the plotter on, and "
@@ -337,6 +341,8 @@ long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 		if (space >= (long)want)
 			break;
 		space = -1;
+		if (tr_check_interrupt(t))
+			return -1;
 		if (tr_now_ms() - start > s->timeout_ms)
 			return io_link_tempfail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
 				"of paper?)", s->timeout_ms / 1000);
@@ -378,7 +384,7 @@ int tr_serial_close(io_transport_t *t)
 		/* Wait, bounded, until the last bytes left the port (tcdrain could wait forever on XOFF). */
 		long long end = tr_now_ms() + s->timeout_ms;
 		int q;
-		while (ioctl(s->fd, TIOCOUTQ, &q) == 0 && q > 0 && tr_now_ms() < end)
+		while (ioctl(s->fd, TIOCOUTQ, &q) == 0 && q > 0 && tr_now_ms() < end && !io_interrupted())
 			sleep_ms(5);
 	}
 	if (close(s->fd) < 0 && rc == 0)

@@ -267,6 +267,8 @@ long tr_usb_write(io_transport_t *t, const void *buf, size_t n)
 		if (r == LIBUSB_ERROR_NO_DEVICE || r == LIBUSB_ERROR_IO)
 			return io_link_tempfail(t, "the printer went away after %lld bytes (unplugged or off): %s",
 				s->sent, libusb_strerror(r));
+		if (tr_check_interrupt(t))
+			return -1;
 		if (r == LIBUSB_ERROR_TIMEOUT && tr_now_ms() - start < s->timeout_ms)
 			continue;   /* busy: wait for it */
 		const char *w = port_words(s->h, s->iface);

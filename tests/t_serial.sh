@@ -83,6 +83,26 @@ dup=$("$SEG" "$T/p1" "$T/p2" 2>/dev/null | sort | uniq -d | wc -l)
 	&& ok "resumed over serial: the parts cut at the confirmed point draw all $(wc -l < "$T/seg.job") segments once ($dup more were sent but unconfirmed)" \
 	|| notok "serial resume: $(cat "$T/h2"; diff "$T/seg.job" "$T/seg.parts" | head -3)"
 
+# Ctrl-C mid-job: SIGINT to a flow=escb job at 9600 baud after a second stops it cleanly: one
+# line with the page and command reached and the exact resume command, exit 75, the journal
+# marked interrupted; the resumed job and the first part cut at the journal's point draw every
+# segment once (nothing lost, nothing doubled).
+rm -f "$T/ji"
+cat > "$T/int.sh" <<EOF
+env --default-signal=INT "$H" "$META" -o "serial:\$1?baud=9600&flow=escb" --journal "$T/ji" 2> "$T/int.all" & pid=\$!
+sleep 1.2; kill -INT \$pid; wait \$pid; echo \$? > "$T/int.rc"
+EOF
+"$EMU" --handshake n --pen-scale 4 --record "$T/i1" -- sh "$T/int.sh" @TTY@ > "$T/i1.r" 2>&1
+nowarn "$T/int.all" "$T/int.err"
+isafe=$(sed -n 's/^safe //p' "$T/ji")
+[ "$(cat "$T/int.rc")" = 75 ] && [ "$(wc -l < "$T/int.err")" = 1 ] && grep -q "^state interrupted" "$T/ji" \
+	&& grep -q "interrupted by SIGINT (Ctrl-C) after [0-9]* bytes; page 1, command $(sed -n 's/^command //p' "$T/ji") (byte $isafe of the job) reached; resume with: $H -o 'serial:.*' --resume $T/ji $META\$" "$T/int.err" \
+	&& [ "$isafe" -gt 0 ] && [ "$isafe" -lt 5000 ] \
+	&& ok "SIGINT mid-job: exit 75, journal interrupted at byte $isafe, one line: $(cut -c1-200 "$T/int.err")" || notok "SIGINT: rc $(cat "$T/int.rc"): $(cat "$T/int.err" "$T/ji" "$T/i1.r")"
+"$EMU" --handshake n --pen-scale 4 --record "$T/i2" -- "$H" "$META" -o "serial:@TTY@?baud=115200&flow=escb" --resume "$T/ji" > "$T/i2.r" 2>&1
+[ "$(word child "$T/i2.r")" = 0 ] && grep -q "^state done" "$T/ji" && ok "after SIGINT, --resume completes the job" || notok "SIGINT resume: $(cat "$T/i2.r" "$T/ji")"
+parts_whole "SIGINT then --resume" "$T/job.hpgl" "$isafe" "$T/i1" "$T/i2"
+
 # Bad names, absent devices, no terminal, no permission: one line that says what to do.
 bad 74 "unknown setting" "serial:$T/tty?speed=9600" "unknown setting 'speed'"
 bad 74 "bad baud" "serial:$T/tty?baud=9601" "no standard rate"

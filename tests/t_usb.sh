@@ -83,6 +83,23 @@ rm -f "$T/j2"
 "$EMU" -- "$H" fixtures/meta/f-test.meta -o "usb:03f0:0107?resume=$T/j2" > "$T/u4" 2> "$T/u4.all"
 grep -Eq "the job differs from the journaled one|the job ended before the point the journal reached" "$T/u4.all" && [ "$(word received "$T/u4")" = 0 ] 	&& ok "resuming with another job: refused in one line, nothing sent" || notok "other job: $(cat "$T/u4" "$T/u4.all")"
 
+# Ctrl-C while the printer is busy (it takes nothing from byte 4000 on): SIGINT stops the job in
+# one line with the point and the resume command, exit 75; the resumed job completes the plot.
+rm -f "$T/ji"
+cat > "$T/int.sh" <<EOF
+env --default-signal=INT "\$@" 2> "$T/int.all" & pid=\$!
+sleep 1.5; kill -INT \$pid; wait \$pid; echo \$? > "$T/int.rc"
+EOF
+"$EMU" --hold-at 4000 9000 --record "$T/i1" -- sh "$T/int.sh" "$H" "$META" -o usb:03f0:0107 --journal "$T/ji" > "$T/i1.r" 2>&1
+nowarn "$T/int.all" "$T/int.err"
+isafe=$(sed -n 's/^safe //p' "$T/ji")
+[ "$(cat "$T/int.rc")" = 75 ] && [ "$(wc -l < "$T/int.err")" = 1 ] && grep -q "^state interrupted" "$T/ji" \
+	&& grep -qF "interrupted by SIGINT (Ctrl-C) after 4000 bytes; page 1, command $(sed -n 's/^command //p' "$T/ji") (byte $isafe of the job) reached; resume with: $H -o usb:03f0:0107 --resume $T/ji $META" "$T/int.err" \
+	&& ok "SIGINT while the printer is busy: exit 75, the journal at byte $isafe, one line: $(cut -c1-160 "$T/int.err")..." || notok "usb SIGINT: rc $(cat "$T/int.rc"): $(cat "$T/int.err" "$T/ji" "$T/i1.r")"
+"$EMU" --record "$T/i2" -- "$H" "$META" -o usb:03f0:0107 --resume "$T/ji" > "$T/i2.r" 2>&1
+[ "$(word child "$T/i2.r")" = 0 ] && ok "after SIGINT, --resume completes the job over USB" || notok "usb SIGINT resume: $(cat "$T/i2.r")"
+parts_whole "USB: SIGINT then --resume" "$T/job.hpgl" "$isafe" "$T/i1" "$T/i2"
+
 # --journal and --resume in every program that sends jobs, the same as the name parameters.
 rm -f "$T/jp"
 "$EMU" --unplug-at 3000 -- "$BIN/locus-play" -d hpgl "$META" -o usb:03f0:0107 --journal "$T/jp" > "$T/pl1" 2>&1
