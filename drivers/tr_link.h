@@ -36,7 +36,7 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
-/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts" (a CP2110
+/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
  * HID UART bridge through hidapi). */
 int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n);

@@ -12,7 +12,11 @@
  *   --status B       the port status byte (0x18: selected, no error; 0x38 adds paper empty)
  *   --id-le          send the device ID length little-endian
  *   --cp2110         be a Silicon Labs CP2110 HID UART bridge (10c4:ea80) instead: feature
- *                    reports 0x41/0x50/0x43 set up its UART, interrupt OUT reports carry data
+ *                    reports 0x41/0x50/0x43 set up its UART, interrupt OUT reports carry data;
+ *                    behind it a plotter answering ESC.B, ESC.L, OI; and OE; (sent in reports
+ *                    of their own) through interrupt IN reports; with --pen-rate B/S its pen
+ *                    drains a 1024-byte buffer that drops what overflows it at that rate
+ *                    (without, the buffer never fills: a bridge holding by RTS/CTS)
  *   --record FILE, --expect FILE   as emu-plotter
  *   --pcap FILE      write the session as a usbmon capture (link type 220, as Wireshark or
  *                    usbmon record it), for umockdev-run -p to replay
@@ -51,6 +55,11 @@ typedef struct {
 	long stalls, clears, detaches, attaches, claims, releases, setconfigs, idreads, statusreads, resets;
 	int cp2110, uart_on, purges;
 	unsigned char uart[9];    /* the last 0x50 configuration report */
+	/* the plotter behind the bridge */
+	double pen_rate, used, drained_at;
+	long peak, dropped, escapes;
+	unsigned char reply[256];  /* answers not yet sent in an IN report */
+	size_t nreply;
 } dev_t_;
 
 static double now_s(void)
@@ -176,6 +185,58 @@ static int bulk_out(dev_t_ *d, const unsigned char *p, int n, int *st)
 	return n;
 }
 
+/* The plotter behind the bridge: its pen has drained the buffer until now. */
+static void drain(dev_t_ *d)
+{
+	double now = now_s();
+	if (d->drained_at > 0) {
+		d->used -= (now - d->drained_at) * d->pen_rate;
+		if (d->used < 0)
+			d->used = 0;
+	}
+	d->drained_at = now;
+}
+
+static void answer(dev_t_ *d, const char *s)
+{
+	size_t n = strlen(s);
+	if (d->nreply + n <= sizeof d->reply) {
+		memcpy(d->reply + d->nreply, s, n);
+		d->nreply += n;
+	}
+}
+
+/* A data report of k bytes through the bridge: a query of the link (in a report of its own:
+ * ESC.B, ESC.L, OI;, OE;) is answered; anything else goes into the plotter's buffer, and what
+ * does not fit is lost as on a real 7475A. */
+static void bridge_data(dev_t_ *d, const unsigned char *p, int k)
+{
+	char tmp[32];
+	drain(d);
+	if (k == 3 && p[0] == 27 && p[1] == '.') {
+		d->escapes++;
+		snprintf(tmp, sizeof tmp, "%ld\r", p[2] == 'L' ? 1024L : p[2] == 'B' ? 1024L - (long)d->used : 0L);
+		answer(d, tmp);
+		return;
+	}
+	if (k == 3 && (!memcmp(p, "OI;", 3) || !memcmp(p, "OE;", 3))) {
+		answer(d, p[1] == 'I' ? "7475A\r" : "0\r");
+		return;
+	}
+	if (d->pen_rate <= 0) {
+		take(d, p, (size_t)k);
+		return;
+	}
+	int fit = (int)(1024 - d->used) < k ? (int)(1024 - d->used) : k;
+	if (fit < 0)
+		fit = 0;
+	d->dropped += k - fit;
+	d->used += fit;
+	if ((long)d->used > d->peak)
+		d->peak = (long)d->used;
+	take(d, p, (size_t)fit);
+}
+
 /* The usbmon capture being written (--pcap), or NULL. */
 static FILE *pcap;
 
@@ -218,6 +279,7 @@ static void pcap_rec(char what, const struct usbdevfs_urb *u, gulong id, const u
 
 typedef struct {
 	UMockdevIoctlData *urb;   /* the submitted urb (its buffer a child of it) */
+	UMockdevIoctlData *buf;   /* an interrupt IN urb's buffer, filled when a reply is due */
 	int actual, status, held;
 	unsigned char reply[1100];   /* control IN: the reply, for the capture */
 	int in;                      /* a control IN request */
@@ -333,8 +395,11 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 			if (k > urb->buffer_length - 1 || !d->uart_on)
 				f->status = -EPIPE;   /* a bad report, or data before the UART is enabled */
 			else
-				take(d, p + 1, (size_t)k);
+				bridge_data(d, p + 1, k);
 			f->actual = urb->buffer_length;
+		} else if (d->cp2110 && urb->type == USBDEVFS_URB_TYPE_INTERRUPT) {
+			f->held = 1;   /* IN: completed when the plotter has something to say */
+			f->buf = umockdev_ioctl_data_ref(b);
 		} else {
 			f->held = 1;   /* IN: nothing to say; it times out or is discarded at close */
 		}
@@ -358,6 +423,25 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 	}
 	case USBDEVFS_REAPURB:
 	case USBDEVFS_REAPURBNDELAY:
+		for (GList *l = flying; l && d->nreply; l = l->next) {   /* a reply for a waiting IN report */
+			flying_t *f = l->data;
+			if (!f->held || !f->buf)
+				continue;
+			struct usbdevfs_urb *urb = (void *)f->urb->data;
+			size_t k = d->nreply < 63 ? d->nreply : 63;
+			if ((int)k + 1 > urb->buffer_length)
+				k = (size_t)urb->buffer_length - 1;
+			unsigned char *q = f->buf->data;
+			q[0] = (unsigned char)k;
+			memcpy(q + 1, d->reply, k);
+			memcpy(f->reply, q, k + 1);
+			memmove(d->reply, d->reply + k, d->nreply - k);
+			d->nreply -= k;
+			f->actual = (int)k + 1;
+			f->in = 1;
+			f->held = 0;
+			break;
+		}
 		for (GList *l = flying; l; l = l->next) {
 			flying_t *f = l->data;
 			if (f->held)
@@ -370,6 +454,8 @@ static gboolean on_ioctl(UMockdevIoctlBase *h, UMockdevIoctlClient *c, dev_t_ *d
 			UMockdevIoctlData *p = umockdev_ioctl_data_resolve(arg, 0, sizeof(gpointer), NULL);
 			umockdev_ioctl_data_set_ptr(p, 0, f->urb);
 			umockdev_ioctl_data_unref(p);
+			if (f->buf)
+				umockdev_ioctl_data_unref(f->buf);
 			umockdev_ioctl_data_unref(f->urb);
 			flying = g_list_delete_link(flying, l);
 			g_free(f);
@@ -422,6 +508,7 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--status")) d.status = (int)strtol(v, NULL, 0), i++;
 		else if (!strcmp(a, "--id-le")) d.id_le = 1;
 		else if (!strcmp(a, "--cp2110")) d.cp2110 = 1;
+		else if (!strcmp(a, "--pen-rate")) d.pen_rate = atof(v), i++;
 		else if (!strcmp(a, "--pcap")) {
 			pcap = fopen(v, "wb");
 			i++;
@@ -498,6 +585,8 @@ int main(int argc, char **argv)
 		printf(" uart=%s baud=%ld parity=%d flow=%d bits=%d stop=%d purges=%d", d.uart_on ? "on" : "off",
 			(long)d.uart[1] << 24 | (long)d.uart[2] << 16 | (long)d.uart[3] << 8 | d.uart[4], d.uart[5],
 			d.uart[6], d.uart[7] + 5, d.uart[8] + 1, d.purges);
+	if (d.cp2110)
+		printf(" escapes=%ld dropped=%ld peak=%ld", d.escapes, d.dropped, d.peak);
 	int bad = code != 0;
 	if (rec_path) {
 		FILE *f = fopen(rec_path, "wb");
