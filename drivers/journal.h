@@ -1,4 +1,5 @@
-/* journal.h: the job journal of a device link (journal=FILE, resume=FILE in the output name):
+/* journal.h: the job journal of a device link (journal=FILE, resume=FILE in the output name, or
+ * the programs' --journal FILE, --resume FILE):
  * how far the device acknowledged an HP-GL job, at the last point where it can go on without
  * redrawing or skipping a stroke (after a command, or after a whole coordinate pair of PU, PD,
  * PA or PR), with the modal state there (pen, velocity, line type, scaling, position), so that

@@ -18,7 +18,8 @@
  *     /proc/self/fd/N write to a copy of that descriptor.
  * While a temporary exists, SIGINT, SIGTERM and SIGHUP (unless ignored, or handled by the
  * program) remove every live temporary and then end the program with the signal (status
- * 128 + signal); exit() removes them too.
+ * 128 + signal); exit() removes them too. While a device link is open for writing they stop the
+ * job instead (io_open_write).
  * Every write, flush and close error is kept as one line, "NAME: what failed: cause", for
  * io_error(); standard output is named "<stdout>".
  */

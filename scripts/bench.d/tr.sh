@@ -41,7 +41,7 @@ bench_tr() {
 	skip c-serial-115200 "line-bound: $tr_bytes bytes at 11520 B/s take $(awk -v n="$tr_bytes" 'BEGIN {printf "%.1f", n / 11520}') s; serial-115200 measures the rate"
 	for tr_t in tcp usb hid; do
 		case $tr_t in
-		tcp) set -- "$tr_e" --tcp --rate 1000000000 --pen-scale 100000 --expect "$W/c.hpgl" -- "$BIN/locus-hpgl" "$W/c.meta" -o "tcp:127.0.0.1:@PORT@" ;;
+		tcp) set -- "$tr_e" --tcp --rcvbuf 0 --rate 1000000000 --pen-scale 100000 --expect "$W/c.hpgl" -- "$BIN/locus-hpgl" "$W/c.meta" -o "tcp:127.0.0.1:@PORT@" ;;
 		usb) set -- "$tr_u" --expect "$W/c.hpgl" -- "$BIN/locus-hpgl" "$W/c.meta" -o usb:03f0:0107 ;;
 		hid) set -- "$tr_u" --cp2110 --expect "$W/c.hpgl" -- "$BIN/locus-hpgl" "$W/c.meta" -o hid:10c4:ea80 ;;
 		esac

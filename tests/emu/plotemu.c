@@ -15,7 +15,8 @@
  *   --tcp           listen on 127.0.0.1 instead; --drop-after N: drop the first connection
  *                   after N bytes (what its TCP already acknowledged is still taken: the
  *                   printer has it; the rest is refused with a reset); --rate B/S: the
- *                   network's byte rate; --rcvbuf N: the socket's receive buffer (4096)
+ *                   network's byte rate; --rcvbuf N: the socket's receive buffer (4096; 0: the
+ *                   system's)
  *   --hangup-after N  the line goes away (the pseudo-terminal closes) after N accepted bytes
  *   --record FILE   the HP-GL received (escapes and output instructions left out)
  *   --expect FILE   compare with this HP-GL: bytes, and strokes through the HP-GL reader
@@ -465,6 +466,14 @@ int main(int argc, char **argv)
 		if (e.stopped && e.honours) {
 			if (want > e.stop_budget)
 				want = e.stop_budget;
+		} else if (e.honours && e.handshake != 'n') {
+			/* a burst (the emulator was not scheduled for a while) still meets the stop where
+			 * the buffer reaches it, as bytes arriving one by one would: up to the threshold
+			 * and the bytes in flight after it */
+			long long room = (long long)(e.bufsize - e.count) - (long long)(e.bufsize / 8) + 1
+				+ (long long)e.in_flight;
+			if (want > room)
+				want = room > 0 ? room : 0;
 		}
 		if (tcp && want > (long long)(e.bufsize - e.count))
 			want = (long long)(e.bufsize - e.count);   /* TCP holds what the buffer cannot */
