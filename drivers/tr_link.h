@@ -52,6 +52,18 @@ int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
+/* link_signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
+ * program left them at their default (nested opens count); the last one closed gives them back. */
+void tr_signals_take(void);
+void tr_signals_give(void);
+/* link_journal.c: the link took w job bytes p; the journal hears of them when the device
+ * confirms them (at once for a link without acked). 0, or -1 (message set). */
+int tr_took(io_transport_t *t, const unsigned char *p, size_t w);
+/* Feed the journal what the device has confirmed so far (links with acked). 0, or -1. */
+int tr_confirm(io_transport_t *t);
+/* A link failed mid-job: the journal brought to what the device confirmed, and its point (or,
+ * after a signal, that no journal was kept) added to the transport's line. Returns -1. */
+int tr_journal_where(io_transport_t *t);
 /* A signal arrived during the job (io_interrupted): a temporary failure "interrupted by SIGINT
  * after N bytes" (io_errno EINTR) and -1; else 0. Links call it in every wait. */
 int tr_check_interrupt(io_transport_t *t);

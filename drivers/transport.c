@@ -1,8 +1,8 @@
 /* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
- * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c). */
+ * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c, tr-hid.c;
+ * their journal in link_journal.c, signals during a job in link_signals.c). */
 #include <errno.h>
 #include <fcntl.h>
-#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,72 +30,6 @@ int io_oom(char *err, size_t errlen, const char *name)
 {
 	snprintf(err, errlen, "%s: out of memory", name);
 	open_errno = ENOMEM;
-	return -1;
-}
-
-/* Signals during a device job (io_interrupted): the first one is noted, a second one ends the
- * program as the signal does. */
-static volatile sig_atomic_t got_signal;
-static const int caught[] = { SIGINT, SIGTERM, SIGHUP };
-#define NCAUGHT (sizeof caught / sizeof caught[0])
-static struct sigaction sig_old[NCAUGHT];
-static int sig_ours[NCAUGHT], sig_links;
-
-static void on_signal(int sig)
-{
-	if (got_signal) {
-		signal(sig, SIG_DFL);
-		raise(sig);
-		return;
-	}
-	got_signal = sig;
-}
-
-/* A device link opens for writing: catch the signals the program leaves at their default. */
-static void signals_take(void)
-{
-	if (sig_links++)
-		return;
-	got_signal = 0;
-	for (size_t k = 0; k < NCAUGHT; k++) {
-		struct sigaction sa, old;
-		if (sigaction(caught[k], NULL, &old) < 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL)
-			continue;
-		memset(&sa, 0, sizeof sa);
-		sa.sa_handler = on_signal;   /* no SA_RESTART: a wait in a link ends with EINTR */
-		sigemptyset(&sa.sa_mask);
-		if (sigaction(caught[k], &sa, NULL) == 0) {
-			sig_old[k] = old;
-			sig_ours[k] = 1;
-		}
-	}
-}
-
-/* The last writing link closed: the signals as they were. */
-static void signals_give(void)
-{
-	if (--sig_links)
-		return;
-	for (size_t k = 0; k < NCAUGHT; k++)
-		if (sig_ours[k]) {
-			sigaction(caught[k], &sig_old[k], NULL);
-			sig_ours[k] = 0;
-		}
-}
-
-int io_interrupted(void)
-{
-	return got_signal;
-}
-
-int tr_check_interrupt(io_transport_t *t)
-{
-	int sig = got_signal;
-	if (!sig)
-		return 0;
-	io_link_tempfail(t, "interrupted by %s after %llu bytes", sig == SIGINT ? "SIGINT (Ctrl-C)"
-		: sig == SIGTERM ? "SIGTERM" : "SIGHUP", t->link_out);
-	t->io_errno = EINTR;
 	return -1;
 }
 
@@ -278,7 +212,7 @@ static io_transport_t *open_link(const io_link_t *l, const char *name, int writi
 		return NULL;
 	}
 	if (writing)
-		signals_take();
+		tr_signals_take();
 	return t;
 }
 
@@ -336,88 +270,6 @@ io_transport_t *io_open_read(const char *name, char *err, size_t errlen)
 	return t;
 }
 
-/* The journal hears that the device has the job's next n bytes p. 0, or -1 (message set). */
-static int journal_ack(io_transport_t *t, const unsigned char *p, size_t n)
-{
-	if (jn_ack(t->journal, p, n) == 0)
-		return 0;
-	int e = errno;
-	io_link_fail(t, "cannot write the job journal: %s", strerror(e));
-	t->io_errno = e;
-	return -1;
-}
-
-/* Feed the journal what the device has confirmed of the pending bytes (links with acked). */
-static int confirm(io_transport_t *t)
-{
-	if (!t->journal || !t->link || !t->link->acked || !t->npend)
-		return 0;
-	long long a = t->link->acked(t);
-	if (a < 0 || (unsigned long long)a <= t->pend_at)
-		return 0;
-	unsigned long long k = (unsigned long long)a - t->pend_at;
-	if (k > t->npend)
-		k = t->npend;
-	if (journal_ack(t, t->pend, (size_t)k))
-		return -1;
-	memmove(t->pend, t->pend + k, t->npend - (size_t)k);
-	t->npend -= (size_t)k;
-	t->pend_at += k;
-	return 0;
-}
-
-/* The link took w job bytes p: the journal hears of them when the device confirms them (at once,
- * for a link whose write count is the confirmation). 0, or -1 (message set). */
-static int took(io_transport_t *t, const unsigned char *p, size_t w)
-{
-	unsigned long long at = t->link_out;
-	t->link_out += w;
-	if (!t->journal)
-		return 0;
-	if (!t->link->acked)
-		return journal_ack(t, p, w);
-	if (t->npend + w > t->cappend) {
-		size_t c = t->cappend ? t->cappend : 65536;
-		while (c < t->npend + w)
-			c *= 2;
-		unsigned char *b = realloc(t->pend, c);
-		if (!b) {
-			errno = ENOMEM;
-			return io_set_err(t, "cannot keep the unconfirmed bytes for the journal");
-		}
-		t->pend = b;
-		t->cappend = c;
-	}
-	if (t->npend == 0)
-		t->pend_at = at;
-	memcpy(t->pend + t->npend, p, w);
-	t->npend += w;
-	return confirm(t);
-}
-
-/* A link failed mid-job: the journal as far as the device confirmed, and where it says the job
- * stopped, added to the line (or that no journal was kept, after a signal). Returns -1. */
-static int journal_where(io_transport_t *t)
-{
-	size_t n = strlen(t->err);
-	if (t->journal) {
-		char where[1400];
-		int e = t->io_errno;
-		int f = t->failed, tmp = t->temporary;
-		char keep[sizeof t->err];
-		memcpy(keep, t->err, sizeof keep);
-		confirm(t);   /* a journal that cannot be written keeps the first failure's line */
-		memcpy(t->err, keep, sizeof keep);
-		t->io_errno = e, t->failed = f, t->temporary = tmp;
-		jn_where(t->journal, where, sizeof where);
-		snprintf(t->err + n, sizeof t->err - n, "; %s", where);
-	} else if (t->io_errno == EINTR) {
-		snprintf(t->err + n, sizeof t->err - n, "; no journal was kept: send the job again (with "
-			"--journal FILE it could be resumed)");
-	}
-	return -1;
-}
-
 /* Send bytes that are no part of the job (a resume's state restore) through the link. */
 static int send_all(io_transport_t *t, const char *p, size_t n)
 {
@@ -442,7 +294,7 @@ int io_flush(io_transport_t *t)
 	size_t off = 0;
 	while (off < t->nbuf) {
 		if (t->link && tr_check_interrupt(t))
-			return journal_where(t);
+			return tr_journal_where(t);
 		if (t->journal && jn_skipping(t->journal)) {
 			/* resuming: the device has these bytes; then the state is restored */
 			const char *restore;
@@ -453,18 +305,18 @@ int io_flush(io_transport_t *t)
 			}
 			off += (size_t)k;
 			if (restore && send_all(t, restore, strlen(restore)))
-				return journal_where(t);
+				return tr_journal_where(t);
 			continue;
 		}
 		ssize_t w = t->link ? t->link->write(t, t->buf + off, t->nbuf - off)
 			: write(t->fd, t->buf + off, t->nbuf - off);
-		if (w > 0 && t->link && took(t, t->buf + off, (size_t)w) < 0)
+		if (w > 0 && t->link && tr_took(t, t->buf + off, (size_t)w) < 0)
 			return -1;
 		if (w < 0) {
 			if (errno == EINTR)
 				continue;
 			if (t->link && t->failed)
-				return journal_where(t);   /* the link said it in its own words */
+				return tr_journal_where(t);   /* the link said it in its own words */
 			return io_set_err(t, "write failed");
 		}
 		if (w == 0) {
@@ -483,7 +335,7 @@ int io_write(io_transport_t *t, const void *buf, size_t n)
 	if (t->failed)
 		return -1;
 	if (t->link && t->writing && tr_check_interrupt(t))
-		return journal_where(t);
+		return tr_journal_where(t);
 	while (n > 0) {
 		if (t->nbuf == t->cap && io_flush(t))
 			return -1;
@@ -557,11 +409,11 @@ int io_drain(io_transport_t *t)
 		return 0;
 	t->drained = 1;
 	if (t->link->drain && t->link->drain(t) < 0)
-		return journal_where(t);
-	if (confirm(t) < 0)
+		return tr_journal_where(t);
+	if (tr_confirm(t) < 0)
 		return -1;
 	if (t->link && tr_check_interrupt(t))
-		return journal_where(t);
+		return tr_journal_where(t);
 	return 0;
 }
 
@@ -577,12 +429,12 @@ static int finish_fd(io_transport_t *t, int how)
 			"same input and options");
 	if (t->link) {
 		if (how == IO_ABORT && !t->failed)
-			confirm(t);   /* the journal as far as the device got */
+			tr_confirm(t);   /* the journal as far as the device got */
 		if (t->link->close(t) < 0 && rc == 0 && how != IO_ABORT)
 			rc = t->failed ? -1 : io_set_err(t, "close failed");
 		t->link = NULL;
 		if (t->writing)
-			signals_give();
+			tr_signals_give();
 		if (t->journal && jn_close(t->journal, rc == 0 && how != IO_ABORT && !t->failed) < 0 && rc == 0) {
 			int e = errno;
 			rc = io_link_fail(t, "cannot write the job journal: %s", strerror(e));

@@ -81,7 +81,7 @@ void io_temp_drop(io_temp_t *e);
 void io_signals_block(sigset_t *old);
 void io_signals_restore(const sigset_t *old);
 
-/* transport.c: the signal (SIGINT, SIGTERM, SIGHUP) that arrived during a device job, or 0.
+/* link_signals.c: the signal (SIGINT, SIGTERM, SIGHUP) that arrived during a device job, or 0.
  * While a device link is open for writing those signals only set it (unless the program ignores
  * or handles them): the link's waits end and the job stops with a temporary failure, its
  * journal current, instead of the program dying mid-transfer; a second one ends the program. */
