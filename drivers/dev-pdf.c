@@ -273,10 +273,9 @@ static void write_path(pdf_t *s, const dev_path_t *dp, int fill)
 static int pdf_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 {
 	pdf_t *s = d->priv;
-	int rc = psd_flush(&s->p);
+	int rc = psd_paint_begin(&s->p, dp, st, 1);
 	if (rc)
 		return rc;
-	psd_grow_path(&s->p, dp, st, 1);
 	colour(s, st->colour, 0);
 	line_state(s, st);
 	write_path(s, dp, 0);
@@ -288,10 +287,9 @@ static int pdf_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *
 static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 {
 	pdf_t *s = d->priv;
-	int rc = psd_flush(&s->p);
+	int rc = psd_paint_begin(&s->p, dp, st, 0);
 	if (rc)
 		return rc;
-	psd_grow_path(&s->p, dp, st, 0);
 	colour(s, st->colour, 1);
 	write_path(s, dp, 1);
 	tok(s, st->rule == META_RULE_EVEN_ODD ? "f* Q" : "f Q");
@@ -360,39 +358,7 @@ done:
 	return rc;
 }
 
-static int pdf_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb)
-{
-	return psd_span(d->priv, x, y, n, rgb);
-}
-
-static int pdf_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns)
-{
-	return psd_row(d->priv, x, y, runs, nruns);
-}
-
-static int pdf_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
-{
-	pdf_t *s = d->priv;
-	(void)pg;   /* the page came with begin_page */
-	int rc = psd_flush(&s->p);
-	if (rc)
-		return rc;
-	psd_grow(&s->p, 0, 0, (int64_t)s->p.page.width * 1000, (int64_t)s->p.page.height * 1000);
-	return pdf_rect(&s->p, 0, 0, s->p.page.width, s->p.page.height, rgb);
-}
-
 /* ---- document ---- */
-
-static void pdf_string(pse_out_t *o, const char *t)
-{
-	pse_puts(o, "(");
-	for (; *t; t++) {
-		if (*t == '(' || *t == ')' || *t == '\\')
-			pse_puts(o, "\\");
-		pse_write(o, t, 1);
-	}
-	pse_puts(o, ")");
-}
 
 static int start_doc(pdf_t *s)
 {
@@ -424,7 +390,7 @@ static int finish_doc(pdf_t *s)
 	pse_puts(o, "<< /Producer (locus-ps " LOCUS_VERSION ")");
 	if (s->p.title[0]) {
 		pse_puts(o, " /Title ");
-		pdf_string(o, s->p.title);
+		psd_string(o, s->p.title);
 	}
 	if (s->p.date) {
 		char b[40];
@@ -540,7 +506,7 @@ const dev_ops_t dev_pdf_ops = {
 	.extension = ".pdf",
 	.caps = DEV_CAP_VECTOR | DEV_CAP_ARCS | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
 	.priv_size = sizeof(pdf_t), .option_list = psd_pdf_options,
-	.open = pdf_open, .begin_page = pdf_begin, .clear = pdf_clear, .stroke_path = pdf_stroke,
-	.fill_path = pdf_fill, .put_span = pdf_span, .put_image_row = pdf_row, .end_page = pdf_end,
+	.open = pdf_open, .begin_page = pdf_begin, .clear = psd_dev_clear, .stroke_path = pdf_stroke,
+	.fill_path = pdf_fill, .put_span = psd_dev_span, .put_image_row = psd_dev_row, .end_page = pdf_end,
 	.close = pdf_close,
 };
