@@ -189,6 +189,8 @@ static void prolog_section(ps_t *s)
 	pse_puts(o, "%%BeginProlog\n");
 	pse_puts(o, eps ? "save\n40 dict begin\n" : "/LocusDict 40 dict def LocusDict begin\n");
 	pse_puts(o, prolog);
+	if (s->p.level >= 3)   /* H: draws from a binary number array (pspath.c) */
+		pse_puts(o, "/H {aload length 2 idiv {rlineto} repeat} bind def\n");
 	pse_puts(o, eps ? "%%EndProlog\n" : "end\n%%EndProlog\n");
 }
 
