@@ -25,32 +25,30 @@ static ps_t *st_of(dev_device_t *d)
 static int ps_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 {
 	ps_t *s = st_of(d);
-	int rc = psd_flush(&s->p);
+	int rc = psd_paint_begin(&s->p, dp, st, 1);
 	if (rc)
 		return rc;
-	psd_grow_path(&s->p, dp, st, 1);
 	psp_colour(s, st->colour);
 	psp_line(s, st);
 	s->known = 1;
 	if ((rc = psp_path(s, dp, 0)))
 		return rc;
-	psp_tok(s, "S");
-	psp_newline(s);
+	psd_tok(&s->p, "S");
+	psd_newline(&s->p);
 	return s->p.out.err ? psd_out_fail(&s->p) : 0;
 }
 
 static int ps_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
 {
 	ps_t *s = st_of(d);
-	int rc = psd_flush(&s->p);
+	int rc = psd_paint_begin(&s->p, dp, st, 0);
 	if (rc)
 		return rc;
-	psd_grow_path(&s->p, dp, st, 0);
 	psp_colour(s, st->colour);
 	if ((rc = psp_path(s, dp, 1)))
 		return rc;
-	psp_tok(s, st->rule == META_RULE_EVEN_ODD ? "E" : "F");
-	psp_newline(s);
+	psd_tok(&s->p, st->rule == META_RULE_EVEN_ODD ? "E" : "F");
+	psd_newline(&s->p);
 	return s->p.out.err ? psd_out_fail(&s->p) : 0;
 }
 
@@ -60,12 +58,12 @@ static int ps_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, met
 {
 	ps_t *s = (ps_t *)p;
 	psp_colour(s, rgb);
-	psp_int(s, (long long)x * PSD_GRID);
-	psp_int(s, (long long)y * PSD_GRID);
-	psp_int(s, (long long)w * PSD_GRID);
-	psp_int(s, (long long)h * PSD_GRID);
-	psp_tok(s, "B");
-	psp_newline(s);
+	psd_int(&s->p, (long long)x * PSD_GRID);
+	psd_int(&s->p, (long long)y * PSD_GRID);
+	psd_int(&s->p, (long long)w * PSD_GRID);
+	psd_int(&s->p, (long long)h * PSD_GRID);
+	psd_tok(&s->p, "B");
+	psd_newline(&s->p);
 	return 0;
 }
 
@@ -105,7 +103,7 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 		if (a < best)
 			best = a, pick = FL;
 	}
-	psp_newline(s);
+	psd_newline(&s->p);
 	pse_printf(o, "gsave %lld %lld translate %lld %lld scale\n", (long long)x * PSD_GRID,
 		(long long)y * PSD_GRID, (long long)w * PSD_GRID, (long long)h * PSD_GRID);
 	if (s->packed) {
@@ -146,39 +144,7 @@ done:
 	return rc;
 }
 
-static int ps_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb)
-{
-	return psd_span(d->priv, x, y, n, rgb);
-}
-
-static int ps_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns)
-{
-	return psd_row(d->priv, x, y, runs, nruns);
-}
-
-static int ps_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
-{
-	ps_t *s = st_of(d);
-	(void)pg;   /* the page came with begin_page */
-	int rc = psd_flush(&s->p);
-	if (rc)
-		return rc;
-	psd_grow(&s->p, 0, 0, (int64_t)s->p.page.width * 1000, (int64_t)s->p.page.height * 1000);
-	return ps_rect(&s->p, 0, 0, s->p.page.width, s->p.page.height, rgb);
-}
-
 /* ---- document structure (DSC 3.0) ---- */
-
-static void ps_string(pse_out_t *o, const char *t)
-{
-	pse_puts(o, "(");
-	for (; *t; t++) {
-		if (*t == '(' || *t == ')' || *t == '\\')
-			pse_puts(o, "\\");
-		pse_write(o, t, 1);
-	}
-	pse_puts(o, ")");
-}
 
 /* The header comments up to %%EndComments; box NULL: (atend) (PostScript only). */
 static void comments(ps_t *s, const double *box, int have)
@@ -198,7 +164,7 @@ static void comments(ps_t *s, const double *box, int have)
 	pse_puts(o, "%%Creator: locus-ps " LOCUS_VERSION "\n");
 	if (p->title[0]) {
 		pse_puts(o, "%%Title: ");
-		ps_string(o, p->title);
+		psd_string(o, p->title);
 		pse_puts(o, "\n");
 	}
 	if (p->date) {
@@ -223,6 +189,8 @@ static void prolog_section(ps_t *s)
 	pse_puts(o, "%%BeginProlog\n");
 	pse_puts(o, eps ? "save\n40 dict begin\n" : "/LocusDict 40 dict def LocusDict begin\n");
 	pse_puts(o, prolog);
+	if (s->p.level >= 3)   /* H: draws from a binary number array (pspath.c) */
+		pse_puts(o, "/H {aload length 2 idiv {rlineto} repeat} bind def\n");
 	pse_puts(o, eps ? "%%EndProlog\n" : "end\n%%EndProlog\n");
 }
 
@@ -266,7 +234,7 @@ static void start_page(ps_t *s)
 		pse_deflate_begin(o, 1, PSE_HUFFMAN);
 	}
 	s->known = 0;
-	s->col = 0;
+	s->p.col = 0;
 }
 
 static void box_line(pse_out_t *o, const char *what, int have, const double *b)
@@ -292,6 +260,7 @@ static int ps_open(dev_device_t *d)
 		return dev_fail(d, DEV_EUSAGE, "option media: setpagedevice needs level 2 or 3");
 	p->hooks.image = ps_image;
 	p->hooks.rect = ps_rect;
+	p->wrap = 120;   /* DSC lines stay under 255 characters */
 	p->per_page = d->out == NULL;
 	pse_init(&p->out, d->out);
 	return 0;
@@ -357,7 +326,7 @@ static int ps_end(dev_device_t *d, const dev_page_t *pg)
 	int rc = psd_flush(p);
 	if (rc)
 		return rc;
-	psp_newline(s);
+	psd_newline(&s->p);
 	if (s->packed) {
 		pse_deflate_end(o, NULL);
 		s->packed = 0;
@@ -411,8 +380,8 @@ const dev_ops_t dev_eps_ops = {
 	.extension = ".eps",
 	.caps = DEV_CAP_VECTOR | DEV_CAP_ARCS | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
 	.priv_size = sizeof(ps_t), .option_list = psd_ps_options,
-	.open = ps_open, .begin_page = ps_begin, .clear = ps_clear, .stroke_path = ps_stroke,
-	.fill_path = ps_fill, .put_span = ps_span, .put_image_row = ps_row, .end_page = ps_end,
+	.open = ps_open, .begin_page = ps_begin, .clear = psd_dev_clear, .stroke_path = ps_stroke,
+	.fill_path = ps_fill, .put_span = psd_dev_span, .put_image_row = psd_dev_row, .end_page = ps_end,
 	.close = ps_close,
 };
 
@@ -421,7 +390,7 @@ const dev_ops_t dev_ps_ops = {
 	.extension = ".ps",
 	.caps = DEV_CAP_VECTOR | DEV_CAP_ARCS | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
 	.priv_size = sizeof(ps_t), .option_list = psd_ps_options,
-	.open = ps_open, .begin_page = ps_begin, .clear = ps_clear, .stroke_path = ps_stroke,
-	.fill_path = ps_fill, .put_span = ps_span, .put_image_row = ps_row, .end_page = ps_end,
+	.open = ps_open, .begin_page = ps_begin, .clear = psd_dev_clear, .stroke_path = ps_stroke,
+	.fill_path = ps_fill, .put_span = psd_dev_span, .put_image_row = psd_dev_row, .end_page = ps_end,
 	.close = ps_close,
 };

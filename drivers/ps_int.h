@@ -16,19 +16,12 @@ typedef struct {
 	int cap, join;
 	int64_t dash[2 * META_MAX_DASH];
 	size_t ndash;
-	int col;               /* output column, to keep lines short */
 	int packed;            /* level 3: the page body is Flate-compressed and executed */
 	void *spool;           /* EPS: the body while its box is not known */
 	long long *dx;         /* pending relative draws, grid units */
 	size_t ndx, capdx;
 } ps_t;
 
-/* Write a token (a space or, now and then, a newline before it: DSC lines stay short). */
-void psp_tok(ps_t *s, const char *t);
-/* Write an integer token. */
-void psp_int(ps_t *s, long long v);
-/* End the current line, if any. */
-void psp_newline(ps_t *s);
 /* Set the colour (exact 8-bit: <rrggbb> K, or a grey level G) unless it is in force. */
 void psp_colour(ps_t *s, meta_rgb_t c);
 /* Set width, cap, join, miter limit and dash as the state says, where they changed. */

@@ -412,6 +412,36 @@ int psd_row(psd_t *p, unsigned x, unsigned y, const meta_run_t *runs, size_t nru
 	return 0;
 }
 
+int psd_dev_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb)
+{
+	return psd_span(d->priv, x, y, n, rgb);
+}
+
+int psd_dev_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns)
+{
+	return psd_row(d->priv, x, y, runs, nruns);
+}
+
+int psd_dev_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
+{
+	psd_t *p = d->priv;
+	(void)pg;   /* the page came with begin_page */
+	int rc = psd_flush(p);
+	if (rc)
+		return rc;
+	psd_grow(p, 0, 0, (int64_t)p->page.width * 1000, (int64_t)p->page.height * 1000);
+	return p->hooks.rect(p, 0, 0, p->page.width, p->page.height, rgb);
+}
+
+int psd_paint_begin(psd_t *p, const dev_path_t *dp, const dev_state_t *st, int stroke)
+{
+	int rc = psd_flush(p);
+	if (rc)
+		return rc;
+	psd_grow_path(p, dp, st, stroke);
+	return 0;
+}
+
 void psd_release(psd_t *p)
 {
 	free(p->blk.pix);
@@ -478,6 +508,54 @@ int psd_samples(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const 
 	out->n = row * dh;
 	out->width = dw, out->height = dh, out->bpc = 1, out->comps = 1;
 	return 0;
+}
+
+/* ---- tokens ---- */
+
+void psd_sep(psd_t *p)
+{
+	if (p->wrap && p->col > p->wrap) {
+		pse_write(&p->out, "\n", 1);
+		p->col = 0;
+	} else if (p->col) {
+		pse_write(&p->out, " ", 1);
+		p->col++;
+	}
+}
+
+void psd_tok(psd_t *p, const char *t)
+{
+	psd_sep(p);
+	pse_puts(&p->out, t);
+	p->col += (int)strlen(t);
+}
+
+void psd_int(psd_t *p, long long v)
+{
+	psd_sep(p);
+	pse_int(&p->out, v);
+	p->col += v < 0 ? 2 : 1;
+	for (long long a = v < 0 ? -v : v; a >= 10; a /= 10)
+		p->col++;
+}
+
+void psd_newline(psd_t *p)
+{
+	if (p->col) {
+		pse_write(&p->out, "\n", 1);
+		p->col = 0;
+	}
+}
+
+void psd_string(pse_out_t *o, const char *t)
+{
+	pse_puts(o, "(");
+	for (; *t; t++) {
+		if (*t == '(' || *t == ')' || *t == '\\')
+			pse_puts(o, "\\");
+		pse_write(o, t, 1);
+	}
+	pse_puts(o, ")");
 }
 
 /* ---- small helpers ---- */

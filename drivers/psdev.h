@@ -74,6 +74,9 @@ struct psd {
 	int ddrawn;
 	psd_block_t blk;
 	void *form_state;               /* the device's own (PDF: objects) */
+	/* tokens */
+	int col;                        /* output column of the current line */
+	int wrap;                       /* start a new line past this column (0: only at psd_newline) */
 };
 
 /* Read the -O options shared by both devices into p (form set by the caller). 0 or
@@ -102,6 +105,28 @@ int psd_native(const dev_path_t *dp);
 int psd_span(psd_t *p, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
 /* The same for an image row of runs starting at x. */
 int psd_row(psd_t *p, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
+/* ---- what both devices' hooks share ---- */
+
+/* Before a path is painted: emit the open image block, then grow the drawn box by what the path
+ * paints (stroke = 1: with the line state of st). 0 or <0. */
+int psd_paint_begin(psd_t *p, const dev_path_t *dp, const dev_state_t *st, int stroke);
+/* The devices' put_span, put_image_row and clear (d->priv starts with a psd_t): spans and rows
+ * merge into image blocks; a clear is a rectangle of the whole page through hooks.rect. */
+int psd_dev_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb);
+int psd_dev_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
+int psd_dev_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb);
+
+/* Write a separator before the next token: a space, or a newline past the wrap column. */
+void psd_sep(psd_t *p);
+/* Write a token after a separator. */
+void psd_tok(psd_t *p, const char *t);
+/* Write an integer token. */
+void psd_int(psd_t *p, long long v);
+/* End the current line, if any. */
+void psd_newline(psd_t *p);
+/* Write a string literal (...) with ( ) and \ escaped (titles). */
+void psd_string(pse_out_t *o, const char *t);
+
 /* Emit the open block (before anything else paints, and at the end of the page). */
 int psd_flush(psd_t *p);
 /* Free the block's memory. */

@@ -197,11 +197,14 @@ int pse_deflate_begin(pse_out_t *o, int a85, int level)
 	if (o->err)
 		return o->err;
 	z_stream *z = calloc(1, sizeof *z);
-	int huff = level == PSE_HUFFMAN;
-	if (!z || deflateInit2(z, huff ? 1 : level, Z_DEFLATED, 15, 8, huff ? Z_HUFFMAN_ONLY : Z_DEFAULT_STRATEGY) != Z_OK) {
+	int huff = level == PSE_HUFFMAN, text = level == PSE_TEXT;
+	if (!z || deflateInit2(z, huff ? 1 : text ? 9 : level, Z_DEFLATED, 15, text ? 9 : 8,
+			huff ? Z_HUFFMAN_ONLY : text ? Z_FILTERED : Z_DEFAULT_STRATEGY) != Z_OK) {
 		free(z);
 		return o->err = META_ENOMEM;
 	}
+	if (text)
+		deflateTune(z, 8, 8, 24, 40);
 	o->z = z;
 	o->a85 = a85;
 	o->tuple = 0;

@@ -5,43 +5,6 @@
 #include <string.h>
 #include "ps_int.h"
 
-/* A separator before the next token: a newline now and then (DSC lines stay under 255). */
-static void sep(ps_t *s)
-{
-	if (s->col > 120) {
-		pse_write(&s->p.out, "\n", 1);
-		s->col = 0;
-	} else if (s->col) {
-		pse_write(&s->p.out, " ", 1);
-		s->col++;
-	}
-}
-
-void psp_int(ps_t *s, long long v)
-{
-	sep(s);
-	pse_int(&s->p.out, v);
-	s->col += v < 0 ? 2 : 1;
-	for (long long a = v < 0 ? -v : v; a >= 10; a /= 10)
-		s->col++;
-}
-
-void psp_tok(ps_t *s, const char *t)
-{
-	sep(s);
-	pse_puts(&s->p.out, t);
-	s->col += (int)strlen(t);
-}
-
-void psp_newline(ps_t *s)
-{
-	if (s->col) {
-		pse_write(&s->p.out, "\n", 1);
-		s->col = 0;
-	}
-}
-
-
 /* Colours as 8-bit values, exactly: RGB as a hex string <rrggbb> K, grey as an integer G. */
 void psp_colour(ps_t *s, meta_rgb_t c)
 {
@@ -49,12 +12,12 @@ void psp_colour(ps_t *s, meta_rgb_t c)
 	if (s->known && s->colour == c)
 		return;
 	if (s->p.grey) {
-		psp_int(s, psd_luma(c));
-		psp_tok(s, "G");
+		psd_int(&s->p, psd_luma(c));
+		psd_tok(&s->p, "G");
 	} else {
 		snprintf(b, sizeof b, "<%06x>", (unsigned)c & 0xffffff);
-		psp_tok(s, b);
-		psp_tok(s, "K");
+		psd_tok(&s->p, b);
+		psd_tok(&s->p, "K");
 	}
 	s->colour = c;
 }
@@ -63,35 +26,35 @@ void psp_line(ps_t *s, const dev_state_t *st)
 {
 	int64_t w = st->width > 1000 ? st->width : 1000;
 	if (!s->known || s->width != w) {
-		psp_int(s, psd_grid(w));
-		psp_tok(s, "W");
+		psd_int(&s->p, psd_grid(w));
+		psd_tok(&s->p, "W");
 		s->width = w;
 	}
 	if (!s->known || s->cap != st->cap) {
-		psp_int(s, st->cap);
-		psp_tok(s, "J");
+		psd_int(&s->p, st->cap);
+		psd_tok(&s->p, "J");
 		s->cap = st->cap;
 	}
 	if (!s->known || s->join != st->join) {
-		psp_int(s, st->join);
-		psp_tok(s, "j");
+		psd_int(&s->p, st->join);
+		psd_tok(&s->p, "j");
 		s->join = st->join;
 	}
 	if (!s->known || s->miter != st->miter_limit) {
-		sep(s);
+		psd_sep(&s->p);
 		pse_fix(&s->p.out, st->miter_limit);
-		s->col += 6;
-		psp_tok(s, "X");
+		s->p.col += 6;
+		psd_tok(&s->p, "X");
 		s->miter = st->miter_limit;
 	}
 	if (!s->known || s->ndash != st->ndash || memcmp(s->dash, st->dash, st->ndash * sizeof st->dash[0])) {
-		psp_tok(s, "[");
+		psd_tok(&s->p, "[");
 		for (size_t k = 0; k < st->ndash; k++) {
-			sep(s);
+			psd_sep(&s->p);
 			pse_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
-			s->col += 6;
+			s->p.col += 6;
 		}
-		psp_tok(s, "] 0 setdash");
+		psd_tok(&s->p, "] 0 setdash");
 		s->ndash = st->ndash;
 		memcpy(s->dash, st->dash, st->ndash * sizeof st->dash[0]);
 	}
@@ -114,6 +77,34 @@ static int push_draw(ps_t *s, long long dx, long long dy)
 	return 0;
 }
 
+/* In a compressed (level 3) page body, k draws from pair `at` as one binary token: an encoded
+ * number string of 16-bit integers (PLRM 3.14.5: 149, representation 32, count, big-endian
+ * values) that H unpacks with aload. Ghostscript scans it without reading decimal text (workload
+ * c: 7% less of its time) and it compresses better. 1 when written, 0 when a value does not
+ * fit in 16 bits. */
+static int binary_chunk(ps_t *s, size_t at, size_t k)
+{
+	uint8_t b[4 + 4 * PSP_CHUNK], *q = b + 4;
+	for (size_t i = at + k; i-- > at;)
+		for (int c = 0; c < 2; c++) {
+			long long v = s->dx[2 * i + c];
+			if (v < -32768 || v > 32767)
+				return 0;
+			uint16_t u = (uint16_t)(int16_t)v;
+			*q++ = (uint8_t)(u >> 8);
+			*q++ = (uint8_t)u;
+		}
+	b[0] = 149;
+	b[1] = 32;
+	b[2] = (uint8_t)(2 * k >> 8);
+	b[3] = (uint8_t)(2 * k);
+	psd_sep(&s->p);
+	pse_write(&s->p.out, b, (size_t)(q - b));
+	s->p.col += 8;
+	psd_tok(&s->p, "H");
+	return 1;
+}
+
 static void flush_draws(ps_t *s)
 {
 	size_t n = s->ndx / 2;
@@ -121,17 +112,17 @@ static void flush_draws(ps_t *s)
 		size_t k = n - at > PSP_CHUNK ? PSP_CHUNK : n - at;
 		if (k < 3) {
 			for (size_t i = at; i < at + k; i++) {
-				psp_int(s, s->dx[2 * i]);
-				psp_int(s, s->dx[2 * i + 1]);
-				psp_tok(s, "l");
+				psd_int(&s->p, s->dx[2 * i]);
+				psd_int(&s->p, s->dx[2 * i + 1]);
+				psd_tok(&s->p, "l");
 			}
-		} else {
+		} else if (!s->packed || !binary_chunk(s, at, k)) {
 			for (size_t i = at + k; i-- > at;) {
-				psp_int(s, s->dx[2 * i]);
-				psp_int(s, s->dx[2 * i + 1]);
+				psd_int(&s->p, s->dx[2 * i]);
+				psd_int(&s->p, s->dx[2 * i + 1]);
 			}
-			psp_int(s, (long long)k);
-			psp_tok(s, "L");
+			psd_int(&s->p, (long long)k);
+			psd_tok(&s->p, "L");
 		}
 		at += k;
 	}
@@ -148,9 +139,9 @@ typedef struct {
 static void move_abs(ps_t *s, walk_t *w, long long x, long long y, const char *op)
 {
 	flush_draws(s);
-	psp_int(s, x);
-	psp_int(s, y);
-	psp_tok(s, op);
+	psd_int(&s->p, x);
+	psd_int(&s->p, y);
+	psd_tok(&s->p, op);
 	w->x = x, w->y = y;
 	w->on_grid = 1;
 }
@@ -169,12 +160,12 @@ static int draw_to(ps_t *s, walk_t *w, long long x, long long y)
 static void arc_start(ps_t *s, const dev_elem_t *e)
 {
 	double a = e->f[3] / 180000.0 * M_PI;
-	sep(s);
+	psd_sep(&s->p);
 	pse_real(&s->p.out, (e->f[0] + e->f[2] * cos(a)) * PSD_GRID / 1000.0, 2);
-	sep(s);
+	psd_sep(&s->p);
 	pse_real(&s->p.out, (e->f[1] + e->f[2] * sin(a)) * PSD_GRID / 1000.0, 2);
-	s->col += 20;
-	psp_tok(s, "M");
+	s->p.col += 20;
+	psd_tok(&s->p, "M");
 }
 
 static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
@@ -201,24 +192,24 @@ static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
 				arc_start(s, e);
 			if (!w.cur)
 				w.start_on_grid = 0;
-			psp_int(s, x);
-			psp_int(s, y);
-			psp_int(s, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
-			sep(s);
+			psd_int(&s->p, x);
+			psd_int(&s->p, y);
+			psd_int(&s->p, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
+			psd_sep(&s->p);
 			pse_fix(&s->p.out, e->f[3]);
-			sep(s);
+			psd_sep(&s->p);
 			pse_fix(&s->p.out, (long long)e->f[3] + e->f[4]);
-			s->col += 16;
-			psp_tok(s, e->f[4] >= 0 ? "A" : "N");
+			s->p.col += 16;
+			psd_tok(&s->p, e->f[4] >= 0 ? "A" : "N");
 			w.on_grid = 0;
 			w.cur = ps_cur = 1;
 			break;
 		case META_CIRCLE:
 			flush_draws(s);
-			psp_int(s, x);
-			psp_int(s, y);
-			psp_int(s, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
-			psp_tok(s, "C");
+			psd_int(&s->p, x);
+			psd_int(&s->p, y);
+			psd_int(&s->p, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
+			psd_tok(&s->p, "C");
 			w.on_grid = 0;
 			w.cur = 0;
 			ps_cur = 1;
@@ -227,7 +218,7 @@ static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
 			flush_draws(s);
 			/* fill closes every subpath itself: Z only where a draw or arc goes on from it */
 			if (!fill || (k + 1 < dp->nelems && (dp->elems[k + 1].op == META_DRAW || dp->elems[k + 1].op == META_ARC)))
-				psp_tok(s, "Z");
+				psd_tok(&s->p, "Z");
 			w.on_grid = w.start_on_grid;
 			w.x = w.sx, w.y = w.sy;
 			break;
@@ -253,7 +244,7 @@ static int path_flat(ps_t *s, const scan_path_t *f, int fill)
 				return META_ENOMEM;
 		flush_draws(s);
 		if (f->subs[k].closed && !fill)
-			psp_tok(s, "Z");
+			psd_tok(&s->p, "Z");
 	}
 	return 0;
 }

@@ -307,6 +307,27 @@ expect_exit 64 "unknown -O key" "$P" -O colour=red fixtures/meta/f-test.meta -o 
 expect_exit 64 "paper on EPS" "$P" -f eps --paper a4 fixtures/meta/f-test.meta -o "$T/x.eps"
 expect_exit 66 "missing input" "$P" "$T/nothing.meta" -o "$T/x.ps"
 [ ! -e "$T/x.ps" ] && [ ! -e "$T/x.eps" ] && ok "no output file after a usage error" || notok "a usage error left a file"
+# ---- round 2 encodings: level 3's binary draws and PDF's one line per path -------------------
+# level 3 writes runs of deltas as binary number strings (H), level 2 as text (L): the same pixels
+grep -q '^/H {aload length 2 idiv {rlineto} repeat} bind def$' "$T/sum-contour.ps" && ! grep -q '^/H ' "$T/i1.ps" &&
+	ok "level 3 defines H for binary draws, level 1 does not" || notok "the H procedure"
+for c in strokes sum-contour extreme text; do
+	f=fixtures/meta/$c.meta
+	[ -f "$f" ] || f=fixtures/raster/inputs/$c.meta
+	[ -f "$f" ] || f=fixtures/render/$c.meta
+	"$P" --level 2 "$f" -o "$T/$c.l2.eps" && "$P" --level 3 "$f" -o "$T/$c.l3.eps"
+	$GS -sDEVICE=png16m -r96 -dEPSCrop -sOutputFile="$T/$c.l2.png" "$T/$c.l2.eps" 2> /dev/null
+	$GS -sDEVICE=png16m -r96 -dEPSCrop -sOutputFile="$T/$c.l3.png" "$T/$c.l3.eps" 2> /dev/null
+	ae=$(compare -metric AE "$T/$c.l2.png" "$T/$c.l3.png" null: 2>&1)
+	[ "$ae" = 0 ] && ok "$c: level 3 (binary draws) renders the pixels of level 2 (text draws)" || notok "$c: levels 2 and 3 differ by $ae pixels"
+done
+# PDF: a path is one content line, its origin translated (q 1 0 0 1 X Y cm ... S Q)
+if command -v qpdf > /dev/null; then
+	qpdf --qdf --object-streams=disable "$T/sum-contour.pdf" "$T/sc.qdf.pdf"
+	bad=$(awk '/^stream$/ {s = 1; next} /^endstream$/ {s = 0} s && / m / && !/^(.* )?q 1 0 0 1 -?[0-9]+ -?[0-9]+ cm .* (S|f|f\*) Q$/' "$T/sc.qdf.pdf" | wc -l)
+	paths=$(grep -ac ' S Q$' "$T/sc.qdf.pdf")
+	[ "$bad" = 0 ] && [ "$paths" -gt 3 ] && ok "PDF: each of $paths paths is one content line" || notok "PDF: $bad path lines broken ($paths whole)"
+fi
 # ---- the benchmark's cairo anchor builds clean and draws the same picture --------------------
 if pkg-config --exists cairo 2> /dev/null; then
 	LIBDIR=$(dirname "${TESTBIN:-build/native/tests}")

@@ -1,6 +1,7 @@
 # ps.sh: bench group "ps" (sourced by scripts/bench.sh): locus-ps against plot -T ps and cairo's
 # PostScript and PDF surfaces on workloads a, b and c: replay time, peak memory, output size,
-# and Ghostscript's time to interpret each output; the sizes of a ray-traced picture.
+# and Ghostscript's time to interpret each output (and, with valgrind, its instruction counts on
+# b and c: ratio_instr, which other load does not move); the sizes of a ray-traced picture.
 #
 # Lines: ps-W (locus-ps PS against plot -T ps and against cairo PS), pdf-W (locus-ps PDF against
 # cairo PDF), gs-ps-W / gs-pdf-W (Ghostscript interpreting Locus' output against the anchor's:
@@ -21,6 +22,27 @@ ps_cairo() {
 # ps_gs FILE: Ghostscript interprets and renders FILE at 96 dpi into nothing (medians in M_*)
 ps_gs() {
 	measure "$SLOW_RUNS" /dev/null gs -q -dSAFER -dBATCH -dNOPAUSE -sDEVICE=ppmraw -r96 -sOutputFile=/dev/null "$1"
+}
+
+# ps_gsi FILE: the instructions (millions) Ghostscript executes on FILE, counted by valgrind
+# (cachegrind without its cache model): unlike times, not moved by other load on a shared
+# machine. Sets G_I; empty when valgrind is missing or BENCH_PS_INSTR=0.
+ps_gsi() {
+	G_I=""
+	[ "${BENCH_PS_INSTR:-1}" = 0 ] && return 0
+	have valgrind || return 0
+	G_I=$(valgrind --tool=cachegrind --cache-sim=no --cachegrind-out-file=/dev/null gs -q -dSAFER -dBATCH \
+		-dNOPAUSE -sDEVICE=ppmraw -r96 -sOutputFile=/dev/null "$1" 2>&1 > /dev/null |
+		sed -n 's/.*I *refs: *//p' | tr -d , | awk '{printf "%d", $1 / 1e6}')
+}
+
+# ps_instr LOCUS_FILE ANCHOR_FILE: key=values of Ghostscript's instructions on both (workloads b
+# and c only: a takes minutes under valgrind); nothing when not counted
+ps_instr() {
+	[ "$wl" = a ] && return 0
+	ps_gsi "$1"; p_li=$G_I
+	ps_gsi "$2"; p_ai=$G_I
+	[ -n "$p_li" ] && [ -n "$p_ai" ] && echo "locus_instr_m=$p_li anchor_instr_m=$p_ai ratio_instr=$(ratio "$p_ai" "$p_li")"
 }
 
 # ps_size_line NAME LOCUS_S ANCHOR ANCHOR_S LOCUS_MIB ANCHOR_MIB BYTES ANCHOR_BYTES [extra]
@@ -90,11 +112,13 @@ bench_ps() {
 		line "gs-ps-$wl" "$g_l" gs-on-plot-Tps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
 		if [ $cai = 1 ]; then
 			ps_gs "$W/ps-$wl.cairo.ps" || { fail "gs-ps-$wl" "$M_ERR"; continue; }
-			line "gs-ps-$wl" "$g_l" gs-on-cairo-ps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
+			line "gs-ps-$wl" "$g_l" gs-on-cairo-ps "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")" \
+				"$(ps_instr "$W/ps-$wl.ps" "$W/ps-$wl.cairo.ps")"
 			ps_gs "$W/ps-$wl.pdf" || { fail "gs-pdf-$wl" "$M_ERR"; continue; }
 			g_l=$M_S g_lm=$M_MIB g_lc=$M_CPU
 			ps_gs "$W/ps-$wl.cairo.pdf" || { fail "gs-pdf-$wl" "$M_ERR"; continue; }
-			line "gs-pdf-$wl" "$g_l" gs-on-cairo-pdf "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")"
+			line "gs-pdf-$wl" "$g_l" gs-on-cairo-pdf "$M_S" "$g_lm" "$M_MIB" "target=1 pass=$(pass "$(ratio "$M_S" "$g_l")" 1) $(cpu "$g_lc" "$M_CPU")" \
+				"$(ps_instr "$W/ps-$wl.pdf" "$W/ps-$wl.cairo.pdf")"
 		fi
 	done
 	# memory with four times the input: Locus streams, plotutils holds the page
