@@ -100,6 +100,13 @@ static int status_of(int rc)
 	}
 }
 
+/* The status of a failed output, by its errno as dev_run decides it: 70 out of memory, 75 a device
+ * link's failure that may pass (resumable), else 74. */
+static int tr_status(const io_transport_t *t)
+{
+	return io_errno(t) == ENOMEM ? 70 : io_temporary(t) ? 75 : 74;
+}
+
 /* PS and PDF: every page into one output (dev_run gives each page a file of its own). */
 static int run_document(const dev_job_t *job, char *err, size_t errlen)
 {
@@ -124,11 +131,17 @@ static int run_document(const dev_job_t *job, char *err, size_t errlen)
 		status = status_of(rc);
 		if (status == 74 && io_failed(t)) {
 			snprintf(err, errlen, "%s", io_error(t));   /* names the output and the cause */
-			status = dev_err_is_oom(err) ? 70 : 74;
+			status = tr_status(t);
 		} else if (d->reader_error || status != 65)
 			snprintf(err, errlen, "%s", dev_error(d));
 		else
 			snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
+	}
+	/* as dev_run does: the last bytes go out and a device link confirms them before the close, so
+	 * that a printer that went away at the end is still a temporary failure (75, resumable) */
+	if (status == 0 && io_drain(t)) {
+		snprintf(err, errlen, "%s", io_error(t));
+		status = tr_status(t);
 	}
 	if (io_close_err(t, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen) && status == 0)
 		status = dev_err_is_oom(err) ? 70 : 74;   /* err names the output and the cause */

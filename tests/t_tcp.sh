@@ -60,6 +60,14 @@ journal "drop mid-job" "$T/big.meta" "$T/big.hpgl" 20000 --no-optimize
 # 7000; the sender learns it only from the half-close at the end (the peer's acknowledgements).
 journal "drop after the last byte" "$META" "$T/job.hpgl" 7000
 
+# locus-ps runs its documents itself (one output for every page): a PostScript job dropped by the
+# printer is as temporary a failure as an HP-GL one (75, the same line), not an I/O error (74).
+"$EMU" --tcp --rate 8000 --pen-scale 20 --drop-after 3000 -- "$BIN/locus-ps" -f ps "$META" \
+	-o "tcp:127.0.0.1:@PORT@" > "$T/ps" 2> "$T/ps.err"
+[ "$(word child "$T/ps")" = 75 ] && [ "$(wc -l < "$T/ps.err")" = 1 ] && grep -q "closed the connection having taken" "$T/ps.err" \
+	&& ok "locus-ps -f ps into a printer that drops the connection: exit 75, one line: $(cat "$T/ps.err")" \
+	|| notok "locus-ps dropped: $(cat "$T/ps" "$T/ps.err")"
+
 # Bad names and absent printers: one line, and what to do.
 bad 74 "no host" "tcp:" "name a host"
 bad 74 "bad port" "tcp:127.0.0.1:99999" "bad port"
