@@ -70,7 +70,8 @@ void hpgl_rd_attr_defaults(hpgl_rd_t *r, int in)
 size_t hpgl_rd_attr(hpgl_rd_t *r)
 {
 	hpgl_doc_t *d = r->doc;
-	hpgl_rattr_t a = r->at;
+	hpgl_rattr_t a;
+	memcpy(&a, &r->at, sizeof a);   /* padding too (r was zeroed): the sets compare by bytes */
 	int p = r->pen & 255;
 	a.width_mm = r->pw[p];
 	a.rgb = r->pal[p];
@@ -80,7 +81,7 @@ size_t hpgl_rd_attr(hpgl_rd_t *r)
 		hpgl_rd_nomem(r);
 		return (size_t)-1;
 	}
-	d->attrs[d->nattrs] = a;
+	memcpy(&d->attrs[d->nattrs], &a, sizeof a);
 	return d->nattrs++;
 }
 

@@ -67,7 +67,7 @@ static int set_colour(out_t *o, long rgb)
 static int set_width(out_t *o, const hpgl_rattr_t *a)
 {
 	double mm = a->width_mm >= 0 ? a->width_mm : o->def_mm;
-	double px = fmax(mm * 40 * o->s, 1.0);
+	double px = fmin(fmax(mm * 40 * o->s, 1.0), 10000);
 	if (!o->w || px == o->width)
 		return 0;
 	o->width = px;
@@ -200,8 +200,10 @@ static int hatch(out_t *o, const contour_t *c, size_t nc, double space, double a
 	}
 	if (!(v0 < v1))
 		return 0;
-	if ((v1 - v0) / space > MAX_HATCH)
-		space = (v1 - v0) / MAX_HATCH;
+	/* at most MAX_HATCH lines, and lines times edges bounded (each line meets every edge) */
+	double most = fmin(MAX_HATCH, fmax(20e6 / (double)(ne + 1), 100));
+	if ((v1 - v0) / space > most)
+		space = (v1 - v0) / most;
 	cross_t *x = malloc((ne + 1) * sizeof *x);
 	if (!x)
 		return o->rc = META_ENOMEM;
@@ -346,7 +348,7 @@ static int line(out_t *o, const hpgl_rstroke_t *st)
 		}
 		int n = a->lt_n > 16 ? 16 : a->lt_n;
 		for (int i = 0; i < n; i++)
-			dl[i] = fmax(a->lt_pat[i] / 100 * len * o->s, 0.001);
+			dl[i] = fmin(fmax(a->lt_pat[i] / 100 * len * o->s, 0.001), 100000);
 		CK(set_dash(o, dl, (size_t)n));
 	} else {
 		CK(set_dash(o, NULL, 0));
@@ -478,7 +480,10 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 	unsigned wpx = (unsigned)ceil(fmax(wu * s, 1)), hpx = (unsigned)ceil(fmax(hu * s, 1));
 	o.w = w, o.s = s, o.x0 = x0, o.y0 = y0;
 	o.width = 0;
-	if ((rc = meta_page(w, wpx, hpx)) < 0 || (rc = meta_page_size_mm(w, wpx / (s * 40), hpx / (s * 40))) < 0 ||
+	/* a drawing more than a kilometre across (no plotter's) keeps its picture; its size is
+	 * given as the meta file's largest, 1000000 mm */
+	double wmm = fmin(wpx / (s * 40), 1e6), hmm = fmin(hpx / (s * 40), 1e6);
+	if ((rc = meta_page(w, wpx, hpx)) < 0 || (rc = meta_page_size_mm(w, wmm, hmm)) < 0 ||
 			(rc = meta_clear(w, 0xffffff)) < 0 || (rc = meta_cap(w, META_CAP_ROUND)) < 0 ||
 			(rc = meta_join(w, META_JOIN_ROUND)) < 0)
 		goto fail;

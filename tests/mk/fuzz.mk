@@ -30,9 +30,10 @@ $(FUZZ_B)/lib/%.o: %.c
 $(FUZZ_B)/liblocus.a: $(FUZZ_LIBSRC:%.c=$(FUZZ_B)/lib/%.o)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
+# (-MMD: the Makefile's include of build/**/*.d rebuilds a harness when a header it reads changes)
 $(FUZZ_HARNESSES:%=$(FUZZ_B)/h_%.o): $(FUZZ_B)/h_%.o: tests/fuzz/fuzz.h $(wildcard tests/fuzz/fuzz_*.c)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) $(fuzz_def_$*) -c $(fuzz_src_$*) -o $@
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(fuzz_def_$*) -MMD -MP -c $(fuzz_src_$*) -o $@
 $(FUZZ_PROGS): $(FUZZ_B)/fuzz_%: $(FUZZ_B)/h_%.o $(FUZZ_B)/liblocus.a
 	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(LDLIBS_ALL)
 
