@@ -121,7 +121,8 @@ printf '#PLOT 2\no\nQ 1 2\nx\n' > "$T/q.plot"
 # goldens (fixtures/import/, looked at; fixtures/README.md): corpus files and graph's zigzag
 I=fixtures/import
 for f in hp2xx-arcs.hp inkscape-hpgl_output-shapes.hpgl hp2xx-fill.plt hp2xx-fwedges.plt hp2xx-pm.hp \
-		hp2xx-pw.hpg hp2xx-la.hp hp2xx-ul.hp hp2xx-lo.hp hp2xx-cp.hp hp2xx-symbols.hp; do
+		hp2xx-pw.hpg hp2xx-la.hp hp2xx-ul.hp hp2xx-lo.hp hp2xx-cp.hp hp2xx-symbols.hp \
+		hp2xx-win_1.hp acad-designjet-XANADU2.plt; do
 	"$M" import $C/$f -o "$T/$f.meta" && same_file "golden: $f" "$T/$f.meta" $I/$f.meta
 done
 "$M" import $I/zigzag.plot -o "$T/z.meta" && same_file "golden: graph's portable zigzag" "$T/z.meta" $I/zigzag.meta
