@@ -1,7 +1,7 @@
 /* hpgl_read.h: a reader of HP-GL and HP-GL/2 into strokes per pen in plotter units.
  *
  * It understands IN DF SP PU PD PA PR PE CI AA AR EA RA ER RR EW WG FT PT LT SC IP IW RO LB DT
- * SI SR DI DR SL LO ES CP SM VS PW WU PC NP FP PM EP and device-control (ESC.) and PCL/PJL framing, and skips every other
+ * SI SR DI DR SL LO ES CP SM BL PB XT YT TL VS PW WU PC NP CR UL LA FP PM EP and device-control (ESC.) and PCL/PJL framing, and skips every other
  * two-letter command with its parameters (listed in hpgl_doc_t.unknown). It is tolerant of what
  * real files contain: lower case, missing ';' between commands, blanks, CR/LF and control bytes
  * between commands, parameters separated by blanks, and bytes that are no command after the
