@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "grow.h"
+#include "hpgl.h"
 #include "hpgl_read.h"
 #include "meta_import.h"
 #include "scan.h"
@@ -32,7 +33,24 @@ typedef struct {
 	int ndash, rule, cap, join;
 	double def_mm;              /* pen width where the file gives none */
 	int rc;
+	const hpgl_pens_t *pens;    /* a profile's carousel: colours and widths the file leaves open */
 } out_t;
+
+/* The carousel's pen in slot pen, or NULL. */
+static const hpgl_pen_t *slot(const out_t *o, int pen)
+{
+	for (size_t k = 0; o->pens && k < o->pens->n; k++)
+		if (o->pens->pen[k].slot == pen)
+			return &o->pens->pen[k];
+	return NULL;
+}
+
+/* The colour of pen: PC, else the carousel's, else hp2xx's default. */
+static long colour_of(const out_t *o, const hpgl_rattr_t *a, int pen)
+{
+	const hpgl_pen_t *p = slot(o, pen);
+	return a->rgb >= 0 ? a->rgb : p ? (long)p->rgb : (long)pen_rgb(pen);
+}
 
 #define CK(x) do { int r_ = (x); if (r_ < 0) { o->rc = r_; return r_; } } while (0)
 
@@ -64,9 +82,10 @@ static int set_colour(out_t *o, long rgb)
 	return meta_colour(o->w, (meta_rgb_t)rgb);
 }
 
-static int set_width(out_t *o, const hpgl_rattr_t *a)
+static int set_width(out_t *o, const hpgl_rattr_t *a, int pen)
 {
-	double mm = a->width_mm >= 0 ? a->width_mm : o->def_mm;
+	const hpgl_pen_t *p = slot(o, pen);
+	double mm = a->width_mm >= 0 ? a->width_mm : p ? p->width_mm : o->def_mm;
 	double px = fmin(fmax(mm * 40 * o->s, 1.0), 10000);
 	if (!o->w || px == o->width)
 		return 0;
@@ -270,7 +289,7 @@ static int fill(out_t *o, size_t first, size_t last)
 		else
 			free(p);
 	}
-	long rgb = a->rgb >= 0 ? a->rgb : (long)pen_rgb(st->pen);
+	long rgb = colour_of(o, a, st->pen);
 	if (!rc && nc && !o->w) {   /* measuring: the contours are the extent */
 		for (size_t k = 0; k < nc; k++)
 			for (size_t i = 0; i < c[k].n; i++)
@@ -278,7 +297,7 @@ static int fill(out_t *o, size_t first, size_t last)
 	} else if (!rc && nc && (a->ft == 3 || a->ft == 4)) {
 		rc = set_colour(o, rgb);
 		if (rc >= 0)
-			rc = set_width(o, a);
+			rc = set_width(o, a, st->pen);
 		if (rc >= 0)
 			rc = set_dash(o, NULL, 0);
 		for (int k = 0; k < (a->ft == 4 ? 2 : 1) && rc >= 0; k++)
@@ -328,8 +347,8 @@ static int line(out_t *o, const hpgl_rstroke_t *st)
 {
 	const hpgl_rattr_t *a = &o->d->attrs[st->attr];
 	const hpgl_rpt_t *p = o->d->pts + st->start;
-	CK(set_colour(o, a->rgb >= 0 ? a->rgb : (long)pen_rgb(st->pen)));
-	CK(set_width(o, a));
+	CK(set_colour(o, colour_of(o, a, st->pen)));
+	CK(set_width(o, a, st->pen));
 	CK(set_ends(o, a));
 	if (a->lt == 0) {   /* LT 0: a dot at each point */
 		CK(set_dash(o, NULL, 0));
@@ -393,8 +412,8 @@ static int glyph(out_t *o, const hpgl_rlabel_t *l, const hpgl_rattr_t *a, int ch
 static int label(out_t *o, const hpgl_rlabel_t *l)
 {
 	const hpgl_rattr_t *a = &o->d->attrs[l->attr];
-	CK(set_colour(o, a->rgb >= 0 ? a->rgb : (long)pen_rgb(l->pen)));
-	CK(set_width(o, a));
+	CK(set_colour(o, colour_of(o, a, l->pen)));
+	CK(set_width(o, a, l->pen));
 	CK(set_dash(o, NULL, 0));
 	hpgl_rattr_t round = { 0 };
 	CK(set_ends(o, &round));
@@ -455,13 +474,31 @@ static int draw(out_t *o)
 int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, meta_writer_t *w,
 		char *err, size_t errlen)
 {
+	return mimp_hpgl_pens(buf, n, name, px_per_mm, NULL, w, err, errlen);
+}
+
+int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
+		meta_writer_t *w, char *err, size_t errlen)
+{
+	hpgl_pens_t *car = NULL;
+	if (pens) {
+		if (!(car = malloc(sizeof *car))) {
+			snprintf(err, errlen, "%s: out of memory", name);
+			return -70;
+		}
+		if (hpgl_pens_parse(pens, 0.3, car, err, errlen)) {
+			free(car);
+			return -64;
+		}
+	}
 	hpgl_doc_t d;
 	if (hpgl_read_mem(buf, n, name, &d, err, errlen)) {
 		hpgl_doc_free(&d);
+		free(car);
 		return -65;
 	}
 	out_t o = { NULL, &d, 1, 0, 0, INFINITY, INFINITY, -INFINITY, -INFINITY, 0, -1, -1, { 0 }, 0,
-		META_RULE_EVEN_ODD, META_CAP_ROUND, META_JOIN_ROUND, d.hpgl2 ? 0.35 : 0.3, 0 };
+		META_RULE_EVEN_ODD, META_CAP_ROUND, META_JOIN_ROUND, d.hpgl2 ? 0.35 : 0.3, 0, car };
 	int rc = draw(&o);   /* the extent, plotter units */
 	if (rc < 0)
 		goto fail;
@@ -488,15 +525,17 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 			(rc = meta_join(w, META_JOIN_ROUND)) < 0)
 		goto fail;
 	hpgl_rattr_t none = { .width_mm = -1 };
-	if ((rc = set_width(&o, &none)) < 0 || (rc = meta_fill_rule(w, META_RULE_EVEN_ODD)) < 0)
+	if ((rc = set_width(&o, &none, -1)) < 0 || (rc = meta_fill_rule(w, META_RULE_EVEN_ODD)) < 0)
 		goto fail;
 	o.colour = -1;
 	if ((rc = draw(&o)) < 0 || (rc = meta_end_page(w)) < 0)
 		goto fail;
 	hpgl_doc_free(&d);
+	free(car);
 	return 0;
 fail:
 	snprintf(err, errlen, "%s", rc == META_ENOMEM && !*meta_writer_error(w) ? "out of memory" : meta_writer_error(w));
 	hpgl_doc_free(&d);
+	free(car);
 	return rc == META_ENOMEM ? -70 : rc == META_EIO ? -74 : -65;
 }

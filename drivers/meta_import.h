@@ -15,6 +15,13 @@
 int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, meta_writer_t *w,
 		char *err, size_t errlen);
 
+/* mimp_hpgl with a profile's carousel: pens (hpgl_pens_parse's syntax, as a profile's `pens`
+ * line or `locus-hpgl --pens`: "1=black:0.5mm,2=red:0.25mm"; a pen without a width 0.3 mm)
+ * give the colour of a pen the file sets no PC for and the width of one it sets no PW for.
+ * NULL: as mimp_hpgl. A bad spec: -64, err "pens: ...". */
+int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
+		meta_writer_t *w, char *err, size_t errlen);
+
 /* The subcommand: import the file in (HP-GL, or a GNU plotutils metafile, portable or binary:
  * told from its content) to out (NULL: stdout) in the text form. Prints one line on failure;
  * returns the exit status (0, 65 bad input, 66 no input, 70, 74). */
