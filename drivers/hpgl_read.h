@@ -80,14 +80,18 @@ typedef struct {
 	double es_char, es_line;    /* ES: extra space, in cell widths and line heights */
 	int origin;                 /* LO: 1 .. 9, 11 .. 19 */
 	int symbol;                 /* 1: an SM symbol, centred on the point */
+	double crx, cry;            /* the carriage-return point when it began (CR goes back there) */
 } hpgl_rlabel_t;
 
-/* Where line `line` (0 = the first) of label l with nch characters starts, relative to the
- * label's point, in plotter units: the LO placement of a fixed-pitch cell of 1.5 character
- * widths (plus ES) and a line of 2 cap heights. Used by the reader for the pen's position
- * after LB and by the import for drawing. */
-void hpgl_label_line_start(const hpgl_rlabel_t *l, size_t line, size_t nlines, size_t nch,
-		double *x, double *y);
+/* Lay label l out as the plotter does: a fixed-pitch cell of 1.5 character widths (plus ES) per
+ * character, lines 2 cap heights apart (plus ES), each portion up to a CR or LF placed by LO by
+ * its own length; CR returns to the carriage-return point, LF goes a line down (the
+ * carriage-return point too), BS a cell back. Calls fn (when not NULL) with each printable character and the origin
+ * of its cell (plotter units); the first non-zero fn returns ends the walk and is returned.
+ * *px, *py: where the pen is after the label (the next character's origin). Used by the reader
+ * for the pen after LB and by the import for drawing. */
+int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double x, double y),
+		void *user, double *px, double *py);
 
 /* The result of a read. Read-only for the caller; free with hpgl_doc_free. */
 typedef struct {

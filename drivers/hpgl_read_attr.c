@@ -216,6 +216,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 	} else if (!strcmp(mn, "LO")) {
 		int n = nv ? (int)v[0] : 1;
 		r->lo = (n >= 1 && n <= 9) || (n >= 11 && n <= 19) ? n : 1;
+		r->crx = r->x, r->cry = r->y;   /* LO sets the carriage-return point */
 	} else if (!strcmp(mn, "CP")) {
 		/* spaces along the run, lines up (positive) or down; none: to the next line's start */
 		hpgl_rlabel_t l;
@@ -224,6 +225,8 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 		if (nv >= 2) {
 			r->x += v[0] * cell * l.dx - v[1] * lh * l.dy;
 			r->y += v[0] * cell * l.dy + v[1] * lh * l.dx;
+			r->crx -= v[1] * lh * l.dy;   /* lines move the CR point too */
+			r->cry += v[1] * lh * l.dx;
 		} else {
 			r->crx += lh * l.dy;
 			r->cry -= lh * l.dx;
@@ -256,74 +259,75 @@ static void label_state(const hpgl_rd_t *r, hpgl_rlabel_t *l)
 	l->slant = r->slant;
 	l->es_char = r->es_char, l->es_line = r->es_line;
 	l->origin = r->lo;
+	l->crx = r->crx, l->cry = r->cry;
 	if (!isfinite(l->cw) || fabs(l->cw) > 1e9)
 		l->cw = 76;
 	if (!isfinite(l->ch) || fabs(l->ch) > 1e9)
 		l->ch = 108;
 }
 
-void hpgl_label_line_start(const hpgl_rlabel_t *l, size_t line, size_t nlines, size_t nch,
-		double *x, double *y)
+/* LO's offset, in label space (along the run, up), of a portion of n characters. */
+static void lo_offset(const hpgl_rlabel_t *l, size_t n, double cell, double *u, double *w)
 {
-	(void)nlines;
-	double cell = 1.5 * l->cw * (1 + l->es_char), lh = 2 * l->ch * (1 + l->es_line);
-	double len = nch ? (double)nch * cell - (cell - l->cw) : 0;
+	double len = n ? (double)n * cell - (cell - l->cw) : 0;
 	int o = l->origin > 10 ? l->origin - 10 : l->origin;
 	if (o < 1 || o > 9)
 		o = 1;
 	int hz = (o - 1) / 3, vt = (o - 1) % 3;
-	double u = -hz * len / 2, w = -vt * l->ch / 2;
+	*u = -hz * len / 2;
+	*w = -vt * l->ch / 2;
 	if (l->origin > 10) {
-		u += hz == 0 ? 0.5 * l->cw : hz == 2 ? -0.5 * l->cw : 0;
-		w += vt == 0 ? 0.5 * l->ch : vt == 2 ? -0.5 * l->ch : 0;
+		*u += hz == 0 ? 0.5 * l->cw : hz == 2 ? -0.5 * l->cw : 0;
+		*w += vt == 0 ? 0.5 * l->ch : vt == 2 ? -0.5 * l->ch : 0;
 	}
-	w -= (double)line * lh;
-	*x = u * l->dx - w * l->dy;
-	*y = u * l->dy + w * l->dx;
 }
 
-/* The printable characters of the LF-separated line that starts at text[i]. */
-static size_t line_chars(const unsigned char *t, size_t len, size_t i)
+int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double x, double y),
+		void *user, double *px, double *py)
 {
-	size_t n = 0, col = 0;
-	for (; i < len && t[i] != '\n'; i++) {
-		if (t[i] == '\r')
-			col = 0;
-		else if (t[i] >= 32 && t[i] != 127 && ++col > n)
-			n = col;
-		else if (t[i] == 8 && col)
-			col--;
+	const unsigned char *t = (const unsigned char *)l->text;
+	double cell = 1.5 * l->cw * (1 + l->es_char), lh = 2 * l->ch * (1 + l->es_line);
+	double u = 0, w = 0, ou = 0, ow = 0;   /* the pen and the portion's LO offset, label space */
+	double ex = l->crx - l->x, ey = l->cry - l->y;
+	double cu = ex * l->dx + ey * l->dy, cw = -ex * l->dy + ey * l->dx;   /* the CR point */
+	int fresh = 1;                          /* the next character starts a portion */
+	for (size_t i = 0; i < l->len; i++) {
+		unsigned char c = t[i];
+		if (c == '\r') {
+			u = cu, w = cw, ou = ow = 0, fresh = 1;
+		} else if (c == '\n') {
+			w -= lh, cw -= lh;
+		} else if (c == 8) {
+			u -= cell;
+		} else if (c >= 32 && c != 127) {
+			if (fresh) {   /* a portion (to CR or LF) is placed as a label of its own */
+				size_t n = 0;
+				while (i + n < l->len && t[i + n] != '\r' && t[i + n] != '\n')
+					n++;
+				lo_offset(l, n, cell, &ou, &ow);
+				fresh = 0;
+			}
+			double a = u + ou, b = w + ow;
+			int rc = fn ? fn(user, c, l->x + a * l->dx - b * l->dy, l->y + a * l->dy + b * l->dx) : 0;
+			if (rc)
+				return rc;
+			u += cell;
+		}
 	}
-	return n;
+	double a = u + ou, b = w + ow;   /* the next character's origin (a CR: the CR point) */
+	*px = l->x + a * l->dx - b * l->dy;
+	*py = l->y + a * l->dy + b * l->dx;
+	return 0;
 }
 
 int hpgl_rd_label(hpgl_rd_t *r, const unsigned char *text, size_t len, int symbol)
 {
 	hpgl_rlabel_t l;
 	label_state(r, &l);
-	double cell = 1.5 * l.cw * (1 + l.es_char), lh = 2 * l.ch * (1 + l.es_line);
 	if (symbol) {
 		l.origin = 5;
 		l.symbol = 1;
 	}
-	/* the pen after the text: past its last character (LF a line down, CR back to the start) */
-	size_t line = 0, col = 0;
-	for (size_t i = 0; i < len && !symbol; i++) {
-		if (text[i] == '\n')
-			line++;
-		else if (text[i] == '\r')
-			col = 0;
-		else if (text[i] == 8)
-			col -= col > 0;
-		else if (text[i] >= 32 && text[i] != 127)
-			col++;
-	}
-	size_t nlast = 0;
-	for (size_t i = len; !symbol; i--)
-		if (i == 0 || text[i - 1] == '\n') {
-			nlast = line_chars(text, len, i);
-			break;
-		}
 	hpgl_doc_t *d = r->doc;
 	if ((l.attr = hpgl_rd_attr(r)) == (size_t)-1)
 		return -1;
@@ -338,16 +342,15 @@ int hpgl_rd_label(hpgl_rd_t *r, const unsigned char *text, size_t len, int symbo
 	l.len = len;
 	l.offset = r->cmd_off;
 	d->labels[d->nlabels++] = l;
-	if (!symbol && l.origin != 1) {   /* LO 2 .. 19: the pen goes back to the label's point */
-		r->crx = l.x, r->cry = l.y;
-	} else if (!symbol) {
-		double sx, sy;
-		hpgl_label_line_start(&l, line, line + 1, nlast, &sx, &sy);
-		r->x = l.x + sx + (double)col * cell * l.dx;
-		r->y = l.y + sy + (double)col * cell * l.dy;
-		/* the carriage-return point: the start of the label's last line */
-		r->crx = l.x + (double)line * lh * l.dy;
-		r->cry = l.y - (double)line * lh * l.dx;
+	if (!symbol) {
+		/* the pen at the next character's origin; each LF moves the CR point down a line */
+		double lh = 2 * l.ch * (1 + l.es_line);
+		size_t lf = 0;
+		for (size_t i = 0; i < len; i++)
+			lf += text[i] == '\n';
+		hpgl_label_walk(&l, NULL, NULL, &r->x, &r->y);
+		r->crx += (double)lf * lh * l.dy;
+		r->cry -= (double)lf * lh * l.dx;
 	}
 	return 0;
 }

@@ -378,20 +378,30 @@ static int line(out_t *o, const hpgl_rstroke_t *st)
 
 /* ---- labels ---- */
 
-/* One character's glyph at label-space (u, w) from the line start (sx, sy). */
-static int glyph(out_t *o, const hpgl_rlabel_t *l, const hpgl_rattr_t *a, int ch, double sx,
-		double sy, double u0)
+/* One character's glyph in the cell whose origin is (x, y), sized, turned and slanted as l. */
+typedef struct {
+	out_t *o;
+	const hpgl_rlabel_t *l;
+	const hpgl_rattr_t *a;
+} glyph_t;
+
+static int glyph(void *user, int ch, double x, double y)
 {
-	const char *g = scan_glyph_source(ch, NULL);
+	glyph_t *g = user;
+	out_t *o = g->o;
+	const hpgl_rlabel_t *l = g->l;
+	if (ch == ' ')
+		return 0;
+	const char *src = scan_glyph_source(ch, NULL);
 	double ku = l->cw / 4, kw = l->ch / 6;
 	hpgl_rpt_t q[64];
 	size_t n = 0;
-	for (const char *s = g;; ) {
+	for (const char *s = src;; ) {
 		double gx, gy;
 		int used = 0;
 		if (*s && sscanf(s, "%lf,%lf%n", &gx, &gy, &used) == 2 && n < 64) {
-			double u = u0 + gx * ku + gy * kw * l->slant, w = gy * kw;
-			q[n++] = (hpgl_rpt_t){ l->x + sx + u * l->dx - w * l->dy, l->y + sy + u * l->dy + w * l->dx };
+			double u = gx * ku + gy * kw * l->slant, w = gy * kw;
+			q[n++] = (hpgl_rpt_t){ x + u * l->dx - w * l->dy, y + u * l->dy + w * l->dx };
 			s += used;
 			while (*s == ' ')
 				s++;
@@ -399,7 +409,7 @@ static int glyph(out_t *o, const hpgl_rlabel_t *l, const hpgl_rattr_t *a, int ch
 		if (!*s || *s == ';' || !used) {
 			if (n == 1)   /* a dot */
 				q[n++] = (hpgl_rpt_t){ q[0].x + 0.01 / o->s, q[0].y };
-			CK(polyline(o, q, n, a));
+			CK(polyline(o, q, n, g->a));
 			n = 0;
 			if (!*s || !used)
 				break;
@@ -417,35 +427,9 @@ static int label(out_t *o, const hpgl_rlabel_t *l)
 	CK(set_dash(o, NULL, 0));
 	hpgl_rattr_t round = { 0 };
 	CK(set_ends(o, &round));
-	const unsigned char *t = (const unsigned char *)l->text;
-	double cell = 1.5 * l->cw * (1 + l->es_char);
-	size_t line = 0, col = 0, nch = 0;
-	for (size_t i = 0; i <= l->len; i++) {
-		if (i == 0 || (i <= l->len && t[i - 1] == '\n')) {   /* a new line: its length */
-			nch = 0;
-			size_t c = 0;
-			for (size_t j = i; j < l->len && t[j] != '\n'; j++)
-				if (t[j] == '\r')
-					c = 0;
-				else if (t[j] >= 32 && t[j] != 127 && ++c > nch)
-					nch = c;
-		}
-		if (i == l->len)
-			break;
-		if (t[i] == '\n') {
-			line++;
-		} else if (t[i] == '\r') {
-			col = 0;
-		} else if (t[i] == 8) {
-			col -= col > 0;
-		} else if (t[i] >= 32 && t[i] != 127) {
-			double sx, sy;
-			hpgl_label_line_start(l, line, line + 1, nch, &sx, &sy);
-			if (t[i] != ' ')
-				CK(glyph(o, l, a, t[i], sx, sy, (double)col * cell));
-			col++;
-		}
-	}
+	glyph_t g = { o, l, a };
+	double x, y;
+	CK(hpgl_label_walk(l, glyph, &g, &x, &y));
 	return end_path(o);
 }
 

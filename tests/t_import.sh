@@ -82,6 +82,12 @@ imp "IN;SI0.5,1;PA0,0;PD0,8000;PU4000,4000;SL1;LBI$(printf '')"
 grep -q "^move 456 456$" "$T/c.meta" && grep -q "^move 416 416$" "$T/c.meta" && grep -q "^draw 421 416$" "$T/c.meta" && ok "SL 1: the I leans 45 degrees (its top 40 pixels right)" || notok "SL: $(sed -n 14,24p "$T/c.meta" | tr '\n' ' ')"
 imp "IN;SI0.5,1;PA0,0;PD0,8000;PU4000,4000;ES1;LBAB$(printf '')"
 [ "$(ink)" = "416 416 496 456" ] && ok "ES 1: a cell and a half more between the characters" || notok "ES: $(ink)"
+# the pen after a label: at the next character's origin (two 300-unit cells on), or with a CR
+# before the terminator back at the carriage-return point (HP-GL/2: LB, LO)
+imp "IN;SI0.5,1;PA0,0;PD0,8000;PU4000,4000;LBAB$(printf '\003')PD4000,0;"
+grep -q "^move 476 416$" "$T/c.meta" && grep -q "^draw 416 16$" "$T/c.meta" && ok "after LB the pen is past the label" || notok "pen after LB: $(grep -E '^(move|draw)' "$T/c.meta" | tail -2 | tr '\n' ' ')"
+imp "IN;SI0.5,1;PA0,0;PD0,8000;PU4000,4000;LO18;LBAB$(printf '\r\003')PD4000,0;"
+grep -q "^move 416 416$" "$T/c.meta" && grep -q "^draw 416 16$" "$T/c.meta" && ok "a CR before the terminator: the pen back at the point (LO 18)" || notok "pen after CR: $(grep -E '^(move|draw)' "$T/c.meta" | tail -2 | tr '\n' ' ')"
 imp "IN;DTX;SI0.5,1;PA0,0;PD0,8000;PU4000,4000;LBABXPU;"
 [ "$(ink)" = "416 416 466 456" ] && ok "DT X: the label ends at its terminator" || notok "DT: $(ink)"
 imp "IN;SI0.5,1;SM+;PA0,0;PD0,8000;PU;SM;PA4000,4000;"
