@@ -170,7 +170,7 @@ static int pe(hpgl_rd_t *r)
 		shift = 0;
 		if (select == 1) {   /* pen number */
 			hpgl_rd_end_stroke(r);
-			r->pen = (int)x;
+			r->pen = hpgl_rd_int(x);
 			r->doc->pen_selects++;
 			select = 0;
 			continue;
@@ -360,7 +360,7 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			r->x = r->y = 0;
 	} else if (!strcmp(mn, "SP")) {
 		hpgl_rd_end_stroke(r);
-		r->pen = nv ? (int)v[0] : 0;
+		r->pen = nv ? hpgl_rd_int(v[0]) : 0;
 		r->doc->pen_selects++;
 	} else if (!strcmp(mn, "IP")) {
 		if (nv >= 2) {

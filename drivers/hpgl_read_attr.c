@@ -141,7 +141,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 			r->at.lt = r->lt_saved;
 			r->at.lt_len = r->lt_saved_len;
 		} else {
-			int n = (int)v[0];
+			int n = hpgl_rd_int(v[0]);
 			double len = nv >= 2 && v[1] > 0 ? v[1] : 4;
 			int mm = nv >= 3 && v[2] == 1;
 			r->at.lt = n >= -8 && n <= 8 && n == v[0] ? n : HPGL_LT_SOLID;
@@ -151,7 +151,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 		}
 		lt_pattern(r, &r->at);
 	} else if (!strcmp(mn, "UL")) {
-		int t = nv ? (int)v[0] : 0;
+		int t = nv ? hpgl_rd_int(v[0]) : 0;
 		if (nv == 0) {
 			memset(r->ul_n, 0, sizeof r->ul_n);
 		} else if (t >= 1 && t <= 8 && t == v[0]) {
@@ -166,7 +166,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 		lt_pattern(r, &r->at);
 	} else if (!strcmp(mn, "LA")) {
 		for (int k = 0; k + 1 < nv; k += 2) {
-			int kind = (int)v[k], val = (int)v[k + 1];
+			int kind = hpgl_rd_int(v[k]), val = hpgl_rd_int(v[k + 1]);
 			if (kind == 1)
 				r->at.cap = val >= 1 && val <= 4 ? val : 0;
 			else if (kind == 2)
@@ -175,7 +175,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 		if (nv == 0)
 			r->at.cap = r->at.join = 0;
 	} else if (!strcmp(mn, "FT")) {
-		int t = nv ? (int)v[0] : 1;
+		int t = nv ? hpgl_rd_int(v[0]) : 1;
 		r->at.ft = t == 3 || t == 4 || t == 10 ? t : 1;
 		if (t == 3 || t == 4) {
 			double sp = nv >= 2 ? len_x(r, v[1]) : 0;
@@ -214,7 +214,7 @@ int hpgl_rd_state(hpgl_rd_t *r, const char *mn, const double *v, int nv)
 		r->es_char = nv ? fmax(fmin(v[0], 100), -1) : 0;
 		r->es_line = nv >= 2 ? fmax(fmin(v[1], 100), -1) : 0;
 	} else if (!strcmp(mn, "LO")) {
-		int n = nv ? (int)v[0] : 1;
+		int n = nv ? hpgl_rd_int(v[0]) : 1;
 		r->lo = (n >= 1 && n <= 9) || (n >= 11 && n <= 19) ? n : 1;
 		r->crx = r->x, r->cry = r->y;   /* LO sets the carriage-return point */
 	} else if (!strcmp(mn, "CP")) {

@@ -169,11 +169,8 @@ double hpgl_rd_chord(double chord)
 int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0, double sweep, double chord)
 {
 	chord = hpgl_rd_chord(chord);
-	int n = (int)ceil(fabs(sweep) / chord);
-	if (n < 1)
-		n = 1;
-	if (n > 100000)
-		n = 100000;
+	double steps = ceil(fabs(sweep) / chord);
+	int n = steps > 100000 ? 100000 : steps < 1 ? 1 : (int)steps;
 	for (int k = 1; k <= n; k++) {
 		double a = a0 + sweep * M_PI / 180 * k / n;
 		if (hpgl_rd_move_to(r, cx + rad * cos(a), cy + rad * sin(a)))
@@ -214,7 +211,7 @@ void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv)
 		r->sc = 0;
 		return;
 	}
-	int type = nv >= 5 ? (int)v[4] : 0;
+	int type = nv >= 5 ? hpgl_rd_int(v[4]) : 0;
 	r->sc = 1;
 	r->sc_xmin = v[0];
 	r->sc_ymin = v[2];
@@ -256,7 +253,7 @@ void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 
 int hpgl_rd_pm(hpgl_rd_t *r, const double *v, int nv)
 {
-	int k = nv ? (int)v[0] : 0;
+	int k = nv ? hpgl_rd_int(v[0]) : 0;
 	r->doc->hpgl2 = 1;
 	if (k == 0) {
 		hpgl_rd_end_stroke(r);

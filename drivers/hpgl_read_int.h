@@ -52,6 +52,13 @@ typedef struct {
 } hpgl_rd_t;
 
 
+/* A parameter as an int (pens, types, modes): clamped to +-2^30 first (a cast of a larger double
+ * is undefined behaviour), fractions cut off. */
+static inline int hpgl_rd_int(double v)
+{
+	return v >= 1073741824.0 ? 1073741824 : v <= -1073741824.0 ? -1073741824 : v == v ? (int)v : 0;
+}
+
 /* Record "NAME: byte OFF: message" in r->err; returns -1. */
 int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 #ifdef __GNUC__
