@@ -113,6 +113,11 @@ static int coords(hpgl_rd_t *r, const char *mn, int pen, int mode)
 			}
 			if (hpgl_rd_move_to(r, x, y))
 				return -1;
+			if (r->sm && !r->poly) {   /* SM: the symbol at each point */
+				unsigned char c = r->sm;
+				if (hpgl_rd_label(r, &c, 1, 1))
+					return -1;
+			}
 		}
 	} while (more);
 	return 0;
@@ -165,7 +170,7 @@ static int pe(hpgl_rd_t *r)
 		shift = 0;
 		if (select == 1) {   /* pen number */
 			hpgl_rd_end_stroke(r);
-			r->pen = (int)x;
+			r->pen = hpgl_rd_int(x);
 			r->doc->pen_selects++;
 			select = 0;
 			continue;
@@ -276,18 +281,18 @@ static int label(hpgl_rd_t *r, const char *mn)
 		return hpgl_rd_fail(r, st, "%s label not terminated (terminator 0x%02x, set by DT)", mn, r->term);
 	size_t len = r->i - st;
 	r->i++;
-	if (mn[0] != 'L')
+	if (mn[0] != 'L') {   /* BL: kept for PB */
+		unsigned char *b = malloc(len + 1);
+		if (!b)
+			return hpgl_rd_nomem(r);
+		memcpy(b, r->s + st, len);
+		free(r->bl);
+		r->bl = b;
+		r->nbl = len;
 		return 0;
-	hpgl_doc_t *d = r->doc;
-	if (hpgl_rd_grow((void **)&d->labels, &d->caplabels, d->nlabels + 1, sizeof *d->labels))
-		return hpgl_rd_nomem(r);
-	char *t = malloc(len + 1);
-	if (!t)
-		return hpgl_rd_nomem(r);
-	memcpy(t, r->s + st, len);
-	t[len] = 0;
-	d->labels[d->nlabels++] = (hpgl_rlabel_t){ r->pen, r->x, r->y, t, len, r->cmd_off };
-	return 0;
+	}
+	hpgl_rd_end_stroke(r);
+	return hpgl_rd_label(r, r->s + st, len, 0);
 }
 
 static void note_unknown(hpgl_rd_t *r, const char *mn)
@@ -329,8 +334,9 @@ static int command(hpgl_rd_t *r, const char mn[3])
 		return 0;
 	}
 	if (!strcmp(mn, "SM")) {   /* symbol mode: one character, or none */
+		r->sm = 0;
 		if (r->i < r->n && r->s[r->i] != ';' && r->s[r->i] > ' ')
-			r->i++;
+			r->sm = r->s[r->i++];
 		if (r->i < r->n && r->s[r->i] == ';')
 			r->i++;
 		return 0;
@@ -354,7 +360,7 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			r->x = r->y = 0;
 	} else if (!strcmp(mn, "SP")) {
 		hpgl_rd_end_stroke(r);
-		r->pen = nv ? (int)v[0] : 0;
+		r->pen = nv ? hpgl_rd_int(v[0]) : 0;
 		r->doc->pen_selects++;
 	} else if (!strcmp(mn, "IP")) {
 		if (nv >= 2) {
@@ -388,15 +394,33 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			return 0;
 		return hpgl_rd_arc_points(r, cx, cy, rad, a0, v[2], nv > 3 ? v[3] : 5);
 	} else if (!strcmp(mn, "EA") || !strcmp(mn, "ER")) {
-		return hpgl_rd_rect(r, mn, v, nv, mn[1] == 'R', HPGL_RS_EDGE);
+		return hpgl_rd_rects(r, mn, v, nv, mn[1] == 'R', HPGL_RS_EDGE);
 	} else if (!strcmp(mn, "RA") || !strcmp(mn, "RR")) {
-		return hpgl_rd_rect(r, mn, v, nv, mn[1] == 'R', HPGL_RS_FILL);
+		return hpgl_rd_rects(r, mn, v, nv, mn[1] == 'R', HPGL_RS_FILL);
 	} else if (!strcmp(mn, "EW") || !strcmp(mn, "WG")) {
 		return hpgl_rd_wedge(r, mn, v, nv, mn[0] == 'E' ? HPGL_RS_EDGE : HPGL_RS_FILL);
 	} else if (!strcmp(mn, "PM")) {
 		return hpgl_rd_pm(r, v, nv);
 	} else if (!strcmp(mn, "FP")) {
+		r->at.nonzero = nv && v[0] == 1;
 		return hpgl_rd_polygon_out(r, HPGL_RS_FILL);
+	} else if (!strcmp(mn, "PB")) {
+		hpgl_rd_end_stroke(r);
+		if (r->bl && hpgl_rd_label(r, r->bl, r->nbl, 0))
+			return -1;
+	} else if (!strcmp(mn, "TL")) {
+		r->tl_p = nv ? v[0] : 0.5;
+		r->tl_n = nv >= 2 ? v[1] : nv ? 0 : 0.5;
+	} else if (!strcmp(mn, "XT") || !strcmp(mn, "YT")) {   /* a tick through the pen */
+		double ext = mn[0] == 'X' ? r->p2y - r->p1y : r->p2x - r->p1x;
+		double a = r->tl_p / 100 * ext, b = r->tl_n / 100 * ext;
+		hpgl_rpt_t t[2] = { { r->x, r->y - b }, { r->x, r->y + a } };
+		if (mn[0] == 'Y')
+			t[0] = (hpgl_rpt_t){ r->x - b, r->y }, t[1] = (hpgl_rpt_t){ r->x + a, r->y };
+		if (a + b != 0 && hpgl_rd_figure(r, t, 2, HPGL_RS_LINE))
+			return -1;
+	} else if (hpgl_rd_state(r, mn, v, nv)) {
+		r->doc->hpgl2 |= !strcmp(mn, "PW") || !strcmp(mn, "WU") || !strcmp(mn, "PC") || !strcmp(mn, "NP");
 	} else if (!strcmp(mn, "PW") || !strcmp(mn, "WU") || !strcmp(mn, "NP") || !strcmp(mn, "PC") ||
 			!strcmp(mn, "BP") || !strcmp(mn, "PS") || !strcmp(mn, "MC") || !strcmp(mn, "LA") ||
 			!strcmp(mn, "RF") || !strcmp(mn, "SV") || !strcmp(mn, "TR") || !strcmp(mn, "SD") ||
@@ -405,8 +429,7 @@ static int command(hpgl_rd_t *r, const char mn[3])
 	} else if (!strcmp(mn, "FT") || !strcmp(mn, "PT") || !strcmp(mn, "LT") || !strcmp(mn, "IW") ||
 			!strcmp(mn, "SI") || !strcmp(mn, "SR") || !strcmp(mn, "DI") || !strcmp(mn, "DR") ||
 			!strcmp(mn, "VS") || !strcmp(mn, "LO") || !strcmp(mn, "CA") || !strcmp(mn, "CS") ||
-			!strcmp(mn, "SA") || !strcmp(mn, "SS") || !strcmp(mn, "UL") || !strcmp(mn, "CP") ||
-			!strcmp(mn, "XT") || !strcmp(mn, "YT") || !strcmp(mn, "PB") || !strcmp(mn, "TL") ||
+			!strcmp(mn, "SA") || !strcmp(mn, "SS") || !strcmp(mn, "UL") ||
 			!strcmp(mn, "FS") || !strcmp(mn, "EC") || !strcmp(mn, "OI") || !strcmp(mn, "OS") ||
 			!strcmp(mn, "OA") || !strcmp(mn, "OE") || !strcmp(mn, "OP") || !strcmp(mn, "OW") ||
 			!strcmp(mn, "ES") || !strcmp(mn, "CT")) {
@@ -465,7 +488,9 @@ int hpgl_read_mem(const void *buf, size_t len, const char *name, hpgl_doc_t *doc
 	}
 	if (rc == 0 && stray != SIZE_MAX)
 		doc->trailing = r.n - stray;
+	doc->p1x = r.p1x, doc->p1y = r.p1y, doc->p2x = r.p2x, doc->p2y = r.p2y;
 	hpgl_rd_end_stroke(&r);
+	free(r.bl);
 	free(r.pb);
 	free(r.pbs);
 	return rc;
@@ -511,6 +536,7 @@ void hpgl_doc_free(hpgl_doc_t *doc)
 	free(doc->labels);
 	free(doc->pts);
 	free(doc->strokes);
+	free(doc->attrs);
 	memset(doc, 0, sizeof *doc);
 }
 

@@ -1,7 +1,7 @@
 /* hpgl_read.h: a reader of HP-GL and HP-GL/2 into strokes per pen in plotter units.
  *
  * It understands IN DF SP PU PD PA PR PE CI AA AR EA RA ER RR EW WG FT PT LT SC IP IW RO LB DT
- * SI DI VS PW FP PM EP and device-control (ESC.) and PCL/PJL framing, and skips every other
+ * SI SR DI DR SL LO ES CP SM BL PB XT YT TL VS PW WU PC NP CR UL LA FP PM EP and device-control (ESC.) and PCL/PJL framing, and skips every other
  * two-letter command with its parameters (listed in hpgl_doc_t.unknown). It is tolerant of what
  * real files contain: lower case, missing ';' between commands, blanks, CR/LF and control bytes
  * between commands, parameters separated by blanks, and bytes that are no command after the
@@ -30,6 +30,29 @@ enum {
 	HPGL_RS_FILL = 2            /* the contour of a fill: RA RR WG FP (the fill itself) */
 };
 
+/* LT: no pattern (a solid line). */
+#define HPGL_LT_SOLID 100
+
+/* The line, fill and window state in force when a stroke or label began (PW WU PC NP LT FT IW
+ * FP). Lengths are plotter units, resolved when the command was read. */
+typedef struct {
+	double width_mm;            /* PW of the pen, millimetres; < 0: the file gave none */
+	long rgb;                   /* PC colour of the pen, 0xRRGGBB; < 0: none given */
+	int lt;                     /* LT pattern -8 .. 8 (negative: adaptive), or HPGL_LT_SOLID */
+	double lt_len;              /* the pattern's length, plotter units (> 0) */
+	double lt_pat[20];          /* its dashes and gaps (dash first), percent of the length */
+	int lt_n;                   /* how many (0 with HPGL_LT_SOLID; UL may redefine 1 .. 8) */
+	int cap, join;              /* LA: ends 1 butt 2 square 3 triangular 4 round, joins 1 miter
+	                             * 2 miter/bevel 3 triangular 4 round 5 bevel 6 none; 0 none given */
+	int ft;                     /* FT: 1 2 solid, 3 hatch, 4 cross-hatch, 10 shading, 11 user (solid) */
+	double ft_space;            /* FT 3 4: line spacing, plotter units (> 0) */
+	double ft_angle;            /* FT 3 4: hatch angle, degrees */
+	double ft_shade;            /* FT 10: shading, percent of the pen's colour (0 .. 100) */
+	int nonzero;                /* FP's fill rule: 0 even-odd, 1 non-zero winding */
+	int iw;                     /* 1: IW clips to the window below */
+	double iw_x0, iw_y0, iw_x1, iw_y1;
+} hpgl_rattr_t;
+
 /* One stroke: a polyline of n >= 2 points drawn with one pen. */
 typedef struct {
 	int pen;                    /* SP number in force (0: none selected) */
@@ -37,6 +60,9 @@ typedef struct {
 	size_t start, n;            /* points pts[start .. start + n) */
 	size_t cmd;                 /* index of the command that began it (0 = the first command) */
 	size_t offset;              /* byte offset of that command */
+	/* added in round 2 (the fields above are unchanged) */
+	size_t attr;                /* its attributes: doc.attrs[attr] */
+	size_t group;               /* > 0: the contours of one FP/EP polygon share it (holes) */
 } hpgl_rstroke_t;
 
 /* One label (LB): its text and where it starts. */
@@ -46,7 +72,26 @@ typedef struct {
 	char *text;                 /* NUL-terminated copy, terminator not included */
 	size_t len;
 	size_t offset;
+	/* added in round 2: how the plotter lays it out (x, y above is the pen's point) */
+	size_t attr;                /* doc.attrs[attr]: colour, width, window */
+	double cw, ch;              /* character width and cap height, plotter units (SI SR) */
+	double dx, dy;              /* the run direction, a unit vector (DI DR) */
+	double slant;               /* SL: tangent of the slant */
+	double es_char, es_line;    /* ES: extra space, in cell widths and line heights */
+	int origin;                 /* LO: 1 .. 9, 11 .. 19 */
+	int symbol;                 /* 1: an SM symbol, centred on the point */
+	double crx, cry;            /* the carriage-return point when it began (CR goes back there) */
 } hpgl_rlabel_t;
+
+/* Lay label l out as the plotter does: a fixed-pitch cell of 1.5 character widths (plus ES) per
+ * character, lines 2 cap heights apart (plus ES), each portion up to a CR or LF placed by LO by
+ * its own length; CR returns to the carriage-return point, LF goes a line down (the
+ * carriage-return point too), BS a cell back. Calls fn (when not NULL) with each printable character and the origin
+ * of its cell (plotter units); the first non-zero fn returns ends the walk and is returned.
+ * *px, *py: where the pen is after the label (the next character's origin). Used by the reader
+ * for the pen after LB and by the import for drawing. */
+int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double x, double y),
+		void *user, double *px, double *py);
 
 /* The result of a read. Read-only for the caller; free with hpgl_doc_free. */
 typedef struct {
@@ -65,6 +110,10 @@ typedef struct {
 	size_t trailing;            /* bytes after the last command that were no command */
 	/* internal capacities */
 	size_t cappts, capstrokes, caplabels;
+	/* added in round 2 */
+	hpgl_rattr_t *attrs;        /* attribute sets, referred to by strokes and labels */
+	size_t nattrs, capattrs;
+	double p1x, p1y, p2x, p2y;  /* P1 and P2 at the end of the file */
 } hpgl_doc_t;
 
 /* Read len bytes of HP-GL. name is used in messages ("NAME: byte 123: ..."). Returns 0, or -1

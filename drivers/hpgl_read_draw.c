@@ -57,7 +57,10 @@ int hpgl_rd_begin_stroke(hpgl_rd_t *r, int kind)
 	hpgl_rd_end_stroke(r);
 	if (hpgl_rd_grow((void **)&d->strokes, &d->capstrokes, d->nstrokes + 1, sizeof *d->strokes))
 		return hpgl_rd_nomem(r);
-	d->strokes[d->nstrokes++] = (hpgl_rstroke_t){ r->pen, kind, d->npts, 0, r->cmd, r->cmd_off };
+	size_t a = hpgl_rd_attr(r);
+	if (a == (size_t)-1)
+		return -1;
+	d->strokes[d->nstrokes++] = (hpgl_rstroke_t){ r->pen, kind, d->npts, 0, r->cmd, r->cmd_off, a, r->group };
 	r->open = 1;
 	return hpgl_rd_add_pt(r, r->x, r->y);
 }
@@ -81,16 +84,19 @@ int hpgl_rd_start_contour(hpgl_rd_t *r, double x, double y)
 /* Move to (x, y) in plotter units with the pen as it is. */
 int hpgl_rd_move_to(hpgl_rd_t *r, double x, double y)
 {
+	r->crx = x, r->cry = y;
 	if (r->poly) {
-		if (!r->down || r->newc || r->npbs == 0) {
-			if (hpgl_rd_start_contour(r, r->down ? r->x : x, r->down ? r->y : y))
+		/* a pen-up move, or the first after PM1 (or a circle), starts a contour at its end:
+		 * the way there is no edge (hp2xx and the plotters draw none) */
+		if (!r->down || r->newc) {
+			if (hpgl_rd_start_contour(r, x, y))
 				return -1;
-			if (!r->down) {
-				r->x = x;
-				r->y = y;
-				return 0;
-			}
+			r->x = x;
+			r->y = y;
+			return 0;
 		}
+		if (r->npbs == 0 && hpgl_rd_start_contour(r, r->x, r->y))
+			return -1;
 		if (hpgl_rd_grow((void **)&r->pb, &r->cappb, r->npb + 1, sizeof *r->pb))
 			return hpgl_rd_nomem(r);
 		r->pb[r->npb++] = (hpgl_rpt_t){ x, y };
@@ -149,17 +155,22 @@ void hpgl_rd_user_len(const hpgl_rd_t *r, double u, double v, double *x, double 
 
 /* ---- arcs ---- */
 
+double hpgl_rd_chord(double chord)
+{
+	/* HP-GL/2 takes the magnitude and clamps it to 0.5 .. 180 degrees; no angle is 5 */
+	chord = fabs(chord);
+	if (!(chord > 0))
+		return 5;
+	return chord < 0.5 ? 0.5 : chord > 180 ? 180 : chord;
+}
+
 /* Points of an arc about (cx, cy) from angle a0 (radians) through sweep degrees, chord degrees
  * apart, written to fn's target: calls move_to for each point after the first. */
 int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0, double sweep, double chord)
 {
-	if (!(chord > 0) || chord > 180)
-		chord = 5;
-	int n = (int)ceil(fabs(sweep) / chord);
-	if (n < 1)
-		n = 1;
-	if (n > 100000)
-		n = 100000;
+	chord = hpgl_rd_chord(chord);
+	double steps = ceil(fabs(sweep) / chord);
+	int n = steps > 100000 ? 100000 : steps < 1 ? 1 : (int)steps;
 	for (int k = 1; k <= n; k++) {
 		double a = a0 + sweep * M_PI / 180 * k / n;
 		if (hpgl_rd_move_to(r, cx + rad * cos(a), cy + rad * sin(a)))
@@ -170,8 +181,7 @@ int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0
 
 int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind)
 {
-	if (!(chord > 0) || chord > 180)
-		chord = 5;
+	chord = hpgl_rd_chord(chord);
 	int n = (int)ceil(360 / chord);
 	hpgl_rpt_t *p = malloc((size_t)(n + 1) * sizeof *p);
 	if (!p)
@@ -201,7 +211,7 @@ void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv)
 		r->sc = 0;
 		return;
 	}
-	int type = nv >= 5 ? (int)v[4] : 0;
+	int type = nv >= 5 ? hpgl_rd_int(v[4]) : 0;
 	r->sc = 1;
 	r->sc_xmin = v[0];
 	r->sc_ymin = v[2];
@@ -238,11 +248,12 @@ void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 		r->p2x = 10603;
 		r->p2y = 7721;
 	}
+	hpgl_rd_attr_defaults(r, in);
 }
 
 int hpgl_rd_pm(hpgl_rd_t *r, const double *v, int nv)
 {
-	int k = nv ? (int)v[0] : 0;
+	int k = nv ? hpgl_rd_int(v[0]) : 0;
 	r->doc->hpgl2 = 1;
 	if (k == 0) {
 		hpgl_rd_end_stroke(r);
@@ -257,27 +268,34 @@ int hpgl_rd_pm(hpgl_rd_t *r, const double *v, int nv)
 	return 0;
 }
 
-/* FP / EP: the polygon buffer's contours as strokes. */
+/* One contour of the polygon buffer as a closed figure. */
+static int contour_out(hpgl_rd_t *r, size_t k, int kind)
+{
+	size_t a = r->pbs[k], b = k + 1 < r->npbs ? r->pbs[k + 1] : r->npb;
+	if (b - a < 2)
+		return 0;
+	hpgl_rpt_t *p = malloc((b - a + 1) * sizeof *p);
+	if (!p)
+		return hpgl_rd_nomem(r);
+	memcpy(p, r->pb + a, (b - a) * sizeof *p);
+	size_t n = b - a;
+	if (p[n - 1].x != p[0].x || p[n - 1].y != p[0].y)
+		p[n++] = p[0];
+	int rc = hpgl_rd_figure(r, p, n, kind);
+	free(p);
+	return rc ? -1 : 0;
+}
+
+/* FP / EP: the polygon buffer's contours as strokes of one group. */
 int hpgl_rd_polygon_out(hpgl_rd_t *r, int kind)
 {
 	r->doc->hpgl2 = 1;
-	for (size_t k = 0; k < r->npbs; k++) {
-		size_t a = r->pbs[k], b = k + 1 < r->npbs ? r->pbs[k + 1] : r->npb;
-		if (b - a < 2)
-			continue;
-		hpgl_rpt_t *p = malloc((b - a + 1) * sizeof *p);
-		if (!p)
-			return hpgl_rd_nomem(r);
-		memcpy(p, r->pb + a, (b - a) * sizeof *p);
-		size_t n = b - a;
-		if (p[n - 1].x != p[0].x || p[n - 1].y != p[0].y)
-			p[n++] = p[0];
-		int rc = hpgl_rd_figure(r, p, n, kind);
-		free(p);
-		if (rc)
-			return -1;
-	}
-	return 0;
+	r->group = ++r->ngroups;   /* the contours of this polygon fill (and edge) together */
+	int rc = 0;
+	for (size_t k = 0; k < r->npbs && !rc; k++)
+		rc = contour_out(r, k, kind);
+	r->group = 0;
+	return rc;
 }
 
 int hpgl_rd_rect(hpgl_rd_t *r, const char *mn, const double *v, int nv, int relative, int kind)
@@ -296,16 +314,24 @@ int hpgl_rd_rect(hpgl_rd_t *r, const char *mn, const double *v, int nv, int rela
 	return hpgl_rd_figure(r, p, 5, kind);
 }
 
+int hpgl_rd_rects(hpgl_rd_t *r, const char *mn, const double *v, int nv, int relative, int kind)
+{
+	/* more than one corner: one rectangle from the pen to each (as hp2xx reads RA0,0,4000,4000) */
+	int rc = hpgl_rd_rect(r, mn, v, nv, relative, kind);
+	for (int k = 2; k + 1 < nv && !rc; k += 2)
+		rc = hpgl_rd_rect(r, mn, v + k, 2, relative, kind);
+	return rc;
+}
+
 int hpgl_rd_wedge(hpgl_rd_t *r, const char *mn, const double *v, int nv, int kind)
 {
 	if (nv < 3)
 		return hpgl_rd_fail(r, r->cmd_off, "%s needs radius, start and sweep", mn);
 	double rad, dummy;
 	hpgl_rd_user_len(r, v[0], 0, &rad, &dummy);
-	double chord = nv > 3 ? v[3] : 5;
-	if (!(chord > 0) || chord > 180)
-		chord = 5;
-	int n = (int)ceil(fabs(v[2]) / chord);
+	double chord = hpgl_rd_chord(nv > 3 ? v[3] : 5);
+	double sweep = fmin(fabs(v[2]), 360);
+	int n = (int)ceil(sweep / chord);
 	if (n < 1)
 		n = 1;
 	hpgl_rpt_t *p = malloc((size_t)(n + 3) * sizeof *p);
@@ -314,7 +340,7 @@ int hpgl_rd_wedge(hpgl_rd_t *r, const char *mn, const double *v, int nv, int kin
 	size_t m = 0;
 	p[m++] = (hpgl_rpt_t){ r->x, r->y };
 	for (int k = 0; k <= n; k++) {
-		double a = (v[1] + v[2] * k / n) * M_PI / 180;
+		double a = (v[1] + (v[2] < 0 ? -sweep : sweep) * k / n) * M_PI / 180;
 		p[m++] = (hpgl_rpt_t){ r->x + rad * cos(a), r->y + rad * sin(a) };
 	}
 	p[m++] = (hpgl_rpt_t){ r->x, r->y };

@@ -7,10 +7,20 @@
 
 /* Write the HP-GL or HP-GL/2 drawing buf/n (name for messages) to w as one page: plotter units
  * (0.025 mm) to the page at px_per_mm (the drawing's extent with a margin of 2 %, its size in mm
- * kept), pens to hp2xx's default colours, fills (RA RR WG FP) filled even-odd, labels in the
- * stroke font. Returns 0, -65 (bad input, err names the byte), -70 or -74 (writer). */
+ * kept), pens to their PC colours or hp2xx's default ones, PW widths (0.3 mm, HP-GL/2 0.35 mm
+ * where the file gives none), LT line types as dashes, fills (RA RR WG FP) by FT: solid with
+ * FP's rule, hatched, cross-hatched or shaded, all clipped to IW, and labels (LB, SM symbols) in
+ * the stroke font at the plotter's size, direction, slant, spacing and origin. Returns 0, -65
+ * (bad input, err names the byte), -70 or -74 (writer). */
 int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, meta_writer_t *w,
 		char *err, size_t errlen);
+
+/* mimp_hpgl with a profile's carousel: pens (hpgl_pens_parse's syntax, as a profile's `pens`
+ * line or `locus-hpgl --pens`: "1=black:0.5mm,2=red:0.25mm"; a pen without a width 0.3 mm)
+ * give the colour of a pen the file sets no PC for and the width of one it sets no PW for.
+ * NULL: as mimp_hpgl. A bad spec: -64, err "pens: ...". */
+int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
+		meta_writer_t *w, char *err, size_t errlen);
 
 /* The subcommand: import the file in (HP-GL, or a GNU plotutils metafile, portable or binary:
  * told from its content) to out (NULL: stdout) in the text form. Prints one line on failure;

@@ -128,6 +128,15 @@ static void xf(const pm_t *p, double x, double y, double *px, double *py)
 	*py = (p->m[1] * x + p->m[3] * y + p->m[5]) * PAGE;
 }
 
+/* xf, refusing a point the meta file cannot hold (beyond a million pixels off the page). */
+static int xfc(pm_t *p, double x, double y, double *px, double *py)
+{
+	xf(p, x, y, px, py);
+	if (!(fabs(*px) <= 1e6 && fabs(*py) <= 1e6))
+		return fail(p, p->at, "a point maps beyond a million pixels from the page");
+	return 0;
+}
+
 static int add(pm_t *p, double x, double y)
 {
 	if (p->npts == p->cap) {
@@ -142,7 +151,8 @@ static int add(pm_t *p, double x, double y)
 		p->pts = q;
 		p->cap = nc;
 	}
-	xf(p, x, y, &p->pts[2 * p->npts], &p->pts[2 * p->npts + 1]);
+	if (xfc(p, x, y, &p->pts[2 * p->npts], &p->pts[2 * p->npts + 1]))
+		return -65;
 	p->npts++;
 	p->cx = x, p->cy = y;
 	return 0;
@@ -318,7 +328,8 @@ static int op(pm_t *p, int c, const double *a, const char *s, size_t slen, const
 		rc = flush(p, 0);
 		x = a[0] + o * p->cx, y = a[1] + o * p->cy;
 		double px, py;
-		xf(p, x, y, &px, &py);
+		if (xfc(p, x, y, &px, &py))
+			return -65;
 		W(meta_colour(p->w, p->pen));   /* a point: a dot of one pixel */
 		W(meta_fill(p->w));
 		W(meta_circle(p->w, px, py, 0.6));
@@ -399,7 +410,8 @@ static int op(pm_t *p, int c, const double *a, const char *s, size_t slen, const
 	case 't': case 'T': {
 		rc = flush(p, 0);
 		double px, py, size = (p->fontsize > 0 ? p->fontsize * mscale(p) : PAGE / 50.0) * 0.7;
-		xf(p, p->cx, p->cy, &px, &py);
+		if (xfc(p, p->cx, p->cy, &px, &py))
+			return -65;
 		char t[4097];
 		size_t k = 0;
 		for (; k < slen && k < 4096; k++)
@@ -411,6 +423,8 @@ static int op(pm_t *p, int c, const double *a, const char *s, size_t slen, const
 			double ca = cos(p->angle * M_PI / 180), sa = sin(p->angle * M_PI / 180);
 			px += dx * ca - dy * sa, py += dx * sa + dy * ca;
 		}
+		if (!rc && k && !(fabs(px) <= 1e6 && fabs(py) <= 1e6))
+			return fail(p, p->at, "a label starts beyond a million pixels from the page");
 		if (!rc && k)
 			W(meta_text(p->w, px, py, fmin(fmax(size, 0), 10000), fmod(p->angle, 360), t));
 		break;

@@ -10,6 +10,9 @@ int fuzz_entry_meta_binary(const uint8_t *data, size_t size);
 int fuzz_entry_raster(const uint8_t *data, size_t size);
 int fuzz_entry_scene(const uint8_t *data, size_t size);
 int fuzz_entry_image(const uint8_t *data, size_t size);
+int fuzz_entry_hpgl(const uint8_t *data, size_t size);
+int fuzz_entry_plotmeta(const uint8_t *data, size_t size);
+int fuzz_entry_imgread(const uint8_t *data, size_t size);
 
 static const struct {
 	const char *name;          /* harness name; regression files are named NAME-... */
@@ -21,6 +24,9 @@ static const struct {
 	{ "raster", fuzz_entry_raster, { "fixtures/fuzz/raster", NULL } },
 	{ "scene", fuzz_entry_scene, { "fixtures/fuzz/scene", NULL } },
 	{ "image", fuzz_entry_image, { "fixtures/fuzz/image", NULL } },
+	{ "hpgl", fuzz_entry_hpgl, { "fixtures/fuzz/hpgl", "fixtures/hpgl", NULL } },
+	{ "plotmeta", fuzz_entry_plotmeta, { "fixtures/fuzz/plotmeta", "fixtures/import", NULL } },
+	{ "imgread", fuzz_entry_imgread, { "fixtures/fuzz/imgread", NULL } },
 };
 #define NH (sizeof harness / sizeof harness[0])
 

@@ -13,6 +13,9 @@ seeds() {
 	raster) echo fixtures/fuzz/raster fixtures/meta ;;
 	scene) echo fixtures/fuzz/scene fixtures/scenes fixtures/render ;;
 	image) echo fixtures/fuzz/image fixtures/raster ;;
+	hpgl) echo fixtures/fuzz/hpgl fixtures/hpgl ../shared/corpus/hpgl ;;
+	plotmeta) echo fixtures/fuzz/plotmeta fixtures/import ;;
+	imgread) echo fixtures/fuzz/imgread ;;
 	esac
 }
 # libFuzzer reads every regular file of a corpus directory: give it only the inputs
@@ -22,6 +25,11 @@ corpus_of() {
 	for s in $(seeds "$1"); do
 		for f in "$s"/*; do
 			[ -f "$f" ] || continue
+			case $1 in
+			hpgl|plotmeta|imgread)   # every input file (the corpus is copied into build/ only)
+				case $f in *.md|*/goldens.txt|*.meta) continue ;; esac
+				cp "$f" "$d/$(echo "$s" | tr /. __)_$(basename "$f")"; continue ;;
+			esac
 			case $f in *.md|*.txt|*.png|*.ppm|*.rle) [ "$1" = image ] || continue ;; esac
 			case $f in *.meta|*.lmb|*.scene|*.png|*.ppm|*.rle|*.bin) cp "$f" "$d/$(echo "$s" | tr / _)_$(basename "$f")" ;; esac
 		done
@@ -29,7 +37,7 @@ corpus_of() {
 	echo "$d"
 }
 status=0
-for h in meta_text meta_binary raster scene image; do
+for h in meta_text meta_binary raster scene image hpgl plotmeta imgread; do
 	[ -z "$FUZZ_ONLY" ] || [ "$FUZZ_ONLY" = "$h" ] || continue
 	mkdir -p "$B/corpus/$h" "$B/crash"
 	s=$(corpus_of "$h")

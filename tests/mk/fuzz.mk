@@ -1,6 +1,6 @@
 # tests/mk/fuzz.mk: the libFuzzer harnesses of tests/fuzz/ (clang, `make fuzz`) and the replay of
 # their seeds and regression inputs through the normal build (test_fuzz_regress in make check).
-FUZZ_HARNESSES := meta_text meta_binary raster scene image
+FUZZ_HARNESSES := meta_text meta_binary raster scene image hpgl plotmeta imgread
 FUZZ_CC     ?= clang
 FUZZ_B      := build/fuzz
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
@@ -17,6 +17,9 @@ fuzz_def_meta_binary := -DFUZZ_META_BINARY
 fuzz_src_raster := tests/fuzz/fuzz_raster.c
 fuzz_src_scene := tests/fuzz/fuzz_scene.c
 fuzz_src_image := tests/fuzz/fuzz_image.c
+fuzz_src_hpgl := tests/fuzz/fuzz_hpgl.c
+fuzz_src_plotmeta := tests/fuzz/fuzz_plotmeta.c
+fuzz_src_imgread := tests/fuzz/fuzz_imgread.c
 
 .PHONY: fuzz-programs
 fuzz-programs: $(FUZZ_PROGS)
@@ -27,9 +30,10 @@ $(FUZZ_B)/lib/%.o: %.c
 $(FUZZ_B)/liblocus.a: $(FUZZ_LIBSRC:%.c=$(FUZZ_B)/lib/%.o)
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
+# (-MMD: the Makefile's include of build/**/*.d rebuilds a harness when a header it reads changes)
 $(FUZZ_HARNESSES:%=$(FUZZ_B)/h_%.o): $(FUZZ_B)/h_%.o: tests/fuzz/fuzz.h $(wildcard tests/fuzz/fuzz_*.c)
 	@mkdir -p $(dir $@)
-	$(FUZZ_CC) $(FUZZ_CFLAGS) $(fuzz_def_$*) -c $(fuzz_src_$*) -o $@
+	$(FUZZ_CC) $(FUZZ_CFLAGS) $(fuzz_def_$*) -MMD -MP -c $(fuzz_src_$*) -o $@
 $(FUZZ_PROGS): $(FUZZ_B)/fuzz_%: $(FUZZ_B)/h_%.o $(FUZZ_B)/liblocus.a
 	$(FUZZ_CC) $(FUZZ_SAN) -fsanitize=fuzzer -o $@ $^ $(LDLIBS_ALL)
 
