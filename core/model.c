@@ -833,36 +833,6 @@ int model_de_level(const model_param_t *c, double *m0)
 	return *m0 > 0 && *m0 < c->maxit;
 }
 
-double model_de(const model_shape_t *s, const double p[3])
-{
-	const model_param_t *c = &s->c;
-	double q[3], z[2], dz[2];
-	apply(s->minv, p, q);
-	int n = process_iter(c, q, 1e6, z, dz);
-	double sg = c->amp > 0 ? 1 : -1;   /* f > 0 (outside) where the potential is above the level */
-	if (n >= c->maxit)
-		return -sg * 1e-3 * s->de_scale;    /* never escaped: inside the set, a sign and no bound */
-	/* potential G = lim 2^-n ln|z_n| (Julia), twice that for the Mandelbrot set (whose z_n is
-	 * the Julia iterate of p one step late); |grad G| = |z_n'| / (|z_n| 2^n) likewise */
-	double az2 = z[0] * z[0] + z[1] * z[1], lz = 0.5 * log(az2), k = c->julia ? 1 : 2;
-	double G = k * lz / ldexp(1, n), dG = k * sqrt((dz[0] * dz[0] + dz[1] * dz[1]) / az2) / ldexp(1, n);
-	double G0 = k * ldexp(1, 1) * exp2(-s->de_m0);
-	if (!(dG > 0) || !isfinite(G))
-		return -sg * 1e-3 * s->de_scale;
-	/* Koebe 1/4 on the Boettcher map's inverse: the disk of radius e^G - e^G0 about Phi(p) lies
-	 * where the potential exceeds G0, so its image holds a disk of a quarter of that radius
-	 * times |Phi^-1'| = 1/(e^G |grad G|) around p: the distance to the level set is at least
-	 * (1 - e^(G0-G)) / (4 |grad G|); inside, the disk also has to keep out of the unit disk */
-	double d = G >= G0 ? (1 - exp(G0 - G)) / (4 * dG) : -fmin(exp(G0 - G) - 1, 1 - exp(-G)) / (4 * dG);
-	return sg * d * s->de_scale;
-}
-
-void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
-{
-	for (int k = 0; k < 8; k++)
-		out[k] = x[k] == x[k] ? (float)model_de(s, (double[]){x[k], y[k], z[k]}) : NAN;  /* NaN: an idle lane */
-}
-
 static unsigned hash3(unsigned seed, int x, int y, int z)
 {
 	unsigned h = seed * 0x9e3779b1u ^ (unsigned)x * 0x85ebca77u ^ (unsigned)y * 0xc2b2ae3du ^ (unsigned)z * 0x27d4eb2fu;

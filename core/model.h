@@ -113,6 +113,7 @@ typedef struct {
 	int maxit;                 /* mandelbrot iterations */
 	int smooth;                /* mandelbrot: continuous escape count instead of n */
 	int revolve;               /* mandelbrot: the maps read (x, sqrt(y^2+z^2), 0): the set turned about x */
+	int stepping;              /* mandelbrot: no distance estimate (the earlier stepping and bisecting, for comparison) */
 	int julia;                 /* the Julia process z <- z^2 + k from z = u + iv instead (kind MODEL_C_MANDEL) */
 	double k[2];               /* julia: the constant k */
 	const model_shape_t *shape; /* MODEL_C_SHAPE */

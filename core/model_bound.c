@@ -192,7 +192,7 @@ static void set_de(model_shape_t *s)
 	const model_param_t *c = &s->c;
 	double m0;
 	s->de = 0;
-	if (s->nel != 0 || !model_de_level(c, &m0) || (c->julia && !julia_connected(c)))
+	if (s->nel != 0 || c->stepping || !model_de_level(c, &m0) || (c->julia && !julia_connected(c)))
 		return;
 	double uu = 0, vv = 0, uv = 0;
 	for (int i = 0; i < 3; i++) {
