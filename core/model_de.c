@@ -2,6 +2,8 @@
 #include "model.h"
 
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
 #define DE_LANES 8
 
@@ -9,10 +11,10 @@
  * Mandelbrot z <- z^2 + p from z = 0, Julia z <- z^2 + k from z = p, with dz/dp. Every lane
  * does the scalar iteration's arithmetic in the same order (so one lane alone gives the same
  * bits as eight); a lane that has escaped (|z|^2 > bail) or is NaN keeps its values while the
- * others go on. Branch-free selects so that the compiler vectorises the lanes. */
+ * others go on. pw = 2^n. Branch-free selects so that the compiler vectorises the lanes. */
 static void de_iterate(const model_param_t *c, const double *restrict pr, const double *restrict pi,
                        double *restrict zr, double *restrict zi, double *restrict dr, double *restrict di,
-                       double *restrict n)
+                       double *restrict n, double *restrict pw)
 {
 	const double bail = 1e6, jl = c->julia ? 1.0 : 0.0, one = c->julia ? 0.0 : 1.0;
 	double kr[DE_LANES], ki[DE_LANES];
@@ -24,6 +26,7 @@ static void de_iterate(const model_param_t *c, const double *restrict pr, const 
 		kr[k] = jl > 0 ? c->k[0] : pr[k];
 		ki[k] = jl > 0 ? c->k[1] : pi[k];
 		n[k] = 0.0;
+		pw[k] = 1.0;
 	}
 	for (int it = 0; it < c->maxit; it++) {
 		long live = 0;
@@ -39,6 +42,7 @@ static void de_iterate(const model_param_t *c, const double *restrict pr, const 
 			zr[k] = go ? nzr : zr[k];
 			zi[k] = go ? nzi : zi[k];
 			n[k] += go ? 1.0 : 0.0;
+			pw[k] *= go ? 2.0 : 1.0;   /* 2^n exactly (infinite past 2^1023, as ldexp) */
 			live |= go;
 		}
 		if (!live)
@@ -46,29 +50,75 @@ static void de_iterate(const model_param_t *c, const double *restrict pr, const 
 	}
 }
 
-/* The estimate from the iteration's end: n escapes (n = maxit: none) with z_n and dz_n/dp. */
-static double de_finish(const model_shape_t *s, double n, double zr, double zi, double dr, double di)
+/* ln x for a positive normal x, in arithmetic that vectorises (no call): x = m 2^e with m in
+ * [sqrt(1/2), sqrt(2)), ln m = 2 atanh(f), f = (m - 1)/(m + 1), |f| < 0.172, by its series to
+ * f^21 (remainder below 2e-17 of the value); within about 2 units in the last place of libm's. */
+static inline double de_log(double x)
+{
+	uint64_t b;
+	memcpy(&b, &x, sizeof b);
+	uint64_t eb = (b >> 52) | 0x4330000000000000ull;   /* 2^52 + the biased exponent, as a double */
+	b = (b & 0x000fffffffffffffull) | 0x3ff0000000000000ull;
+	double m, e;
+	memcpy(&m, &b, sizeof m);
+	memcpy(&e, &eb, sizeof e);
+	e -= 4503599627370496.0 + 1023.0;
+	double big = m > 1.4142135623730951 ? 1.0 : 0.0;
+	m *= 1.0 - 0.5 * big;   /* exact: m or m/2 */
+	e += big;
+	double f = (m - 1.0) / (m + 1.0), f2 = f * f;
+	double p = ((((((((((1.0 / 21 * f2 + 1.0 / 19) * f2 + 1.0 / 17) * f2 + 1.0 / 15) * f2 + 1.0 / 13) * f2 + 1.0 / 11) * f2
+	           + 1.0 / 9) * f2 + 1.0 / 7) * f2 + 1.0 / 5) * f2 + 1.0 / 3) * f2 + 1.0);
+	return e * 6.93147180369123816490e-01 + (2.0 * f * p + e * 1.90821492927058770002e-10);
+}
+
+/* e^y in arithmetic that vectorises: y = n ln 2 + r, |r| <= ln2/2, e^r by its Taylor series to
+ * r^13, scaled by 2^n through the exponent bits; 0 below -700 (e^-700 is 1e-304: against the 1
+ * it is subtracted from, nothing). y <= 700. */
+static inline double de_exp(double y)
+{
+	double lo = y < -700.0, yc = lo ? 0.0 : y;
+	double t = yc * 1.44269504088896338700 + 6755399441055744.0;   /* round to nearest: 1.5 2^52 */
+	double n = t - 6755399441055744.0;
+	double r = (yc - n * 6.93147180369123816490e-01) - n * 1.90821492927058770002e-10;
+	double p = ((((((((((((1.0 / 6227020800.0 * r + 1.0 / 479001600) * r + 1.0 / 39916800) * r + 1.0 / 3628800) * r
+	           + 1.0 / 362880) * r + 1.0 / 40320) * r + 1.0 / 5040) * r + 1.0 / 720) * r + 1.0 / 120) * r + 1.0 / 24) * r
+	           + 1.0 / 6) * r + 1.0 / 2) * r + 1.0) * r + 1.0;
+	uint64_t sb = (uint64_t)((int64_t)n + 1023) << 52;
+	double sc;
+	memcpy(&sc, &sb, sizeof sc);
+	return lo ? 0.0 : p * sc;
+}
+
+/* The estimates from the iteration's end (n escapes, n = maxit: none; pw = 2^n; z_n and
+ * dz_n/dp), all lanes in branch-free arithmetic. */
+static void de_finish(const model_shape_t *s, const double *restrict n, const double *restrict pw,
+                      const double *restrict zr, const double *restrict zi, const double *restrict dr,
+                      const double *restrict di, double *restrict out)
 {
 	const model_param_t *c = &s->c;
-	double sg = c->amp > 0 ? 1 : -1;   /* f > 0 (outside) where the potential is above the level */
-	if (n != n)
-		return NAN;
-	if (n >= c->maxit)
-		return -sg * 1e-3 * s->de_scale;    /* never escaped: inside the set, a sign and no bound */
-	/* potential G = lim 2^-n ln|z_n| (Julia), twice that for the Mandelbrot set (whose z_n is
-	 * the Julia iterate of p one step late); |grad G| = |z_n'| / (|z_n| 2^n) likewise */
-	int ni = (int)n;
-	double az2 = zr * zr + zi * zi, lz = 0.5 * log(az2), k = c->julia ? 1 : 2;
-	double G = k * lz / ldexp(1, ni), dG = k * sqrt((dr * dr + di * di) / az2) / ldexp(1, ni);
-	double G0 = k * ldexp(1, 1) * exp2(-s->de_m0);
-	if (!(dG > 0) || !isfinite(G))
-		return -sg * 1e-3 * s->de_scale;
-	/* Koebe 1/4 on the Boettcher map's inverse: the disk of radius e^G - e^G0 about Phi(p) lies
-	 * where the potential exceeds G0, so its image holds a disk of a quarter of that radius
-	 * times |Phi^-1'| = 1/(e^G |grad G|) around p: the distance to the level set is at least
-	 * (1 - e^(G0-G)) / (4 |grad G|); inside, the disk also has to keep out of the unit disk */
-	double d = G >= G0 ? (1 - exp(G0 - G)) / (4 * dG) : -fmin(exp(G0 - G) - 1, 1 - exp(-G)) / (4 * dG);
-	return sg * d * s->de_scale;
+	const double sg = c->amp > 0 ? 1 : -1;   /* f > 0 (outside) where the potential is above the level */
+	const double k = c->julia ? 1 : 2, maxit = c->maxit, none = -sg * 1e-3 * s->de_scale;
+	const double G0 = k * 2.0 * exp2(-s->de_m0);   /* the level's potential */
+	for (int j = 0; j < DE_LANES; j++) {
+		/* potential G = lim 2^-n ln|z_n| (Julia), twice that for the Mandelbrot set (whose z_n
+		 * is the Julia iterate of p one step late); |grad G| = |z_n'| / (|z_n| 2^n) likewise */
+		double az2 = zr[j] * zr[j] + zi[j] * zi[j];
+		double esc = (n[j] < maxit ? 1.0 : 0.0) * (az2 > 1.0 ? 1.0 : 0.0);   /* escaped (|z_n|^2 > 1e6); else no bound */
+		double a = esc > 0 ? az2 : 2.0;
+		double G = k * (0.5 * de_log(a)) / pw[j], dG = k * sqrt((dr[j] * dr[j] + di[j] * di[j]) / a) / pw[j];
+		/* Koebe 1/4 on the Boettcher map's inverse: the disk of radius e^G - e^G0 about Phi(p)
+		 * lies where the potential exceeds G0, so its image holds a disk of a quarter of that
+		 * radius times |Phi^-1'| = 1/(e^G |grad G|) around p: the distance to the level set is
+		 * at least (1 - e^(G0-G)) / (4 |grad G|); inside, the disk also has to keep out of the
+		 * unit disk */
+		double gc = G < 700.0 ? G : 700.0;
+		double e1 = de_exp(G0 - gc), e2 = de_exp(-gc);
+		double in = e1 - 1 < 1 - e2 ? e1 - 1 : 1 - e2;
+		double d = (G >= G0 ? 1 - e1 : -in) / (4 * dG);
+		double ok = esc * (dG > 0 ? 1.0 : 0.0) * (G - G == 0.0 ? 1.0 : 0.0);   /* G finite */
+		out[j] = n[j] != n[j] ? NAN : ok > 0 ? sg * d * s->de_scale : none;
+	}
 }
 
 /* The estimate at nl <= 8 actual-frame points (NaN in: NaN out, the lane is idle). */
@@ -76,7 +126,7 @@ static void de_lanes(const model_shape_t *s, int nl, const double *x, const doub
 {
 	const model_param_t *c = &s->c;
 	const double *m = s->minv;
-	double pr[DE_LANES], pi[DE_LANES], zr[DE_LANES], zi[DE_LANES], dr[DE_LANES], di[DE_LANES], n[DE_LANES];
+	double pr[DE_LANES], pi[DE_LANES], zr[DE_LANES], zi[DE_LANES], dr[DE_LANES], di[DE_LANES], n[DE_LANES], pw[DE_LANES];
 	for (int k = 0; k < DE_LANES; k++) {
 		double p0 = k < nl ? x[k] : NAN, p1 = k < nl ? y[k] : NAN, p2 = k < nl ? z[k] : NAN;
 		/* the setup point (M^-1 p), then the process' complex point: u, v affine in it or in
@@ -88,9 +138,11 @@ static void de_lanes(const model_shape_t *s, int nl, const double *x, const doub
 		pr[k] = c->u[0] * q0 + c->u[1] * r1 + c->u[2] * r2 + c->u[3];
 		pi[k] = c->v[0] * q0 + c->v[1] * r1 + c->v[2] * r2 + c->v[3];
 	}
-	de_iterate(c, pr, pi, zr, zi, dr, di, n);
+	de_iterate(c, pr, pi, zr, zi, dr, di, n, pw);
+	double o[DE_LANES];
+	de_finish(s, n, pw, zr, zi, dr, di, o);
 	for (int k = 0; k < nl; k++)
-		out[k] = de_finish(s, n[k], zr[k], zi[k], dr[k], di[k]);
+		out[k] = o[k];
 }
 
 double model_de(const model_shape_t *s, const double p[3])
