@@ -11,7 +11,7 @@
  * Mandelbrot z <- z^2 + p from z = 0, Julia z <- z^2 + k from z = p, with dz/dp. Every lane
  * does the scalar iteration's arithmetic in the same order (so one lane alone gives the same
  * bits as eight); a lane that has escaped (|z|^2 > bail) or is NaN keeps its values while the
- * others go on. pw = 2^n. Branch-free selects so that the compiler vectorises the lanes. */
+ * others go on. pw = 2^n. */
 static void de_iterate(const model_param_t *c, const double *restrict pr, const double *restrict pi,
                        double *restrict zr, double *restrict zi, double *restrict dr, double *restrict di,
                        double *restrict n, double *restrict pw)
@@ -28,26 +28,46 @@ static void de_iterate(const model_param_t *c, const double *restrict pr, const 
 		n[k] = 0.0;
 		pw[k] = 1.0;
 	}
+	/* the lanes as one vector (GCC/Clang vector extension) so that the state stays in registers
+	 * through the iteration; each lane's arithmetic is the scalar expression's */
+	typedef double v8 __attribute__((vector_size(DE_LANES * sizeof(double))));
+	typedef long long m8 __attribute__((vector_size(DE_LANES * sizeof(double))));
+	v8 vzr, vzi, vdr, vdi, vn, vpw, vkr, vki;
+	memcpy(&vzr, zr, sizeof vzr);
+	memcpy(&vzi, zi, sizeof vzi);
+	memcpy(&vdr, dr, sizeof vdr);
+	memcpy(&vdi, di, sizeof vdi);
+	memcpy(&vkr, kr, sizeof vkr);
+	memcpy(&vki, ki, sizeof vki);
+	memcpy(&vn, n, sizeof vn);
+	memcpy(&vpw, pw, sizeof vpw);
 	for (int it = 0; it < c->maxit; it++) {
-		long live = 0;
-		for (int k = 0; k < DE_LANES; k++) {
-			double a = zr[k] * zr[k] + zi[k] * zi[k];
-			long go = a <= bail;
-			double ndr = 2 * (zr[k] * dr[k] - zi[k] * di[k]) + one;
-			double ndi = 2 * (zr[k] * di[k] + zi[k] * dr[k]);
-			double nzr = zr[k] * zr[k] - zi[k] * zi[k] + kr[k];
-			double nzi = 2 * zr[k] * zi[k] + ki[k];
-			dr[k] = go ? ndr : dr[k];
-			di[k] = go ? ndi : di[k];
-			zr[k] = go ? nzr : zr[k];
-			zi[k] = go ? nzi : zi[k];
-			n[k] += go ? 1.0 : 0.0;
-			pw[k] *= go ? 2.0 : 1.0;   /* 2^n exactly (infinite past 2^1023, as ldexp) */
-			live |= go;
-		}
+		v8 a = vzr * vzr + vzi * vzi;
+		m8 go = a <= bail;   /* -1 where the lane goes on */
+		v8 ndr = 2 * (vzr * vdr - vzi * vdi) + one;
+		v8 ndi = 2 * (vzr * vdi + vzi * vdr);
+		v8 nzr = vzr * vzr - vzi * vzi + vkr;
+		v8 nzi = 2 * vzr * vzi + vki;
+#define DE_SEL(m, a, b) ((v8)(((m8)(a) & (m)) | ((m8)(b) & ~(m))))
+		vdr = DE_SEL(go, ndr, vdr);
+		vdi = DE_SEL(go, ndi, vdi);
+		vzr = DE_SEL(go, nzr, vzr);
+		vzi = DE_SEL(go, nzi, vzi);
+		vn = DE_SEL(go, vn + 1.0, vn);
+		vpw = DE_SEL(go, vpw * 2.0, vpw);   /* 2^n exactly (infinite past 2^1023, as ldexp) */
+#undef DE_SEL
+		long long live = 0;
+		for (int k = 0; k < DE_LANES; k++)
+			live |= go[k];
 		if (!live)
 			break;
 	}
+	memcpy(zr, &vzr, sizeof vzr);
+	memcpy(zi, &vzi, sizeof vzi);
+	memcpy(dr, &vdr, sizeof vdr);
+	memcpy(di, &vdi, sizeof vdi);
+	memcpy(n, &vn, sizeof vn);
+	memcpy(pw, &vpw, sizeof vpw);
 }
 
 /* ln x for a positive normal x, in arithmetic that vectorises (no call): x = m 2^e with m in
