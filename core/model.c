@@ -773,50 +773,10 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 	return 0;
 }
 
-/* The process' complex point from the setup point q: u, v affine in q, or in (x, sqrt(y^2+z^2), 0). */
-static void process_point(const model_param_t *c, const double *q, double *cr, double *ci)
-{
-	double r[3] = {q[0], q[1], q[2]};
-	if (c->revolve) {
-		r[1] = sqrt(q[1] * q[1] + q[2] * q[2]);
-		r[2] = 0;
-	}
-	*cr = c->u[0] * r[0] + c->u[1] * r[1] + c->u[2] * r[2] + c->u[3];
-	*ci = c->v[0] * r[0] + c->v[1] * r[1] + c->v[2] * r[2] + c->v[3];
-}
-
-/* Iterate the process at the setup point q: Mandelbrot z <- z^2 + p from z = 0, Julia z <- z^2 + k
- * from z = p. Returns the escape count n (maxit: no escape) with z_n in z[] and dz_n/dp in dz[]. */
-static int process_iter(const model_param_t *c, const double *q, double bail, double *z, double *dz)
-{
-	double pr, pi;
-	process_point(c, q, &pr, &pi);
-	double zr = c->julia ? pr : 0, zi = c->julia ? pi : 0, dr = c->julia ? 1 : 0, di = 0;
-	double kr = c->julia ? c->k[0] : pr, ki = c->julia ? c->k[1] : pi, one = c->julia ? 0 : 1;
-	int n = 0;
-	while (n < c->maxit && zr * zr + zi * zi <= bail) {
-		double t = 2 * (zr * dr - zi * di) + one;
-		di = 2 * (zr * di + zi * dr);
-		dr = t;
-		t = zr * zr - zi * zi + kr;
-		zi = 2 * zr * zi + ki;
-		zr = t;
-		n++;
-	}
-	z[0] = zr, z[1] = zi, dz[0] = dr, dz[1] = di;
-	return n;
-}
-
 static double mandel_count(const model_param_t *c, const double *q, int smooth)
 {
-	double z[2], dz[2];
-	int n = process_iter(c, q, smooth ? 1e6 : 4, z, dz);
-	double m = n;
-	if (smooth && n < c->maxit) {
-		/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
-		m = n + 1 - log2(0.5 * log(z[0] * z[0] + z[1] * z[1]));
-		m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
-	}
+	double m;
+	model_counts(c, 1, q, smooth, &m);
 	return m;
 }
 
@@ -936,7 +896,22 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			for (int j = 0; j < 3; j++)
 				gs[j] += e->w * (q[j] - near[j]) / d;
 	}
-	if (s->c.kind != MODEL_C_CONST) {
+	if (s->c.kind == MODEL_C_MANDEL) {
+		/* the six central-difference points' counts iterated together; terraces (no smooth)
+		 * take the smooth count's normals */
+		double h = 1e-5 * (1 + len3(q)), qs[18], m[6];
+		for (int j = 0; j < 6; j++) {
+			memcpy(qs + 3 * j, q, sizeof q);
+			qs[3 * j + j / 2] += j % 2 ? -h : h;
+		}
+		model_counts(&s->c, 6, qs, 1, m);
+		for (int j = 0; j < 3; j++) {
+			if (!s->c.smooth)
+				gs[j] -= s->c.amp * (m[2 * j] - m[2 * j + 1]) / (2 * h * s->c.maxit);
+			else
+				gs[j] -= ((s->c.c0 + s->c.amp * m[2 * j] / s->c.maxit) - (s->c.c0 + s->c.amp * m[2 * j + 1] / s->c.maxit)) / (2 * h);
+		}
+	} else if (s->c.kind != MODEL_C_CONST) {
 		double h = 1e-5 * (1 + len3(q));
 		for (int j = 0; j < 3; j++) {
 			double qa[3] = {q[0], q[1], q[2]}, qb[3] = {q[0], q[1], q[2]};
@@ -945,10 +920,7 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			double pa[3], pb[3];
 			apply(s->m, qa, pa);
 			apply(s->m, qb, pb);
-			if (s->c.kind == MODEL_C_MANDEL && !s->c.smooth)   /* the terraces' normals: the smooth count's */
-				gs[j] -= s->c.amp * (mandel_count(&s->c, qa, 1) - mandel_count(&s->c, qb, 1)) / (2 * h * s->c.maxit);
-			else
-				gs[j] -= (model_param(s, pa, qa) - model_param(s, pb, qb)) / (2 * h);
+			gs[j] -= (model_param(s, pa, qa) - model_param(s, pb, qb)) / (2 * h);
 		}
 	}
 	/* setup gradient to actual: g = A^-T gs */

@@ -236,6 +236,10 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3]);
  * a sign, not a bound. model_de8: the same at 8 float points. */
 double model_de(const model_shape_t *s, const double p[3]);
 void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* The escape counts of the process c (kind MODEL_C_MANDEL) at nl <= 8 setup-frame points q
+ * (x, y, z of each in turn), iterated together: n, or with smooth the continuous count
+ * n + 1 - log2 ln|z_n| (bail-out |z|^2 > 1e6) kept in 0..maxit. */
+void model_counts(const model_param_t *c, int nl, const double *q, int smooth, double *out);
 /* 1 with the level *m0 of the continuous count when c is a smooth process with a level inside
  * (0, maxit) (the surface is the equipotential count = m0). */
 int model_de_level(const model_param_t *c, double *m0);

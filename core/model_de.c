@@ -14,9 +14,9 @@
  * others go on. pw = 2^n. */
 static void de_iterate(const model_param_t *c, const double *restrict pr, const double *restrict pi,
                        double *restrict zr, double *restrict zi, double *restrict dr, double *restrict di,
-                       double *restrict n, double *restrict pw)
+                       double *restrict n, double *restrict pw, double bail)
 {
-	const double bail = 1e6, jl = c->julia ? 1.0 : 0.0, one = c->julia ? 0.0 : 1.0;
+	const double jl = c->julia ? 1.0 : 0.0, one = c->julia ? 0.0 : 1.0;
 	double kr[DE_LANES], ki[DE_LANES];
 	for (int k = 0; k < DE_LANES; k++) {
 		zr[k] = jl > 0 ? pr[k] : 0.0;
@@ -141,6 +141,35 @@ static void de_finish(const model_shape_t *s, const double *restrict n, const do
 	}
 }
 
+/* The process' complex point of the setup point q: u, v affine in it, or in (x, sqrt(y^2+z^2), 0)
+ * when revolved. */
+static inline void de_point(const model_param_t *c, double q0, double q1, double q2, double *pr, double *pi)
+{
+	double r1 = c->revolve ? sqrt(q1 * q1 + q2 * q2) : q1, r2 = c->revolve ? 0 : q2;
+	*pr = c->u[0] * q0 + c->u[1] * r1 + c->u[2] * r2 + c->u[3];
+	*pi = c->v[0] * q0 + c->v[1] * r1 + c->v[2] * r2 + c->v[3];
+}
+
+void model_counts(const model_param_t *c, int nl, const double *q, int smooth, double *out)
+{
+	double pr[DE_LANES], pi[DE_LANES], zr[DE_LANES], zi[DE_LANES], dr[DE_LANES], di[DE_LANES], n[DE_LANES], pw[DE_LANES];
+	for (int k = 0; k < DE_LANES; k++) {
+		pr[k] = pi[k] = NAN;   /* an idle lane */
+		if (k < nl)
+			de_point(c, q[3 * k], q[3 * k + 1], q[3 * k + 2], &pr[k], &pi[k]);
+	}
+	de_iterate(c, pr, pi, zr, zi, dr, di, n, pw, smooth ? 1e6 : 4);
+	for (int k = 0; k < nl; k++) {
+		double m = n[k];
+		if (smooth && n[k] < c->maxit) {
+			/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
+			m = n[k] + 1 - log2(0.5 * log(zr[k] * zr[k] + zi[k] * zi[k]));
+			m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
+		}
+		out[k] = m;
+	}
+}
+
 /* The estimate at nl <= 8 actual-frame points (NaN in: NaN out, the lane is idle). */
 static void de_lanes(const model_shape_t *s, int nl, const double *x, const double *y, const double *z, double *out)
 {
@@ -149,16 +178,13 @@ static void de_lanes(const model_shape_t *s, int nl, const double *x, const doub
 	double pr[DE_LANES], pi[DE_LANES], zr[DE_LANES], zi[DE_LANES], dr[DE_LANES], di[DE_LANES], n[DE_LANES], pw[DE_LANES];
 	for (int k = 0; k < DE_LANES; k++) {
 		double p0 = k < nl ? x[k] : NAN, p1 = k < nl ? y[k] : NAN, p2 = k < nl ? z[k] : NAN;
-		/* the setup point (M^-1 p), then the process' complex point: u, v affine in it or in
-		 * (x, sqrt(y^2+z^2), 0) when revolved */
+		/* the setup point (M^-1 p), then the process' complex point */
 		double q0 = m[0] * p0 + m[1] * p1 + m[2] * p2 + m[3];
 		double q1 = m[4] * p0 + m[5] * p1 + m[6] * p2 + m[7];
 		double q2 = m[8] * p0 + m[9] * p1 + m[10] * p2 + m[11];
-		double r1 = c->revolve ? sqrt(q1 * q1 + q2 * q2) : q1, r2 = c->revolve ? 0 : q2;
-		pr[k] = c->u[0] * q0 + c->u[1] * r1 + c->u[2] * r2 + c->u[3];
-		pi[k] = c->v[0] * q0 + c->v[1] * r1 + c->v[2] * r2 + c->v[3];
+		de_point(c, q0, q1, q2, &pr[k], &pi[k]);
 	}
-	de_iterate(c, pr, pi, zr, zi, dr, di, n, pw);
+	de_iterate(c, pr, pi, zr, zi, dr, di, n, pw, 1e6);
 	double o[DE_LANES];
 	de_finish(s, n, pw, zr, zi, dr, di, o);
 	for (int k = 0; k < nl; k++)
