@@ -912,8 +912,11 @@ void scene_free(scene_t *s)
 		return;
 	for (size_t i = 0; i < s->nobjs; i++)
 		model_free(s->objs[i].shape);
-	for (size_t i = 0; i < s->nrenders; i++)
+	for (size_t i = 0; i < s->nrenders; i++) {
+		for (size_t k = 0; k < s->renders[i].nnuclei; k++)
+			free(s->renders[i].nuclei[k].pts);   /* polyline nuclei's points */
 		free(s->renders[i].nuclei);
+	}
 	free(s->objs);
 	free(s->renders);
 	free(s);
