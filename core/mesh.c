@@ -116,9 +116,23 @@ static double box_distance(const double *b, const double p[3], double g[3])
 	return d;
 }
 
+/* f, or for a distance-estimated shape its estimate (bound 1): the sign of f, and no surface
+ * within |value| of p; a point whose iteration never escaped is inside with no bound (a tiny
+ * negative value: no bracket is narrowed by it). */
+static double field_f(const model_shape_t *s, const double p[3])
+{
+	if (!s->de)
+		return model_eval(s, p);
+	double d;
+	if (model_de_known(s, p, &d) || !(d == d))
+		return d;
+	return d < 0 ? -1e-300 : 1e-300;
+}
+
 double mesh_field(const model_shape_t *s, const double p[3])
 {
-	double f = model_eval(s, p), bd = s->lip * box_distance(s->box, p, NULL);
+	double L = s->de ? 1 : s->lip;
+	double f = field_f(s, p), bd = L * box_distance(s->box, p, NULL);
 	if (!(f == f))
 		f = INFINITY;   /* an undefined value counts as outside */
 	return f > bd ? f : bd;
@@ -126,13 +140,19 @@ double mesh_field(const model_shape_t *s, const double p[3])
 
 void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3])
 {
-	double f = model_eval(s, p), gb[3], bd = s->lip * box_distance(s->box, p, gb);
+	double L = s->de ? 1 : s->lip;
+	double f = field_f(s, p), gb[3], bd = L * box_distance(s->box, p, gb);
 	if (f == f && f >= bd) {
 		model_grad(s, p, g);
+		if (s->de) {   /* the estimate's slope is about 1: its direction, unit length */
+			double n = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+			for (int i = 0; i < 3 && n > 0; i++)
+				g[i] /= n;
+		}
 		return;
 	}
 	for (int i = 0; i < 3; i++)
-		g[i] = s->lip * gb[i];
+		g[i] = L * gb[i];
 }
 
 /* F, counted. */
@@ -428,8 +448,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 		snprintf(err, errlen, "expected a mesh depth from 1 to %d", MESH_MAX_DEPTH);
 		return -1;
 	}
-	if (!s->has_lip) {
-		snprintf(err, errlen, "the mesh needs a Lipschitz bound, and this shape's defining parameter has none (draw it with raytrace, which brackets)");
+	if (!s->has_lip && !s->de) {
+		snprintf(err, errlen, "the mesh needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (draw it with raytrace, which brackets)");
 		return -1;
 	}
 	ext_t x;
@@ -439,7 +459,7 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	x.st = st;
 	x.depth = depth;
 	x.n1 = ((uint64_t)1 << depth) + 1;
-	x.lip = s->lip;
+	x.lip = s->de ? 1 : s->lip;   /* the estimate bounds the distance itself */
 	const double *r = s->root;
 	double side = fmax(r[3] - r[0], fmax(r[4] - r[1], r[5] - r[2]));
 	for (int i = 0; i < 3; i++)

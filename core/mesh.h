@@ -78,8 +78,11 @@ void mesh_free(mesh_t *m);
 
 /* Polygonise s at the given depth (1..MESH_MAX_DEPTH) as described above, APPENDING its
  * triangles to m (several shapes make one mesh). st (may be NULL) receives the costs, added
- * to what it holds. Returns 0, or -1 with a message: no Lipschitz bound, depth out of
- * range, too many triangles, out of memory (the message then says "out of memory"). */
+ * to what it holds. A distance-estimated shape (s->de: a smooth Mandelbrot or Julia process)
+ * is extracted on its estimate, which bounds the distance to the surface as a Lipschitz bound
+ * of 1 would (cells culled and brackets narrowed by it). Returns 0, or -1 with a message: no
+ * Lipschitz bound or estimate, depth out of range, too many triangles, out of memory (the
+ * message then says "out of memory"). */
 int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
 
 /* Coarsen the part of m from vertex v0 and triangle t0 on (one closed mesh of s, as
@@ -92,7 +95,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
  * triangles: the mesh becomes adaptive, and the slivers of marching tetrahedra (the shortest
  * edges) go first. Up to 4 passes, until one collapses under 5% of the vertices. Adds the
  * evaluations of F to *evals (a gradient counts as one). Returns 0, or -1 when out of memory
- * (the mesh is then unusable). */
+ * (the mesh is then unusable) or for a distance-estimated shape (its estimate does not bound
+ * the distance from above, so the tolerance could not be kept). */
 int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
                   uint64_t *evals, char *err, size_t errlen);
 

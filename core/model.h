@@ -236,6 +236,9 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3]);
  * a sign, not a bound. model_de8: the same at 8 float points. */
 double model_de(const model_shape_t *s, const double p[3]);
 void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* 1 with *d = model_de(s, p) when that is a bound (the iteration escaped); 0 when it is only a
+ * sign (inside the set) or undefined (NaN). */
+int model_de_known(const model_shape_t *s, const double p[3], double *d);
 /* The escape counts of the process c (kind MODEL_C_MANDEL) at nl <= 8 setup-frame points q
  * (x, y, z of each in turn), iterated together: n, or with smooth the continuous count
  * n + 1 - log2 ln|z_n| (bail-out |z|^2 > 1e6) kept in 0..maxit. */

@@ -210,3 +210,10 @@ void model_de8(const model_shape_t *s, const float *x, const float *y, const flo
 	for (int k = 0; k < DE_LANES; k++)
 		out[k] = (float)o[k];
 }
+
+int model_de_known(const model_shape_t *s, const double p[3], double *d)
+{
+	double none = -(s->c.amp > 0 ? 1 : -1) * 1e-3 * s->de_scale;
+	*d = model_de(s, p);
+	return *d == *d && *d != none;
+}

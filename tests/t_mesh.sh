@@ -181,4 +181,28 @@ end"
 	|| notok "unwritable mesh output: $(cat "$T/io.err")"
 "$R" fixtures/mesh/sphere.scene -o /dev/full 2> "$T/full.err"
 [ $? = 74 ] && ok "mesh to /dev/full: exit 74" || notok "mesh to /dev/full: $(cat "$T/full.err")"
+# 4. a distance-estimated shape (the Mandelbrot solid, no Lipschitz bound): admesh finds its
+# mesh closed, consistently oriented, one part; coarsening it is refused at the tolerance line
+if "$R" fixtures/mesh/mandelbrot.scene -o "$T/mandel.stl" --stats 2> "$T/mandel.stats" && command -v admesh > /dev/null; then
+	admesh "$T/mandel.stl" > "$T/mandel.admesh" 2>&1
+	bad=""
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$T/mandel.admesh" "$f")
+		[ "$v" = 0 ] || bad="$bad $f=$v"
+	done
+	[ -z "$bad" ] && [ "$(admesh_field "$T/mandel.admesh" "Number of parts")" = 1 ] \
+		&& ok "mandelbrot (distance estimate): admesh: $(stat triangles "$T/mandel.stats") triangles, one part, closed, consistently oriented" \
+		|| notok "mandelbrot: admesh:$bad"
+else
+	notok "mandelbrot mesh: $(tail -1 "$T/mandel.stats")"
+fi
+sed '$d' fixtures/mesh/mandelbrot.scene > "$T/mtol.scene"   # the mesh block without its end
+printf '  tolerance 1e-3\nend\n' >> "$T/mtol.scene"
+rm -f "$T/mtol.stl"
+"$R" "$T/mtol.scene" -o "$T/mtol.stl" 2> "$T/mtol.err"
+rc=$?
+[ "$rc" = 65 ] && grep -q "mtol.scene:8:1: expected tolerance 0 for a distance-estimated shape" "$T/mtol.err" && [ ! -e "$T/mtol.stl" ] \
+	&& ok "coarsening a distance-estimated shape is refused at its render block: $(cat "$T/mtol.err")" \
+	|| notok "mandelbrot tolerance: exit $rc: $(cat "$T/mtol.err")"
 done_tests
