@@ -88,7 +88,9 @@ typedef struct {
 	double lo[3], cell;      /* root cube corner and the finest cell's side */
 	double lip;
 	table_t verts;           /* edge key -> vertex index */
-	int oom, too_many;
+	int solid;               /* also the solid's tetrahedra (m->want_solid) */
+	table_t corners;         /* solid: grid point key -> vertex index */
+	int oom, too_many, too_many_tets;
 } ext_t;
 
 /* The signed distance to the box b (negative inside) and, when g is not NULL, its gradient. */
@@ -328,6 +330,69 @@ static double dist2(const double *a, const double *b)
 	return dot3(d, d);
 }
 
+/* Record a failed tetrahedron append (mesh_tet's -1 or -2). */
+static void tet_failed(ext_t *x, int rc)
+{
+	if (rc == -2)
+		x->too_many_tets = 1;
+	else
+		x->oom = 1;
+}
+
+/* The solid's vertex at grid point g (an inside corner), made once. */
+static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
+{
+	uint64_t k = (g[2] * x->n1 + g[1]) * x->n1 + g[0], v;
+	size_t at;
+	int r = table_get(&x->corners, k, &v, &at);
+	if (r < 0) {
+		x->oom = 1;
+		return 0;
+	}
+	if (r)
+		return (uint32_t)v;
+	mesh_t *m = x->m;
+	if (m->nv == m->vcap) {
+		size_t cap = m->vcap ? 2 * m->vcap : 4096;
+		double *q = realloc(m->v, 3 * cap * sizeof *q);
+		if (!q) {
+			x->oom = 1;
+			return 0;
+		}
+		m->v = q;
+		m->vcap = cap;
+	}
+	grid_point(x, g, m->v + 3 * m->nv);
+	table_put(&x->corners, at, k, m->nv);
+	return (uint32_t)m->nv++;
+}
+
+/* The solid: the 6 Kuhn tetrahedra of the finest cell at g, all inside. */
+static void whole_cell(ext_t *x, const uint64_t g[3])
+{
+	uint32_t id[8];
+	for (int c = 0; c < 8; c++) {
+		uint64_t q[3] = {g[0] + (c & 1), g[1] + ((c >> 1) & 1), g[2] + ((c >> 2) & 1)};
+		id[c] = corner_vertex(x, q);
+	}
+	for (int k = 0; k < 6 && !x->oom && !x->too_many_tets; k++) {
+		int rc = mesh_tet(x->m, id[kuhn[k][0]], id[kuhn[k][1]], id[kuhn[k][2]], id[kuhn[k][3]]);
+		if (rc < 0)
+			tet_failed(x, rc);
+	}
+}
+
+/* The solid: every finest cell of the cell at g (size finest cells a side), all inside. */
+static void fill_inside(ext_t *x, const uint64_t g[3], uint64_t size)
+{
+	for (uint64_t k = 0; k < size && !x->oom && !x->too_many_tets; k++)
+		for (uint64_t j = 0; j < size && !x->oom && !x->too_many_tets; j++)
+			for (uint64_t i = 0; i < size && !x->oom && !x->too_many_tets; i++) {
+				uint64_t q[3] = {g[0] + i, g[1] + j, g[2] + k};
+				whole_cell(x, q);
+			}
+}
+
 /* Marching tetrahedra in the finest cell with lower grid corner g. */
 static void leaf(ext_t *x, const uint64_t g[3])
 {
@@ -344,8 +409,13 @@ static void leaf(ext_t *x, const uint64_t g[3])
 		else
 			any_out = 1;
 	}
+	if (x->solid && any_in && !any_out)
+		whole_cell(x, g);
 	if (!any_in || !any_out || x->oom)
 		return;
+	uint32_t cid[8];           /* solid: the inside corners' vertices */
+	for (int c = 0; x->solid && c < 8; c++)
+		cid[c] = cf[c] < 0 ? corner_vertex(x, cg[c]) : UINT32_MAX;
 	uint32_t cache[64];      /* the cell's 19 edges (corner a * 8 + corner b): their vertices */
 	memset(cache, 0xff, sizeof cache);
 	for (int k = 0; k < 6 && !x->oom && !x->too_many; k++) {
@@ -358,6 +428,11 @@ static void leaf(ext_t *x, const uint64_t g[3])
 				ins[ni++] = q[i];
 			else
 				outs[no++] = q[i];
+		}
+		if (nin == 4 && x->solid) {
+			int rc = mesh_tet(x->m, cid[q[0]], cid[q[1]], cid[q[2]], cid[q[3]]);
+			if (rc < 0)
+				tet_failed(x, rc);
 		}
 		if (nin == 0 || nin == 4)
 			continue;
@@ -385,6 +460,12 @@ static void leaf(ext_t *x, const uint64_t g[3])
 			}
 		if (x->oom)
 			return;
+		if (x->solid) {   /* the tetrahedron's inside part */
+			uint32_t iv[3] = {cid[ins[0]], ni > 1 ? cid[ins[1]] : 0, ni > 2 ? cid[ins[2]] : 0};
+			int rc = mesh_cut_tet(x->m, ni, iv, v);
+			if (rc < 0)
+				tet_failed(x, rc);
+		}
 		if (ne == 3) {
 			oriented(x, v, (const double (*)[3])mid, 0, 1, 2, dir);
 		} else {
@@ -411,8 +492,11 @@ static void visit(ext_t *x, const uint64_t g[3], int level)
 		c[i] = x->lo[i] + ((double)g[i] + size / 2.0) * x->cell;
 	x->st->cells++;
 	double f = eval_f(x, c), r = sqrt(3.0) / 2 * (double)size * x->cell;
-	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12)
+	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12) {
+		if (x->solid && f < 0)
+			fill_inside(x, g, size);   /* all inside: the solid's tetrahedra, finest cells */
 		return;   /* no zero of F in the cell's circumscribed sphere (an undefined f: kept) */
+	}
 	if (level == x->depth) {
 		x->st->leaves++;
 		leaf(x, g);
@@ -434,6 +518,7 @@ void mesh_free(mesh_t *m)
 {
 	free(m->v);
 	free(m->t);
+	free(m->tet);
 	mesh_init(m);
 }
 
@@ -467,10 +552,16 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	x.cell = side / (double)((uint64_t)1 << depth);
 	size_t nv0 = m->nv;
 	uint64_t g0[3] = {0, 0, 0};
+	x.solid = m->want_solid;
 	visit(&x, g0, 0);
 	table_free(&x.verts);
+	table_free(&x.corners);
 	if (x.oom) {
 		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
+		return -1;
+	}
+	if (x.too_many_tets) {
+		snprintf(err, errlen, "the solid has more than %zu tetrahedra: lower its depth", MESH_MAX_TETS);
 		return -1;
 	}
 	if (x.too_many) {
