@@ -7,76 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- a hash table from 64-bit keys to 64-bit values (open addressing) ---- */
-
-typedef struct {
-	uint64_t key, val;       /* key 0 is free: stored keys are offset by one */
-} entry_t;
-
-typedef struct {
-	entry_t *e;
-	size_t n, cap;
-} table_t;
-
-static uint64_t mix(uint64_t k)
-{
-	k ^= k >> 33;
-	k *= 0xff51afd7ed558ccdULL;
-	k ^= k >> 33;
-	k *= 0xc4ceb9fe1a85ec53ULL;
-	return k ^ (k >> 33);
-}
-
-static void table_free(table_t *t)
-{
-	free(t->e);
-	memset(t, 0, sizeof *t);
-}
-
-/* Slot of key (k + 1) in t: the one holding it, or the free one where it goes. */
-static size_t slot(const table_t *t, uint64_t k)
-{
-	size_t i = mix(k) & (t->cap - 1);
-	while (t->e[i].key && t->e[i].key != k)
-		i = (i + 1) & (t->cap - 1);
-	return i;
-}
-
-static int table_grow(table_t *t)
-{
-	size_t cap = t->cap ? 2 * t->cap : 4096;
-	table_t g = {calloc(cap, sizeof *g.e), t->n, cap};
-	if (!g.e)
-		return -1;
-	for (size_t i = 0; i < t->cap; i++)
-		if (t->e[i].key)
-			g.e[slot(&g, t->e[i].key)] = t->e[i];
-	free(t->e);
-	*t = g;
-	return 0;
-}
-
-/* Find key k: 1 with *val, or 0 and *at (the slot to fill with table_put). -1: out of memory. */
-static int table_get(table_t *t, uint64_t k, uint64_t *val, size_t *at)
-{
-	if (2 * (t->n + 1) > t->cap && table_grow(t) < 0)
-		return -1;
-	size_t i = slot(t, k + 1);
-	*at = i;
-	if (t->e[i].key) {
-		*val = t->e[i].val;
-		return 1;
-	}
-	return 0;
-}
-
-static void table_put(table_t *t, size_t at, uint64_t k, uint64_t val)
-{
-	t->e[at].key = k + 1;
-	t->e[at].val = val;
-	t->n++;
-}
-
 /* ---- the extraction ---- */
 
 typedef struct {
@@ -87,9 +17,9 @@ typedef struct {
 	uint64_t n1;             /* grid points a side: 2^depth + 1 */
 	double lo[3], cell;      /* root cube corner and the finest cell's side */
 	double lip;
-	table_t verts;           /* edge key -> vertex index */
+	mesh_table_t verts;           /* edge key -> vertex index */
 	int solid;               /* also the solid's tetrahedra (m->want_solid) */
-	table_t corners;         /* solid: grid point key -> vertex index */
+	mesh_table_t corners;         /* solid: grid point key -> vertex index */
 	int oom, too_many, too_many_tets;
 } ext_t;
 
@@ -242,13 +172,24 @@ static void refine(ext_t *x, const double a[3], const double b[3], double fa, do
 		p[i] = a[i] + t * d[i];
 }
 
+void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
+                      double fa, double fb, double p[3])
+{
+	ext_t x;
+	memset(&x, 0, sizeof x);
+	x.s = s;
+	x.lip = lip;
+	x.st = st;
+	refine(&x, a, b, fa, fb, p);
+}
+
 /* Index of the vertex on the edge from grid point ga to gb (gb - ga in {0,1}^3). */
 static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], double fa, double fb)
 {
 	unsigned dir = (unsigned)((gb[0] - ga[0]) | (gb[1] - ga[1]) << 1 | (gb[2] - ga[2]) << 2);
 	uint64_t k = ((ga[2] * x->n1 + ga[1]) * x->n1 + ga[0]) * 8 + dir, v;
 	size_t at;
-	int r = table_get(&x->verts, k, &v, &at);
+	int r = mesh_table_get(&x->verts, k, &v, &at);
 	if (r < 0) {
 		x->oom = 1;
 		return 0;
@@ -273,7 +214,7 @@ static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], dou
 		refine(x, a, b, fa, fb, p);
 	else
 		refine(x, b, a, fb, fa, p);
-	table_put(&x->verts, at, k, m->nv);
+	mesh_table_put(&x->verts, at, k, m->nv);
 	return (uint32_t)m->nv++;
 }
 
@@ -344,7 +285,7 @@ static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
 {
 	uint64_t k = (g[2] * x->n1 + g[1]) * x->n1 + g[0], v;
 	size_t at;
-	int r = table_get(&x->corners, k, &v, &at);
+	int r = mesh_table_get(&x->corners, k, &v, &at);
 	if (r < 0) {
 		x->oom = 1;
 		return 0;
@@ -363,7 +304,7 @@ static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
 		m->vcap = cap;
 	}
 	grid_point(x, g, m->v + 3 * m->nv);
-	table_put(&x->corners, at, k, m->nv);
+	mesh_table_put(&x->corners, at, k, m->nv);
 	return (uint32_t)m->nv++;
 }
 
@@ -554,8 +495,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	uint64_t g0[3] = {0, 0, 0};
 	x.solid = m->want_solid;
 	visit(&x, g0, 0);
-	table_free(&x.verts);
-	table_free(&x.corners);
+	mesh_table_free(&x.verts);
+	mesh_table_free(&x.corners);
 	if (x.oom) {
 		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
 		return -1;
@@ -592,7 +533,7 @@ void mesh_measure(const mesh_t *m, double *area, double *volume)
 int mesh_check(const mesh_t *m, mesh_check_t *out)
 {
 	memset(out, 0, sizeof *out);
-	table_t e = {NULL, 0, 0};
+	mesh_table_t e = {NULL, 0, 0};
 	/* per undirected edge: count of uses a->b with a < b (low 32 bits) and b->a (high) */
 	for (size_t i = 0; i < m->nt; i++) {
 		const uint32_t *t = m->t + 3 * i;
@@ -604,16 +545,16 @@ int mesh_check(const mesh_t *m, mesh_check_t *out)
 				continue;
 			uint64_t k = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a, c = 0;
 			size_t at;
-			int r = table_get(&e, k, &c, &at);
+			int r = mesh_table_get(&e, k, &c, &at);
 			if (r < 0) {
-				table_free(&e);
+				mesh_table_free(&e);
 				return -1;
 			}
 			uint64_t inc = a < b ? 1 : (uint64_t)1 << 32;
 			if (r) {
 				e.e[at].val = c + inc;
 			} else {
-				table_put(&e, at, k, inc);
+				mesh_table_put(&e, at, k, inc);
 			}
 		}
 	}
@@ -627,6 +568,6 @@ int mesh_check(const mesh_t *m, mesh_check_t *out)
 		else if (fw != 1 || bw != 1)
 			out->bad_edges++;
 	}
-	table_free(&e);
+	mesh_table_free(&e);
 	return 0;
 }

@@ -21,4 +21,22 @@ int mesh_prism(mesh_t *m, const uint32_t p[6]);
  * the marching tetrahedra visit them). As mesh_tet. */
 int mesh_cut_tet(mesh_t *m, int nin, const uint32_t *in, const uint32_t e[4]);
 
+/* A hash table from 64-bit keys to 64-bit values (open addressing); zeroed is empty. */
+typedef struct {
+	uint64_t key, val;       /* key 0 is free: stored keys are offset by one */
+} mesh_entry_t;
+typedef struct {
+	mesh_entry_t *e;
+	size_t n, cap;
+} mesh_table_t;
+void mesh_table_free(mesh_table_t *t);
+/* Find key k: 1 with *val, or 0 and *at (the slot to fill with mesh_table_put). -1: out of memory. */
+int mesh_table_get(mesh_table_t *t, uint64_t k, uint64_t *val, size_t *at);
+void mesh_table_put(mesh_table_t *t, size_t at, uint64_t k, uint64_t val);
+
+/* Refine the surface vertex on the segment a (F = fa < 0) to b (F = fb >= 0) into p, as the
+ * extraction does (bracketed with the bound lip; evaluations and max_bracket into *st). */
+void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
+                      double fa, double fb, double p[3]);
+
 #endif
