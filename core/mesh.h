@@ -102,6 +102,21 @@ void mesh_free(mesh_t *m);
  * message then says "out of memory"). */
 int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
 
+/* Finest depth of an adaptive extraction: 2^9 cells a side. */
+#define MESH_MAX_ADAPTIVE_DEPTH 9
+
+/* Polygonise s adaptively (docs/mesh.md), APPENDING to m as mesh_extract does: the octree
+ * splits a cell that may hold the surface until F is flat in it within tol (the linear
+ * function through its centre predicts F at its corners, and its second differences stay,
+ * within tol of distance) or it is at the finest depth (1..MESH_MAX_ADAPTIVE_DEPTH), from
+ * depth - 5 on. A leaf whose faces all meet leaves of its size is cut into its 6 Kuhn
+ * tetrahedra; another into cones from its centre over its faces, each face cut into the
+ * pieces the cells across it make, each piece fanned from its centre through every leaf
+ * corner on its edges: tetrahedra that meet face to face, so the mesh is closed (no crack
+ * where cell sizes change). Returns 0, or -1 with a message as mesh_extract. */
+int mesh_extract_adaptive(const model_shape_t *s, int depth, double tol, mesh_t *m, mesh_stats_t *st,
+                          char *err, size_t errlen);
+
 /* Coarsen the part of m from vertex v0 and triangle t0 on (one closed mesh of s, as
  * mesh_extract appended it) where the surface allows: edges are collapsed shortest first into
  * their midpoint moved onto the surface (two Newton steps along grad F), each collapse only

@@ -314,6 +314,12 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = scene_lex_number(lx, &r->tolerance, "a distance to the surface");
 			if (!rc && !(r->tolerance >= 0 && r->tolerance <= 1e6))
 				rc = scene_lex_error(lx, t.line, t.col, "expected a tolerance of 0 (no coarsening) or a positive distance");
+		} else if (scene_tok_is(&t, "adaptive") && kind == SCENE_MESH) {
+			rc = scene_lex_number(lx, &r->adaptive, "a distance to the surface");
+			if (!rc && !(r->adaptive >= 0 && r->adaptive <= 1e6))
+				rc = scene_lex_error(lx, t.line, t.col, "expected an adaptive tolerance of 0 (uniform cells) or a positive distance");
+			if (!rc && r->adaptive > 0 && r->depth > MESH_MAX_ADAPTIVE_DEPTH)
+				rc = scene_lex_error(lx, t.line, t.col, "expected depth 9 or less for an adaptive mesh");
 		} else if (scene_tok_is(&t, "bands")) {
 			rc = yes_no(lx, &r->bands);
 		} else if (scene_tok_is(&t, "metric")) {

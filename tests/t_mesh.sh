@@ -259,4 +259,29 @@ rm -f "$T/stol.msh"
 "$R" "$T/stol.scene" -o "$T/stol.msh" 2> "$T/stol.err"
 [ $? = 65 ] && grep -q "expected tolerance 0 for a solid" "$T/stol.err" && [ ! -e "$T/stol.msh" ] \
 	&& ok "a coarsened solid is refused: $(cat "$T/stol.err")" || notok "solid with tolerance: $(cat "$T/stol.err")"
+# 6. adaptive extraction: the rounded box's flat faces in coarse cells, its rounded edges fine;
+# admesh finds it closed across every change of cell size, with the analytic volume and area,
+# and with fewer triangles than the uniform mesh of the same depth
+S=fixtures/mesh/rbox-adaptive.scene
+if "$R" "$S" -o "$T/rbox.stl" --stats 2> "$T/rbox.stats" && sed '/adaptive/d' "$S" > "$T/rbox-u.scene" &&
+	"$R" "$T/rbox-u.scene" -o "$T/rbox-u.stl" --stats 2> "$T/rbox-u.stats" && command -v admesh > /dev/null; then
+	admesh "$T/rbox.stl" > "$T/rbox.admesh" 2>&1
+	bad=""
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$T/rbox.admesh" "$f")
+		[ "$v" = 0 ] || bad="$bad $f=$v"
+	done
+	[ -z "$bad" ] && [ "$(admesh_field "$T/rbox.admesh" "Number of parts")" = 1 ] \
+		&& ok "adaptive rounded box: admesh: one part, closed, consistently oriented" || notok "adaptive rounded box: admesh:$bad"
+	v=$(sed -n 's/.*Volume *: *\([0-9.]*\).*/\1/p' "$T/rbox.admesh")
+	within "$v" 7.26164 0.5 && ok "adaptive rounded box: admesh volume $v within 0.5% of 7.26164" || notok "adaptive rounded box: volume '$v'"
+	a=$(stat area "$T/rbox.stats")
+	within "$a" 19.69841 0.5 && ok "adaptive rounded box: area $a within 0.5% of 19.69841" || notok "adaptive rounded box: area '$a'"
+	ta=$(stat triangles "$T/rbox.stats") tu=$(stat triangles "$T/rbox-u.stats")
+	[ $((ta * 10)) -lt $((tu * 8)) ] && ok "adaptive rounded box: $ta triangles, uniform depth 7: $tu" \
+		|| notok "adaptive rounded box: $ta triangles against $tu uniform"
+else
+	notok "adaptive rounded box: $(tail -1 "$T/rbox.stats")"
+fi
 done_tests
