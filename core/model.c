@@ -775,9 +775,7 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 
 static double mandel_count(const model_param_t *c, const double *q, int smooth)
 {
-	double m;
-	model_counts(c, 1, q, smooth, &m);
-	return m;
+	return model_count(c, q, smooth);
 }
 
 static double mandel(const model_param_t *c, const double *q)

@@ -243,6 +243,8 @@ int model_de_known(const model_shape_t *s, const double p[3], double *d);
  * (x, y, z of each in turn), iterated together: n, or with smooth the continuous count
  * n + 1 - log2 ln|z_n| (bail-out |z|^2 > 1e6) kept in 0..maxit. */
 void model_counts(const model_param_t *c, int nl, const double *q, int smooth, double *out);
+/* The same for one point, scalar (the lanes' arithmetic: the same value). */
+double model_count(const model_param_t *c, const double q[3], int smooth);
 /* 1 with the level *m0 of the continuous count when c is a smooth process with a level inside
  * (0, maxit) (the surface is the equipotential count = m0). */
 int model_de_level(const model_param_t *c, double *m0);

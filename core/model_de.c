@@ -150,6 +150,43 @@ static inline void de_point(const model_param_t *c, double q0, double q1, double
 	*pi = c->v[0] * q0 + c->v[1] * r1 + c->v[2] * r2 + c->v[3];
 }
 
+/* One point's escape iteration, scalar (the lanes' arithmetic, for single evaluations: eight
+ * lanes for one point would cost eight times its work): n escapes with z_n. */
+static double de_iterate1(const model_param_t *c, double pr, double pi, double bail, double *zr_, double *zi_)
+{
+	double zr = c->julia ? pr : 0, zi = c->julia ? pi : 0, kr = c->julia ? c->k[0] : pr, ki = c->julia ? c->k[1] : pi;
+	int n = 0;
+	while (n < c->maxit && zr * zr + zi * zi <= bail) {
+		double t = zr * zr - zi * zi + kr;
+		zi = 2 * zr * zi + ki;
+		zr = t;
+		n++;
+	}
+	*zr_ = zr;
+	*zi_ = zi;
+	return n;
+}
+
+/* The continuous count from n escapes with z_n (smooth), else n. */
+static double de_count(const model_param_t *c, double n, double zr, double zi, int smooth)
+{
+	double m = n;
+	if (smooth && n < c->maxit) {
+		/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
+		m = n + 1 - log2(0.5 * log(zr * zr + zi * zi));
+		m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
+	}
+	return m;
+}
+
+double model_count(const model_param_t *c, const double q[3], int smooth)
+{
+	double pr, pi, zr, zi;
+	de_point(c, q[0], q[1], q[2], &pr, &pi);
+	double n = de_iterate1(c, pr, pi, smooth ? 1e6 : 4, &zr, &zi);
+	return de_count(c, n, zr, zi, smooth);
+}
+
 void model_counts(const model_param_t *c, int nl, const double *q, int smooth, double *out)
 {
 	double pr[DE_LANES], pi[DE_LANES], zr[DE_LANES], zi[DE_LANES], dr[DE_LANES], di[DE_LANES], n[DE_LANES], pw[DE_LANES];
@@ -159,15 +196,8 @@ void model_counts(const model_param_t *c, int nl, const double *q, int smooth, d
 			de_point(c, q[3 * k], q[3 * k + 1], q[3 * k + 2], &pr[k], &pi[k]);
 	}
 	de_iterate(c, pr, pi, zr, zi, dr, di, n, pw, smooth ? 1e6 : 4);
-	for (int k = 0; k < nl; k++) {
-		double m = n[k];
-		if (smooth && n[k] < c->maxit) {
-			/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
-			m = n[k] + 1 - log2(0.5 * log(zr[k] * zr[k] + zi[k] * zi[k]));
-			m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
-		}
-		out[k] = m;
-	}
+	for (int k = 0; k < nl; k++)
+		out[k] = de_count(c, n[k], zr[k], zi[k], smooth);
 }
 
 /* The estimate at nl <= 8 actual-frame points (NaN in: NaN out, the lane is idle). */
