@@ -91,8 +91,10 @@ static int set_has(ad_t *x, mesh_table_t *t, uint64_t k)
 /* The key of the cell at lower corner g of the given size (the size fixes the level). */
 static uint64_t ckey(const ad_t *x, const uint64_t g[3], uint64_t size)
 {
-	uint64_t n = ((uint64_t)1 << x->depth) + 1;
-	return ((g[2] * n + g[1]) * n + g[0]) * 16 + (uint64_t)__builtin_ctzll(size);
+	uint64_t n = ((uint64_t)1 << x->depth) + 1, lg = 0;
+	while (((uint64_t)1 << lg) < size)
+		lg++;   /* size is a power of two: its exponent */
+	return ((g[2] * n + g[1]) * n + g[0]) * 16 + lg;
 }
 
 /* 1 when F is flat enough in the cell (centre half-unit point c, half side hh half-units): the
