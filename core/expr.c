@@ -61,6 +61,17 @@ static void fail(parser_t *p, const char *what)
 	snprintf(p->err, p->errlen, "expected %s, found %s", what, found);
 }
 
+/* Out of memory: said as what happened, not as something expected of the text (the scene
+ * reader maps "out of memory" to its exit 70 path). */
+static void fail_oom(parser_t *p)
+{
+	if (p->failed)
+		return;
+	p->failed = 1;
+	p->errpos = p->pos;
+	snprintf(p->err, p->errlen, "out of memory compiling the expression");
+}
+
 static void emit(parser_t *p, unsigned char op, double k)
 {
 	expr_t *e = p->e;
@@ -74,7 +85,7 @@ static void emit(parser_t *p, unsigned char op, double k)
 		}
 		instr_t *c = realloc(e->code, cap * sizeof *c);
 		if (!c) {
-			fail(p, "memory for the expression");
+			fail_oom(p);
 			return;
 		}
 		e->code = c;

@@ -92,13 +92,14 @@ static double now(void)
 	return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* -o NAME.stl|.ply|.obj: the scene's mesh in that format (docs/mesh.md); an exit status */
+/* -o NAME.stl|.ply|.obj|.msh: the scene's mesh (.msh: its solid) in that format (docs/mesh.md); an exit status */
 static int write_mesh(scene_t *sc, const char *out, int fmt, int stats, double t_start)
 {
 	mesh_t m;
 	mesh_stats_t ms = {0, 0, 0, 0};
 	char err[1024];
 	mesh_init(&m);
+	m.want_solid = fmt == MESH_MSH;   /* .msh: the solid's tetrahedra */
 	int rc = mesh_scene(sc, &m, &ms, NULL, err, sizeof err), status = 0;
 	if (rc < 0) {
 		fprintf(stderr, "%s\n", err);
@@ -123,10 +124,16 @@ static int write_mesh(scene_t *sc, const char *out, int fmt, int stats, double t
 	if (!status && stats) {
 		double area, volume;
 		mesh_measure(&m, &area, &volume);
+		char solid[200] = "";
+		mesh_solid_check_t sc_;
+		if (m.ntet && mesh_solid_check(&m, &sc_) == 0)
+			snprintf(solid, sizeof solid, " tetrahedra=%zu solid_volume=%.9g negative_tets=%zu flat_tets=%zu"
+			         " inner_faces=%zu boundary_faces=%zu overused_faces=%zu", m.ntet, sc_.volume, sc_.negative,
+			         sc_.flat, sc_.inner_faces, sc_.boundary_faces, sc_.overused_faces);
 		fprintf(stderr, "stats: triangles=%zu vertices=%zu mesh_cells=%llu mesh_leaves=%llu evals=%llu"
-		        " max_bracket=%.3g area=%.9g volume=%.9g mesh_ms=%.3f total_ms=%.3f\n", m.nt, m.nv,
+		        " max_bracket=%.3g area=%.9g volume=%.9g%s mesh_ms=%.3f total_ms=%.3f\n", m.nt, m.nv,
 		        (unsigned long long)ms.cells, (unsigned long long)ms.leaves, (unsigned long long)ms.evals,
-		        ms.max_bracket, area, volume, t_mesh * 1e3, (now() - t_start) * 1e3);
+		        ms.max_bracket, area, volume, solid, t_mesh * 1e3, (now() - t_start) * 1e3);
 	}
 	mesh_free(&m);
 	return status;

@@ -7,76 +7,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* ---- a hash table from 64-bit keys to 64-bit values (open addressing) ---- */
-
-typedef struct {
-	uint64_t key, val;       /* key 0 is free: stored keys are offset by one */
-} entry_t;
-
-typedef struct {
-	entry_t *e;
-	size_t n, cap;
-} table_t;
-
-static uint64_t mix(uint64_t k)
-{
-	k ^= k >> 33;
-	k *= 0xff51afd7ed558ccdULL;
-	k ^= k >> 33;
-	k *= 0xc4ceb9fe1a85ec53ULL;
-	return k ^ (k >> 33);
-}
-
-static void table_free(table_t *t)
-{
-	free(t->e);
-	memset(t, 0, sizeof *t);
-}
-
-/* Slot of key (k + 1) in t: the one holding it, or the free one where it goes. */
-static size_t slot(const table_t *t, uint64_t k)
-{
-	size_t i = mix(k) & (t->cap - 1);
-	while (t->e[i].key && t->e[i].key != k)
-		i = (i + 1) & (t->cap - 1);
-	return i;
-}
-
-static int table_grow(table_t *t)
-{
-	size_t cap = t->cap ? 2 * t->cap : 4096;
-	table_t g = {calloc(cap, sizeof *g.e), t->n, cap};
-	if (!g.e)
-		return -1;
-	for (size_t i = 0; i < t->cap; i++)
-		if (t->e[i].key)
-			g.e[slot(&g, t->e[i].key)] = t->e[i];
-	free(t->e);
-	*t = g;
-	return 0;
-}
-
-/* Find key k: 1 with *val, or 0 and *at (the slot to fill with table_put). -1: out of memory. */
-static int table_get(table_t *t, uint64_t k, uint64_t *val, size_t *at)
-{
-	if (2 * (t->n + 1) > t->cap && table_grow(t) < 0)
-		return -1;
-	size_t i = slot(t, k + 1);
-	*at = i;
-	if (t->e[i].key) {
-		*val = t->e[i].val;
-		return 1;
-	}
-	return 0;
-}
-
-static void table_put(table_t *t, size_t at, uint64_t k, uint64_t val)
-{
-	t->e[at].key = k + 1;
-	t->e[at].val = val;
-	t->n++;
-}
-
 /* ---- the extraction ---- */
 
 typedef struct {
@@ -87,8 +17,10 @@ typedef struct {
 	uint64_t n1;             /* grid points a side: 2^depth + 1 */
 	double lo[3], cell;      /* root cube corner and the finest cell's side */
 	double lip;
-	table_t verts;           /* edge key -> vertex index */
-	int oom, too_many;
+	mesh_table_t verts;           /* edge key -> vertex index */
+	int solid;               /* also the solid's tetrahedra (m->want_solid) */
+	mesh_table_t corners;         /* solid: grid point key -> vertex index */
+	int oom, too_many, too_many_tets;
 } ext_t;
 
 /* The signed distance to the box b (negative inside) and, when g is not NULL, its gradient. */
@@ -116,9 +48,23 @@ static double box_distance(const double *b, const double p[3], double g[3])
 	return d;
 }
 
+/* f, or for a distance-estimated shape its estimate (bound 1): the sign of f, and no surface
+ * within |value| of p; a point whose iteration never escaped is inside with no bound (a tiny
+ * negative value: no bracket is narrowed by it). */
+static double field_f(const model_shape_t *s, const double p[3])
+{
+	if (!s->de)
+		return model_eval(s, p);
+	double d;
+	if (model_de_known(s, p, &d) || !(d == d))
+		return d;
+	return d < 0 ? -1e-300 : 1e-300;
+}
+
 double mesh_field(const model_shape_t *s, const double p[3])
 {
-	double f = model_eval(s, p), bd = s->lip * box_distance(s->box, p, NULL);
+	double L = s->de ? 1 : s->lip;
+	double f = field_f(s, p), bd = L * box_distance(s->box, p, NULL);
 	if (!(f == f))
 		f = INFINITY;   /* an undefined value counts as outside */
 	return f > bd ? f : bd;
@@ -126,13 +72,19 @@ double mesh_field(const model_shape_t *s, const double p[3])
 
 void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3])
 {
-	double f = model_eval(s, p), gb[3], bd = s->lip * box_distance(s->box, p, gb);
+	double L = s->de ? 1 : s->lip;
+	double f = field_f(s, p), gb[3], bd = L * box_distance(s->box, p, gb);
 	if (f == f && f >= bd) {
 		model_grad(s, p, g);
+		if (s->de) {   /* the estimate's slope is about 1: its direction, unit length */
+			double n = sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+			for (int i = 0; i < 3 && n > 0; i++)
+				g[i] /= n;
+		}
 		return;
 	}
 	for (int i = 0; i < 3; i++)
-		g[i] = s->lip * gb[i];
+		g[i] = L * gb[i];
 }
 
 /* F, counted. */
@@ -220,13 +172,24 @@ static void refine(ext_t *x, const double a[3], const double b[3], double fa, do
 		p[i] = a[i] + t * d[i];
 }
 
+void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
+                      double fa, double fb, double p[3])
+{
+	ext_t x;
+	memset(&x, 0, sizeof x);
+	x.s = s;
+	x.lip = lip;
+	x.st = st;
+	refine(&x, a, b, fa, fb, p);
+}
+
 /* Index of the vertex on the edge from grid point ga to gb (gb - ga in {0,1}^3). */
 static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], double fa, double fb)
 {
 	unsigned dir = (unsigned)((gb[0] - ga[0]) | (gb[1] - ga[1]) << 1 | (gb[2] - ga[2]) << 2);
 	uint64_t k = ((ga[2] * x->n1 + ga[1]) * x->n1 + ga[0]) * 8 + dir, v;
 	size_t at;
-	int r = table_get(&x->verts, k, &v, &at);
+	int r = mesh_table_get(&x->verts, k, &v, &at);
 	if (r < 0) {
 		x->oom = 1;
 		return 0;
@@ -251,7 +214,7 @@ static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], dou
 		refine(x, a, b, fa, fb, p);
 	else
 		refine(x, b, a, fb, fa, p);
-	table_put(&x->verts, at, k, m->nv);
+	mesh_table_put(&x->verts, at, k, m->nv);
 	return (uint32_t)m->nv++;
 }
 
@@ -308,6 +271,69 @@ static double dist2(const double *a, const double *b)
 	return dot3(d, d);
 }
 
+/* Record a failed tetrahedron append (mesh_tet's -1 or -2). */
+static void tet_failed(ext_t *x, int rc)
+{
+	if (rc == -2)
+		x->too_many_tets = 1;
+	else
+		x->oom = 1;
+}
+
+/* The solid's vertex at grid point g (an inside corner), made once. */
+static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
+{
+	uint64_t k = (g[2] * x->n1 + g[1]) * x->n1 + g[0], v;
+	size_t at;
+	int r = mesh_table_get(&x->corners, k, &v, &at);
+	if (r < 0) {
+		x->oom = 1;
+		return 0;
+	}
+	if (r)
+		return (uint32_t)v;
+	mesh_t *m = x->m;
+	if (m->nv == m->vcap) {
+		size_t cap = m->vcap ? 2 * m->vcap : 4096;
+		double *q = realloc(m->v, 3 * cap * sizeof *q);
+		if (!q) {
+			x->oom = 1;
+			return 0;
+		}
+		m->v = q;
+		m->vcap = cap;
+	}
+	grid_point(x, g, m->v + 3 * m->nv);
+	mesh_table_put(&x->corners, at, k, m->nv);
+	return (uint32_t)m->nv++;
+}
+
+/* The solid: the 6 Kuhn tetrahedra of the finest cell at g, all inside. */
+static void whole_cell(ext_t *x, const uint64_t g[3])
+{
+	uint32_t id[8];
+	for (int c = 0; c < 8; c++) {
+		uint64_t q[3] = {g[0] + (c & 1), g[1] + ((c >> 1) & 1), g[2] + ((c >> 2) & 1)};
+		id[c] = corner_vertex(x, q);
+	}
+	for (int k = 0; k < 6 && !x->oom && !x->too_many_tets; k++) {
+		int rc = mesh_tet(x->m, id[kuhn[k][0]], id[kuhn[k][1]], id[kuhn[k][2]], id[kuhn[k][3]]);
+		if (rc < 0)
+			tet_failed(x, rc);
+	}
+}
+
+/* The solid: every finest cell of the cell at g (size finest cells a side), all inside. */
+static void fill_inside(ext_t *x, const uint64_t g[3], uint64_t size)
+{
+	for (uint64_t k = 0; k < size && !x->oom && !x->too_many_tets; k++)
+		for (uint64_t j = 0; j < size && !x->oom && !x->too_many_tets; j++)
+			for (uint64_t i = 0; i < size && !x->oom && !x->too_many_tets; i++) {
+				uint64_t q[3] = {g[0] + i, g[1] + j, g[2] + k};
+				whole_cell(x, q);
+			}
+}
+
 /* Marching tetrahedra in the finest cell with lower grid corner g. */
 static void leaf(ext_t *x, const uint64_t g[3])
 {
@@ -324,8 +350,13 @@ static void leaf(ext_t *x, const uint64_t g[3])
 		else
 			any_out = 1;
 	}
+	if (x->solid && any_in && !any_out)
+		whole_cell(x, g);
 	if (!any_in || !any_out || x->oom)
 		return;
+	uint32_t cid[8];           /* solid: the inside corners' vertices */
+	for (int c = 0; x->solid && c < 8; c++)
+		cid[c] = cf[c] < 0 ? corner_vertex(x, cg[c]) : UINT32_MAX;
 	uint32_t cache[64];      /* the cell's 19 edges (corner a * 8 + corner b): their vertices */
 	memset(cache, 0xff, sizeof cache);
 	for (int k = 0; k < 6 && !x->oom && !x->too_many; k++) {
@@ -338,6 +369,11 @@ static void leaf(ext_t *x, const uint64_t g[3])
 				ins[ni++] = q[i];
 			else
 				outs[no++] = q[i];
+		}
+		if (nin == 4 && x->solid) {
+			int rc = mesh_tet(x->m, cid[q[0]], cid[q[1]], cid[q[2]], cid[q[3]]);
+			if (rc < 0)
+				tet_failed(x, rc);
 		}
 		if (nin == 0 || nin == 4)
 			continue;
@@ -365,6 +401,12 @@ static void leaf(ext_t *x, const uint64_t g[3])
 			}
 		if (x->oom)
 			return;
+		if (x->solid) {   /* the tetrahedron's inside part */
+			uint32_t iv[3] = {cid[ins[0]], ni > 1 ? cid[ins[1]] : 0, ni > 2 ? cid[ins[2]] : 0};
+			int rc = mesh_cut_tet(x->m, ni, iv, v);
+			if (rc < 0)
+				tet_failed(x, rc);
+		}
 		if (ne == 3) {
 			oriented(x, v, (const double (*)[3])mid, 0, 1, 2, dir);
 		} else {
@@ -391,8 +433,11 @@ static void visit(ext_t *x, const uint64_t g[3], int level)
 		c[i] = x->lo[i] + ((double)g[i] + size / 2.0) * x->cell;
 	x->st->cells++;
 	double f = eval_f(x, c), r = sqrt(3.0) / 2 * (double)size * x->cell;
-	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12)
+	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12) {
+		if (x->solid && f < 0)
+			fill_inside(x, g, size);   /* all inside: the solid's tetrahedra, finest cells */
 		return;   /* no zero of F in the cell's circumscribed sphere (an undefined f: kept) */
+	}
 	if (level == x->depth) {
 		x->st->leaves++;
 		leaf(x, g);
@@ -414,6 +459,7 @@ void mesh_free(mesh_t *m)
 {
 	free(m->v);
 	free(m->t);
+	free(m->tet);
 	mesh_init(m);
 }
 
@@ -428,8 +474,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 		snprintf(err, errlen, "expected a mesh depth from 1 to %d", MESH_MAX_DEPTH);
 		return -1;
 	}
-	if (!s->has_lip) {
-		snprintf(err, errlen, "the mesh needs a Lipschitz bound, and this shape's defining parameter has none (draw it with raytrace, which brackets)");
+	if (!s->has_lip && !s->de) {
+		snprintf(err, errlen, "the mesh needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (draw it with raytrace, which brackets)");
 		return -1;
 	}
 	ext_t x;
@@ -439,7 +485,7 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	x.st = st;
 	x.depth = depth;
 	x.n1 = ((uint64_t)1 << depth) + 1;
-	x.lip = s->lip;
+	x.lip = s->de ? 1 : s->lip;   /* the estimate bounds the distance itself */
 	const double *r = s->root;
 	double side = fmax(r[3] - r[0], fmax(r[4] - r[1], r[5] - r[2]));
 	for (int i = 0; i < 3; i++)
@@ -447,10 +493,16 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	x.cell = side / (double)((uint64_t)1 << depth);
 	size_t nv0 = m->nv;
 	uint64_t g0[3] = {0, 0, 0};
+	x.solid = m->want_solid;
 	visit(&x, g0, 0);
-	table_free(&x.verts);
+	mesh_table_free(&x.verts);
+	mesh_table_free(&x.corners);
 	if (x.oom) {
 		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
+		return -1;
+	}
+	if (x.too_many_tets) {
+		snprintf(err, errlen, "the solid has more than %zu tetrahedra: lower its depth", MESH_MAX_TETS);
 		return -1;
 	}
 	if (x.too_many) {
@@ -481,7 +533,7 @@ void mesh_measure(const mesh_t *m, double *area, double *volume)
 int mesh_check(const mesh_t *m, mesh_check_t *out)
 {
 	memset(out, 0, sizeof *out);
-	table_t e = {NULL, 0, 0};
+	mesh_table_t e = {NULL, 0, 0};
 	/* per undirected edge: count of uses a->b with a < b (low 32 bits) and b->a (high) */
 	for (size_t i = 0; i < m->nt; i++) {
 		const uint32_t *t = m->t + 3 * i;
@@ -493,16 +545,16 @@ int mesh_check(const mesh_t *m, mesh_check_t *out)
 				continue;
 			uint64_t k = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a, c = 0;
 			size_t at;
-			int r = table_get(&e, k, &c, &at);
+			int r = mesh_table_get(&e, k, &c, &at);
 			if (r < 0) {
-				table_free(&e);
+				mesh_table_free(&e);
 				return -1;
 			}
 			uint64_t inc = a < b ? 1 : (uint64_t)1 << 32;
 			if (r) {
 				e.e[at].val = c + inc;
 			} else {
-				table_put(&e, at, k, inc);
+				mesh_table_put(&e, at, k, inc);
 			}
 		}
 	}
@@ -516,6 +568,6 @@ int mesh_check(const mesh_t *m, mesh_check_t *out)
 		else if (fw != 1 || bw != 1)
 			out->bad_edges++;
 	}
-	table_free(&e);
+	mesh_table_free(&e);
 	return 0;
 }

@@ -47,13 +47,30 @@
 /* Most triangles one mesh may hold (about 1.2 GB with its vertices). */
 #define MESH_MAX_TRIANGLES ((size_t)1 << 26)
 
-/* A triangle mesh: nv vertices (3 doubles each), nt triangles (3 vertex indices each). */
+/* Most tetrahedra one solid may hold (about 1 GB with its faces checked). */
+#define MESH_MAX_TETS ((size_t)1 << 26)
+
+/* A triangle mesh: nv vertices (3 doubles each), nt triangles (3 vertex indices each). With
+ * want_solid set before mesh_extract, also the solid as ntet tetrahedra (4 vertex indices each,
+ * positively oriented), over the same vertices and the grid corners inside (docs/mesh.md). */
 typedef struct {
 	double *v;
 	size_t nv, vcap;
 	uint32_t *t;
 	size_t nt, tcap;
+	int want_solid;
+	uint32_t *tet;
+	size_t ntet, tetcap;
 } mesh_t;
+
+/* Result of mesh_solid_check. */
+typedef struct {
+	double volume;           /* sum of the tetrahedra's signed volumes */
+	size_t negative, flat;   /* tetrahedra of negative or zero volume */
+	size_t inner_faces;      /* faces shared by exactly two tetrahedra */
+	size_t boundary_faces;   /* faces of one tetrahedron (the solid's surface) */
+	size_t overused_faces;   /* faces of three or more (never in a valid mesh) */
+} mesh_solid_check_t;
 
 /* What an extraction cost. */
 typedef struct {
@@ -78,9 +95,27 @@ void mesh_free(mesh_t *m);
 
 /* Polygonise s at the given depth (1..MESH_MAX_DEPTH) as described above, APPENDING its
  * triangles to m (several shapes make one mesh). st (may be NULL) receives the costs, added
- * to what it holds. Returns 0, or -1 with a message: no Lipschitz bound, depth out of
- * range, too many triangles, out of memory (the message then says "out of memory"). */
+ * to what it holds. A distance-estimated shape (s->de: a smooth Mandelbrot or Julia process)
+ * is extracted on its estimate, which bounds the distance to the surface as a Lipschitz bound
+ * of 1 would (cells culled and brackets narrowed by it). Returns 0, or -1 with a message: no
+ * Lipschitz bound or estimate, depth out of range, too many triangles, out of memory (the
+ * message then says "out of memory"). */
 int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
+
+/* Finest depth of an adaptive extraction: 2^9 cells a side. */
+#define MESH_MAX_ADAPTIVE_DEPTH 9
+
+/* Polygonise s adaptively (docs/mesh.md), APPENDING to m as mesh_extract does: the octree
+ * splits a cell that may hold the surface until F is flat in it within tol (the linear
+ * function through its centre predicts F at its corners, and its second differences stay,
+ * within tol of distance) or it is at the finest depth (1..MESH_MAX_ADAPTIVE_DEPTH), from
+ * depth - 5 on. A leaf whose faces all meet leaves of its size is cut into its 6 Kuhn
+ * tetrahedra; another into cones from its centre over its faces, each face cut into the
+ * pieces the cells across it make, each piece fanned from its centre through every leaf
+ * corner on its edges: tetrahedra that meet face to face, so the mesh is closed (no crack
+ * where cell sizes change). Returns 0, or -1 with a message as mesh_extract. */
+int mesh_extract_adaptive(const model_shape_t *s, int depth, double tol, mesh_t *m, mesh_stats_t *st,
+                          char *err, size_t errlen);
 
 /* Coarsen the part of m from vertex v0 and triangle t0 on (one closed mesh of s, as
  * mesh_extract appended it) where the surface allows: edges are collapsed shortest first into
@@ -92,7 +127,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
  * triangles: the mesh becomes adaptive, and the slivers of marching tetrahedra (the shortest
  * edges) go first. Up to 4 passes, until one collapses under 5% of the vertices. Adds the
  * evaluations of F to *evals (a gradient counts as one). Returns 0, or -1 when out of memory
- * (the mesh is then unusable). */
+ * (the mesh is then unusable) or for a distance-estimated shape (its estimate does not bound
+ * the distance from above, so the tolerance could not be kept). */
 int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
                   uint64_t *evals, char *err, size_t errlen);
 
@@ -103,11 +139,14 @@ void mesh_measure(const mesh_t *m, double *area, double *volume);
  * Returns 0, or -1 when out of memory. */
 int mesh_check(const mesh_t *m, mesh_check_t *out);
 
-/* Output formats, chosen by the file name's suffix. */
-enum { MESH_STL, MESH_PLY, MESH_OBJ };
+/* Volume, orientation and face sharing of m's tetrahedra. Returns 0, or -1 when out of memory. */
+int mesh_solid_check(const mesh_t *m, mesh_solid_check_t *out);
 
-/* MESH_STL, MESH_PLY or MESH_OBJ for a name ending in .stl, .ply or .obj (any case),
- * else -1 (the name is a meta file). */
+/* Output formats, chosen by the file name's suffix. */
+enum { MESH_STL, MESH_PLY, MESH_OBJ, MESH_MSH };
+
+/* MESH_STL, MESH_PLY, MESH_OBJ or MESH_MSH (the solid's tetrahedra, Gmsh MSH 2.2 ASCII) for a
+ * name ending in .stl, .ply, .obj or .msh (any case), else -1 (the name is a meta file). */
 int mesh_format_of(const char *name);
 
 /* Writes n bytes; returns <0 on failure. */
@@ -115,8 +154,10 @@ typedef int (*mesh_write_fn)(void *user, const void *buf, size_t n);
 
 /* Write m as binary STL (float vertices, one normal per facet), binary little-endian PLY
  * (float x y z, int vertex lists) or Wavefront OBJ (v and f lines) through wr; all three hold
- * the same single-precision vertices (OBJ prints each float exactly, in 9 digits).
- * `name` goes into the STL header and the comments. Returns 0, or -1 with a message. */
+ * the same single-precision vertices (OBJ prints each float exactly, in 9 digits). MESH_MSH
+ * writes the solid (m->ntet > 0) as Gmsh MSH 2.2 ASCII: $Nodes (all vertices, 1-based,
+ * 17 digits), $Elements (type 4, tags 1 1, positively oriented). `name` goes into the STL
+ * header and the comments. Returns 0, or -1 with a message. */
 int mesh_write(const mesh_t *m, int format, const char *name, mesh_write_fn wr, void *user,
                char *err, size_t errlen);
 

@@ -2,11 +2,41 @@
 #ifndef LOCUS_MESH_INT_H
 #define LOCUS_MESH_INT_H
 
+#include "mesh.h"
 #include "model.h"
 
 /* F(P) = max(f(P), L * b(P)): the shape clipped by its box (mesh.h); NaN counts as outside. */
 double mesh_field(const model_shape_t *s, const double p[3]);
 /* The gradient of F at p: the shape's where f is the larger term, else the box's. */
 void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3]);
+
+/* Append the tetrahedron a b c d of m's vertices, positively oriented (two corners swapped when
+ * its volume is negative). 0, -1 out of memory, -2 over MESH_MAX_TETS. */
+int mesh_tet(mesh_t *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d);
+/* Append the prism p (bottom p0 p1 p2, top p3 p4 p5, pi+3 above pi) as three tetrahedra, its
+ * quadrilateral faces cut from their smallest vertex index (so neighbours agree). As mesh_tet. */
+int mesh_prism(mesh_t *m, const uint32_t p[6]);
+/* Append the inside part of a Kuhn tetrahedron with nin (1..3) inside corners in[] and the
+ * crossing vertices e[] of its crossed edges (inside corner i to outside j, in that order, as
+ * the marching tetrahedra visit them). As mesh_tet. */
+int mesh_cut_tet(mesh_t *m, int nin, const uint32_t *in, const uint32_t e[4]);
+
+/* A hash table from 64-bit keys to 64-bit values (open addressing); zeroed is empty. */
+typedef struct {
+	uint64_t key, val;       /* key 0 is free: stored keys are offset by one */
+} mesh_entry_t;
+typedef struct {
+	mesh_entry_t *e;
+	size_t n, cap;
+} mesh_table_t;
+void mesh_table_free(mesh_table_t *t);
+/* Find key k: 1 with *val, or 0 and *at (the slot to fill with mesh_table_put). -1: out of memory. */
+int mesh_table_get(mesh_table_t *t, uint64_t k, uint64_t *val, size_t *at);
+void mesh_table_put(mesh_table_t *t, size_t at, uint64_t k, uint64_t val);
+
+/* Refine the surface vertex on the segment a (F = fa < 0) to b (F = fb >= 0) into p, as the
+ * extraction does (bracketed with the bound lip; evaluations and max_bracket into *st). */
+void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
+                      double fa, double fb, double p[3]);
 
 #endif

@@ -1,4 +1,4 @@
-/* mesh_out.c: meshes written as binary STL, binary PLY and Wavefront OBJ (mesh.h), in a buffered stream of bytes. */
+/* mesh_out.c: meshes written as binary STL, binary PLY and Wavefront OBJ, solids as Gmsh MSH 2.2 (mesh.h), in a buffered stream of bytes. */
 #include "mesh.h"
 
 #include <ctype.h>
@@ -61,11 +61,11 @@ static void printf_out(out_t *o, const char *fmt, double a, double b, double c)
 
 int mesh_format_of(const char *name)
 {
-	static const char *sfx[] = {".stl", ".ply", ".obj"};
+	static const char *sfx[] = {".stl", ".ply", ".obj", ".msh"};
 	size_t n = strlen(name);
 	if (n < 5 || name[n - 5] == '/')
 		return -1;   /* a suffix needs a name before it */
-	for (int f = 0; f < 3; f++) {
+	for (int f = 0; f < 4; f++) {
 		int same = 1;
 		for (int i = 0; i < 4; i++)
 			if (tolower((unsigned char)name[n - 4 + i]) != sfx[f][i])
@@ -128,6 +128,28 @@ static void write_ply(out_t *o, const mesh_t *m, const char *name)
 	}
 }
 
+/* The solid as Gmsh MSH 2.2 ASCII: every vertex a node (1-based, full double precision), every
+ * tetrahedron an element of type 4 (4-node tetrahedron) with physical and elementary tag 1. */
+static void write_msh(out_t *o, const mesh_t *m)
+{
+	char line[160];
+	int n = snprintf(line, sizeof line, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%zu\n", m->nv);
+	put(o, line, (size_t)n);
+	for (size_t i = 0; i < m->nv; i++) {
+		n = snprintf(line, sizeof line, "%zu %.17g %.17g %.17g\n", i + 1, m->v[3 * i], m->v[3 * i + 1], m->v[3 * i + 2]);
+		put(o, line, (size_t)n);
+	}
+	n = snprintf(line, sizeof line, "$EndNodes\n$Elements\n%zu\n", m->ntet);
+	put(o, line, (size_t)n);
+	for (size_t i = 0; i < m->ntet; i++) {
+		const uint32_t *t = m->tet + 4 * i;
+		n = snprintf(line, sizeof line, "%zu 4 2 1 1 %lu %lu %lu %lu\n", i + 1, (unsigned long)t[0] + 1,
+		             (unsigned long)t[1] + 1, (unsigned long)t[2] + 1, (unsigned long)t[3] + 1);
+		put(o, line, (size_t)n);
+	}
+	put(o, "$EndElements\n", 13);
+}
+
 static void write_obj(out_t *o, const mesh_t *m, const char *name)
 {
 	char head[300];
@@ -152,7 +174,11 @@ int mesh_write(const mesh_t *m, int format, const char *name, mesh_write_fn wr, 
 		snprintf(err, errlen, "binary STL holds at most 2^32 - 1 triangles");
 		return -1;
 	}
-	if (format < MESH_STL || format > MESH_OBJ) {
+	if (format == MESH_MSH && m->ntet == 0) {
+		snprintf(err, errlen, "the solid has no tetrahedra (extract it with want_solid)");
+		return -1;
+	}
+	if (format < MESH_STL || format > MESH_MSH) {
 		snprintf(err, errlen, "unknown mesh format %d", format);
 		return -1;
 	}
@@ -169,8 +195,10 @@ int mesh_write(const mesh_t *m, int format, const char *name, mesh_write_fn wr, 
 		write_stl(o, m, safe);
 	else if (format == MESH_PLY)
 		write_ply(o, m, safe);
-	else
+	else if (format == MESH_OBJ)
 		write_obj(o, m, safe);
+	else
+		write_msh(o, m);
 	flush(o);
 	int failed = o->failed;
 	free(o);

@@ -18,7 +18,8 @@ static int extract(const scene_t *s, const scene_render_t *r, mesh_t *m, mesh_st
 			continue;
 		any = 1;
 		size_t v0 = m->nv, t0 = m->nt;
-		int rc = mesh_extract(o->shape, depth, m, st, e, sizeof e);
+		int rc = r && r->adaptive > 0 ? mesh_extract_adaptive(o->shape, depth, r->adaptive, m, st, e, sizeof e)
+		                               : mesh_extract(o->shape, depth, m, st, e, sizeof e);
 		if (rc == 0 && r && r->tolerance > 0)
 			rc = mesh_simplify(m, o->shape, v0, t0, r->tolerance, st ? &st->evals : NULL, e, sizeof e);
 		if (rc < 0) {

@@ -210,6 +210,15 @@ static long pass(simp_t *x)
 int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, double tol,
                   uint64_t *evals, char *err, size_t errlen)
 {
+	if (m->want_solid) {   /* the tetrahedra hold the vertices a collapse would move */
+		snprintf(err, errlen, "expected tolerance 0 for a solid (.msh): coarsening would tear its tetrahedra from the surface");
+		return -1;
+	}
+	if (s->de) {   /* a small estimate does not make a small distance */
+		snprintf(err, errlen, "expected tolerance 0 for a distance-estimated shape: its estimate bounds the distance "
+		         "only from below, so no tolerance could be kept");
+		return -1;
+	}
 	simp_t x;
 	memset(&x, 0, sizeof x);
 	x.m = m;

@@ -773,51 +773,9 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 	return 0;
 }
 
-/* The process' complex point from the setup point q: u, v affine in q, or in (x, sqrt(y^2+z^2), 0). */
-static void process_point(const model_param_t *c, const double *q, double *cr, double *ci)
-{
-	double r[3] = {q[0], q[1], q[2]};
-	if (c->revolve) {
-		r[1] = sqrt(q[1] * q[1] + q[2] * q[2]);
-		r[2] = 0;
-	}
-	*cr = c->u[0] * r[0] + c->u[1] * r[1] + c->u[2] * r[2] + c->u[3];
-	*ci = c->v[0] * r[0] + c->v[1] * r[1] + c->v[2] * r[2] + c->v[3];
-}
-
-/* Iterate the process at the setup point q: Mandelbrot z <- z^2 + p from z = 0, Julia z <- z^2 + k
- * from z = p. Returns the escape count n (maxit: no escape) with z_n in z[] and dz_n/dp in dz[]. */
-static int process_iter(const model_param_t *c, const double *q, double bail, double *z, double *dz)
-{
-	double pr, pi;
-	process_point(c, q, &pr, &pi);
-	double zr = c->julia ? pr : 0, zi = c->julia ? pi : 0, dr = c->julia ? 1 : 0, di = 0;
-	double kr = c->julia ? c->k[0] : pr, ki = c->julia ? c->k[1] : pi, one = c->julia ? 0 : 1;
-	int n = 0;
-	while (n < c->maxit && zr * zr + zi * zi <= bail) {
-		double t = 2 * (zr * dr - zi * di) + one;
-		di = 2 * (zr * di + zi * dr);
-		dr = t;
-		t = zr * zr - zi * zi + kr;
-		zi = 2 * zr * zi + ki;
-		zr = t;
-		n++;
-	}
-	z[0] = zr, z[1] = zi, dz[0] = dr, dz[1] = di;
-	return n;
-}
-
 static double mandel_count(const model_param_t *c, const double *q, int smooth)
 {
-	double z[2], dz[2];
-	int n = process_iter(c, q, smooth ? 1e6 : 4, z, dz);
-	double m = n;
-	if (smooth && n < c->maxit) {
-		/* continuous count: |z_n| ~ e^(2^n G), G the potential; ln|z_n| = ln(zr^2 + zi^2) / 2 */
-		m = n + 1 - log2(0.5 * log(z[0] * z[0] + z[1] * z[1]));
-		m = m < 0 ? 0 : m > c->maxit ? c->maxit : m;
-	}
-	return m;
+	return model_count(c, q, smooth);
 }
 
 static double mandel(const model_param_t *c, const double *q)
@@ -831,36 +789,6 @@ int model_de_level(const model_param_t *c, double *m0)
 		return 0;
 	*m0 = -c->c0 * c->maxit / c->amp;
 	return *m0 > 0 && *m0 < c->maxit;
-}
-
-double model_de(const model_shape_t *s, const double p[3])
-{
-	const model_param_t *c = &s->c;
-	double q[3], z[2], dz[2];
-	apply(s->minv, p, q);
-	int n = process_iter(c, q, 1e6, z, dz);
-	double sg = c->amp > 0 ? 1 : -1;   /* f > 0 (outside) where the potential is above the level */
-	if (n >= c->maxit)
-		return -sg * 1e-3 * s->de_scale;    /* never escaped: inside the set, a sign and no bound */
-	/* potential G = lim 2^-n ln|z_n| (Julia), twice that for the Mandelbrot set (whose z_n is
-	 * the Julia iterate of p one step late); |grad G| = |z_n'| / (|z_n| 2^n) likewise */
-	double az2 = z[0] * z[0] + z[1] * z[1], lz = 0.5 * log(az2), k = c->julia ? 1 : 2;
-	double G = k * lz / ldexp(1, n), dG = k * sqrt((dz[0] * dz[0] + dz[1] * dz[1]) / az2) / ldexp(1, n);
-	double G0 = k * ldexp(1, 1) * exp2(-s->de_m0);
-	if (!(dG > 0) || !isfinite(G))
-		return -sg * 1e-3 * s->de_scale;
-	/* Koebe 1/4 on the Boettcher map's inverse: the disk of radius e^G - e^G0 about Phi(p) lies
-	 * where the potential exceeds G0, so its image holds a disk of a quarter of that radius
-	 * times |Phi^-1'| = 1/(e^G |grad G|) around p: the distance to the level set is at least
-	 * (1 - e^(G0-G)) / (4 |grad G|); inside, the disk also has to keep out of the unit disk */
-	double d = G >= G0 ? (1 - exp(G0 - G)) / (4 * dG) : -fmin(exp(G0 - G) - 1, 1 - exp(-G)) / (4 * dG);
-	return sg * d * s->de_scale;
-}
-
-void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
-{
-	for (int k = 0; k < 8; k++)
-		out[k] = x[k] == x[k] ? (float)model_de(s, (double[]){x[k], y[k], z[k]}) : NAN;  /* NaN: an idle lane */
 }
 
 static unsigned hash3(unsigned seed, int x, int y, int z)
@@ -966,7 +894,22 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			for (int j = 0; j < 3; j++)
 				gs[j] += e->w * (q[j] - near[j]) / d;
 	}
-	if (s->c.kind != MODEL_C_CONST) {
+	if (s->c.kind == MODEL_C_MANDEL) {
+		/* the six central-difference points' counts iterated together; terraces (no smooth)
+		 * take the smooth count's normals */
+		double h = 1e-5 * (1 + len3(q)), qs[18], m[6];
+		for (int j = 0; j < 6; j++) {
+			memcpy(qs + 3 * j, q, sizeof q);
+			qs[3 * j + j / 2] += j % 2 ? -h : h;
+		}
+		model_counts(&s->c, 6, qs, 1, m);
+		for (int j = 0; j < 3; j++) {
+			if (!s->c.smooth)
+				gs[j] -= s->c.amp * (m[2 * j] - m[2 * j + 1]) / (2 * h * s->c.maxit);
+			else
+				gs[j] -= ((s->c.c0 + s->c.amp * m[2 * j] / s->c.maxit) - (s->c.c0 + s->c.amp * m[2 * j + 1] / s->c.maxit)) / (2 * h);
+		}
+	} else if (s->c.kind != MODEL_C_CONST) {
 		double h = 1e-5 * (1 + len3(q));
 		for (int j = 0; j < 3; j++) {
 			double qa[3] = {q[0], q[1], q[2]}, qb[3] = {q[0], q[1], q[2]};
@@ -975,10 +918,7 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3])
 			double pa[3], pb[3];
 			apply(s->m, qa, pa);
 			apply(s->m, qb, pb);
-			if (s->c.kind == MODEL_C_MANDEL && !s->c.smooth)   /* the terraces' normals: the smooth count's */
-				gs[j] -= s->c.amp * (mandel_count(&s->c, qa, 1) - mandel_count(&s->c, qb, 1)) / (2 * h * s->c.maxit);
-			else
-				gs[j] -= (model_param(s, pa, qa) - model_param(s, pb, qb)) / (2 * h);
+			gs[j] -= (model_param(s, pa, qa) - model_param(s, pb, qb)) / (2 * h);
 		}
 	}
 	/* setup gradient to actual: g = A^-T gs */

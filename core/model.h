@@ -113,6 +113,7 @@ typedef struct {
 	int maxit;                 /* mandelbrot iterations */
 	int smooth;                /* mandelbrot: continuous escape count instead of n */
 	int revolve;               /* mandelbrot: the maps read (x, sqrt(y^2+z^2), 0): the set turned about x */
+	int stepping;              /* mandelbrot: no distance estimate (the earlier stepping and bisecting, for comparison) */
 	int julia;                 /* the Julia process z <- z^2 + k from z = u + iv instead (kind MODEL_C_MANDEL) */
 	double k[2];               /* julia: the constant k */
 	const model_shape_t *shape; /* MODEL_C_SHAPE */
@@ -235,6 +236,15 @@ void model_grad(const model_shape_t *s, const double p[3], double g[3]);
  * a sign, not a bound. model_de8: the same at 8 float points. */
 double model_de(const model_shape_t *s, const double p[3]);
 void model_de8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
+/* 1 with *d = model_de(s, p) when that is a bound (the iteration escaped); 0 when it is only a
+ * sign (inside the set) or undefined (NaN). */
+int model_de_known(const model_shape_t *s, const double p[3], double *d);
+/* The escape counts of the process c (kind MODEL_C_MANDEL) at nl <= 8 setup-frame points q
+ * (x, y, z of each in turn), iterated together: n, or with smooth the continuous count
+ * n + 1 - log2 ln|z_n| (bail-out |z|^2 > 1e6) kept in 0..maxit. */
+void model_counts(const model_param_t *c, int nl, const double *q, int smooth, double *out);
+/* The same for one point, scalar (the lanes' arithmetic: the same value). */
+double model_count(const model_param_t *c, const double q[3], int smooth);
 /* 1 with the level *m0 of the continuous count when c is a smooth process with a level inside
  * (0, maxit) (the surface is the equipotential count = m0). */
 int model_de_level(const model_param_t *c, double *m0);

@@ -36,7 +36,7 @@ static int param_bound(const model_shape_t *s, const double *lo, const double *h
 	double vlo;
 	switch (c->kind) {
 	case MODEL_C_CONST: *cmax = c->c0; *g = 0; return 0;
-	case MODEL_C_NOISE: *cmax = c->c0 + fabs(c->amp); *g = 3 * sqrt(3.0) * fabs(c->amp) * c->freq; return 0;
+	case MODEL_C_NOISE: *cmax = c->c0 + fabs(c->amp); *g = 2 * sqrt(3.0) * fabs(c->amp) * c->freq; return 0;   /* docs/scene-language.md: the noise bound */
 	case MODEL_C_MANDEL: *cmax = fmax(c->c0, c->c0 + c->amp); *g = -1; return 0;
 	case MODEL_C_EXPR: return expr_bound(c->expr, lo, hi, &vlo, cmax, g);
 	default: *cmax = INFINITY; *g = fabs(c->amp) * c->shape->lip; return 0;
@@ -192,7 +192,7 @@ static void set_de(model_shape_t *s)
 	const model_param_t *c = &s->c;
 	double m0;
 	s->de = 0;
-	if (s->nel != 0 || !model_de_level(c, &m0) || (c->julia && !julia_connected(c)))
+	if (s->nel != 0 || c->stepping || !model_de_level(c, &m0) || (c->julia && !julia_connected(c)))
 		return;
 	double uu = 0, vv = 0, uv = 0;
 	for (int i = 0; i < 3; i++) {

@@ -146,7 +146,16 @@ static void visit_children(build_t *b, const double *p, double h, int level)
 	}
 	b->st->visited += 8;
 	b->st->evals += 8;
-	if (b->test == OCT_SPHERICAL) {
+	if (b->s->de) {
+		/* a distance-estimated shape (Douady-Hubbard): the estimate at the centre bounds the
+		 * distance to the surface, so a cell is empty when it exceeds the half-diagonal (either
+		 * test); a centre without a bound (never escaped, or undefined) keeps its cell */
+		double lim = sqrt(3.0) * hc * (1 + 1e-9);
+		for (int c = 0; c < 8; c++) {
+			double d;
+			keep[c] = !model_de_known(b->s, q[c], &d) || !(fabs(d) > lim);
+		}
+	} else if (b->test == OCT_SPHERICAL) {
 		model_eval8(b->s, x, y, z, f);
 		double lim = b->s->lip * sqrt(3.0) * hc * (1 + 1e-4) + b->margin;
 		for (int c = 0; c < 8; c++)
@@ -209,8 +218,8 @@ int oct_build(const model_shape_t *s, int depth, int test, oct_leaf_t **leaves, 
 		snprintf(err, errlen, "expected an octree depth from 1 to 12");
 		return -1;
 	}
-	if (!s->has_lip) {
-		snprintf(err, errlen, "the octree needs a Lipschitz bound, and this shape's defining parameter has none (use raytrace, which brackets)");
+	if (!s->has_lip && !s->de) {
+		snprintf(err, errlen, "the octree needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (use raytrace, which brackets)");
 		return -1;
 	}
 	build_t b;

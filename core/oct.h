@@ -16,7 +16,11 @@
  *                   involved. Shapes of points with a constant c in a
  *                   translated frame take a float fast path (8 children at
  *                   once) with a small rounding margin.
- * Without a Lipschitz bound neither test is safe and oct_build refuses.
+ * A distance-estimated shape (s->de: an elementless smooth Mandelbrot or Julia process) has no
+ * Lipschitz bound, but its estimate d(p) never exceeds the distance from p to the surface: with
+ * either test a cell is kept unless |d| at its centre exceeds its half-diagonal (a centre whose
+ * iteration never escaped has no bound and keeps its cell).
+ * Without a Lipschitz bound or an estimate neither test is safe and oct_build refuses.
  * The root cell counts as visited; every cell tested counts as visited.
  */
 #ifndef LOCUS_OCT_H

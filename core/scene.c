@@ -314,9 +314,10 @@ static int parse_param(scene_lex_t *lx, scene_t *sc, model_shape_t *m)
 		c->maxit = (int)v[2];
 		tok_t f;
 		while (scene_lex_tok(lx, &f)) {
-			int *flag = scene_tok_is(&f, "smooth") ? &c->smooth : scene_tok_is(&f, "revolve") ? &c->revolve : NULL;
+			int *flag = scene_tok_is(&f, "smooth") ? &c->smooth : scene_tok_is(&f, "revolve") ? &c->revolve
+			          : scene_tok_is(&f, "stepping") ? &c->stepping : NULL;
 			if (!flag || *flag)
-				return scene_lex_expected(lx, &f, "'smooth', 'revolve' or the end of the line");
+				return scene_lex_expected(lx, &f, "'smooth', 'revolve', 'stepping' or the end of the line");
 			*flag = 1;
 		}
 		return 0;
@@ -911,8 +912,11 @@ void scene_free(scene_t *s)
 		return;
 	for (size_t i = 0; i < s->nobjs; i++)
 		model_free(s->objs[i].shape);
-	for (size_t i = 0; i < s->nrenders; i++)
+	for (size_t i = 0; i < s->nrenders; i++) {
+		for (size_t k = 0; k < s->renders[i].nnuclei; k++)
+			free(s->renders[i].nuclei[k].pts);   /* polyline nuclei's points */
 		free(s->renders[i].nuclei);
+	}
 	free(s->objs);
 	free(s->renders);
 	free(s);

@@ -48,6 +48,7 @@ typedef struct {
 	int slices, axis, resolution;
 	int hidden;                /* mesh: draw only the edges of faces turned to the eye (core/mesh.h) */
 	double tolerance;          /* mesh: coarsen within this distance of the surface (0: off) */
+	double adaptive;           /* mesh: adaptive extraction, cells flat within this distance (0: uniform) */
 	double line_width;
 	double line_colour[3];
 	/* contour */

@@ -39,18 +39,98 @@ static int whole(scene_lex_t *lx, int *v, int lo, int hi, const char *what)
 	return 0;
 }
 
+/* Points of one polyline nucleus at most (its work grows with them at every pixel). */
+#define SCENE_MAX_POLY_POINTS 100000
+#define SCENE_MAX_POLY_POINTS_S "100000"
+
+static int polyline_points(scene_lex_t *lx, const tok_t *kw, voronoi_nucleus_t *n);
+static int nucleus_options(scene_lex_t *lx, voronoi_nucleus_t *n);
+
+/* One nucleus line of a voronoi block: point X Y, segment X1 Y1 X2 Y2 or polyline X Y X Y ...,
+ * then its options. */
 static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 {
 	voronoi_nucleus_t n;
-	tok_t t;
 	memset(&n, 0, sizeof n);
 	n.colour = SCENE_NO_COLOUR;
 	n.weight = NAN;   /* not given: 0 (additive) or 1 (multiplicative), decided at rendering */
-	n.kind = kw->s[0] == 'p' ? VORONOI_POINT : VORONOI_SEGMENT;
-	if (scene_lex_numbers(lx, n.a, 2, "a nucleus coordinate (x y)") < 0)
+	n.kind = scene_tok_is(kw, "point") ? VORONOI_POINT : scene_tok_is(kw, "segment") ? VORONOI_SEGMENT : VORONOI_POLYLINE;
+	if (n.kind == VORONOI_POLYLINE) {
+		if (polyline_points(lx, kw, &n) < 0)
+			return -1;
+	} else if (scene_lex_numbers(lx, n.a, 2, "a nucleus coordinate (x y)") < 0)
 		return -1;
 	if (n.kind == VORONOI_SEGMENT && scene_lex_numbers(lx, n.b, 2, "the segment's second end (x y)") < 0)
 		return -1;
+	int rc = nucleus_options(lx, &n);
+	if (rc == 0 && r->nnuclei == r->cap) {
+		size_t cap = r->cap ? 2 * r->cap : 16;
+		voronoi_nucleus_t *q = realloc(r->nuclei, cap * sizeof *q);
+		if (!q)
+			rc = scene_lex_error(lx, kw->line, kw->col, "out of memory");
+		else {
+			r->nuclei = q;
+			r->cap = cap;
+		}
+	}
+	if (rc < 0) {
+		free(n.pts);
+		return -1;
+	}
+	r->nuclei[r->nnuclei++] = n;
+	return 0;
+}
+
+/* The x y pairs of a polyline nucleus, up to its first option word or the end of the line
+ * (at least 2 points), into n->pts as x y 0 triples. */
+static int polyline_points(scene_lex_t *lx, const tok_t *kw, voronoi_nucleus_t *n)
+{
+	size_t cap = 0, k = 0;
+	double *p = NULL;
+	for (;;) {
+		size_t save = lx->pos;
+		tok_t t;
+		int more = scene_lex_tok(lx, &t) && !scene_tok_is(&t, "weight") && !scene_tok_is(&t, "z")
+		           && !scene_tok_is(&t, "colour") && !scene_tok_is(&t, "color");
+		lx->pos = save;
+		if (!more)
+			break;
+		if (k / 2 >= SCENE_MAX_POLY_POINTS) {
+			free(p);
+			return scene_lex_error(lx, t.line, t.col, "expected at most " SCENE_MAX_POLY_POINTS_S " points in a polyline");
+		}
+		if (3 * (k / 2) + 3 > cap) {
+			cap = cap ? 2 * cap : 24;
+			double *q = realloc(p, cap * sizeof *q);
+			if (!q) {
+				free(p);
+				return scene_lex_error(lx, t.line, t.col, "out of memory");
+			}
+			p = q;
+		}
+		if (scene_lex_number(lx, &p[3 * (k / 2) + k % 2], k % 2 ? "a y coordinate" : "an x coordinate") < 0) {
+			free(p);
+			return -1;
+		}
+		p[3 * (k / 2) + 2] = 0;
+		k++;
+	}
+	if (k % 2 || k < 4) {
+		free(p);
+		return scene_lex_error(lx, kw->line, kw->col, k % 2 ? "expected x y pairs: a y coordinate is missing"
+		                                                   : "expected at least 2 points (x y x y) in a polyline nucleus");
+	}
+	n->pts = p;
+	n->npts = k / 2;
+	n->a[0] = p[0], n->a[1] = p[1];
+	return 0;
+}
+
+/* A nucleus line's options: weight, z (every point of it) and colour. */
+static int nucleus_options(scene_lex_t *lx, voronoi_nucleus_t *n_)
+{
+	voronoi_nucleus_t n = *n_;
+	tok_t t;
 	while (scene_lex_tok(lx, &t)) {
 		if (scene_tok_is(&t, "weight")) {
 			if (scene_lex_number(lx, &n.weight, "a weight") < 0)
@@ -60,6 +140,8 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 			if (scene_lex_number(lx, &n.a[2], "a height z") < 0)
 				return -1;
 			n.b[2] = n.a[2];
+			for (size_t i = 0; i < n.npts; i++)
+				n.pts[3 * i + 2] = n.a[2];
 		} else if (scene_tok_is(&t, "colour") || scene_tok_is(&t, "color")) {
 			double c[3];
 			if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
@@ -68,15 +150,7 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
 		} else
 			return scene_lex_expected(lx, &t, "'weight', 'z', 'colour' or the end of the line");
 	}
-	if (r->nnuclei == r->cap) {
-		size_t cap = r->cap ? 2 * r->cap : 16;
-		voronoi_nucleus_t *q = realloc(r->nuclei, cap * sizeof *q);
-		if (!q)
-			return scene_lex_error(lx, kw->line, kw->col, "out of memory");
-		r->nuclei = q;
-		r->cap = cap;
-	}
-	r->nuclei[r->nnuclei++] = n;
+	*n_ = n;
 	return 0;
 }
 
@@ -240,6 +314,12 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = scene_lex_number(lx, &r->tolerance, "a distance to the surface");
 			if (!rc && !(r->tolerance >= 0 && r->tolerance <= 1e6))
 				rc = scene_lex_error(lx, t.line, t.col, "expected a tolerance of 0 (no coarsening) or a positive distance");
+		} else if (scene_tok_is(&t, "adaptive") && kind == SCENE_MESH) {
+			rc = scene_lex_number(lx, &r->adaptive, "a distance to the surface");
+			if (!rc && !(r->adaptive >= 0 && r->adaptive <= 1e6))
+				rc = scene_lex_error(lx, t.line, t.col, "expected an adaptive tolerance of 0 (uniform cells) or a positive distance");
+			if (!rc && r->adaptive > 0 && r->depth > MESH_MAX_ADAPTIVE_DEPTH)
+				rc = scene_lex_error(lx, t.line, t.col, "expected depth 9 or less for an adaptive mesh");
 		} else if (scene_tok_is(&t, "bands")) {
 			rc = yes_no(lx, &r->bands);
 		} else if (scene_tok_is(&t, "metric")) {
@@ -256,7 +336,7 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = yes_no(lx, &r->boundaries);
 		} else if (scene_tok_is(&t, "nuclei")) {
 			rc = yes_no(lx, &r->nuclei_marks);
-		} else if (scene_tok_is(&t, "point") || scene_tok_is(&t, "segment")) {
+		} else if (scene_tok_is(&t, "point") || scene_tok_is(&t, "segment") || scene_tok_is(&t, "polyline")) {
 			rc = nucleus(lx, r, &t);
 		} else {
 			rc = scene_lex_expected(lx, &t, "a render option or 'end'");

@@ -115,9 +115,14 @@ int voronoi_check(const voronoi_t *v)
 			return voronoi_fail(VORONOI_EARG, "voronoi: map coefficient m[%d] is not finite", k);
 	for (size_t k = 0; k < v->count; k++) {
 		const voronoi_nucleus_t *n = &v->nuclei[k];
-		int ends = n->kind == VORONOI_SEGMENT ? 2 : 1;
-		if (n->kind != VORONOI_POINT && n->kind != VORONOI_SEGMENT)
+		int ends = n->kind == VORONOI_SEGMENT ? 2 : n->kind == VORONOI_POLYLINE ? 0 : 1;
+		if (n->kind != VORONOI_POINT && n->kind != VORONOI_SEGMENT && n->kind != VORONOI_POLYLINE)
 			return voronoi_fail(VORONOI_EARG, "voronoi: nucleus %zu: unknown kind %d", k, n->kind);
+		if (n->kind == VORONOI_POLYLINE && (!n->pts || n->npts < 2))
+			return voronoi_fail(VORONOI_EARG, "voronoi: nucleus %zu: a polyline needs at least 2 points", k);
+		for (size_t i = 0; n->kind == VORONOI_POLYLINE && i < 3 * n->npts; i++)
+			if (!isfinite(n->pts[i]))
+				return voronoi_fail(VORONOI_EARG, "voronoi: nucleus %zu: coordinate not finite", k);
 		for (int e = 0; e < ends; e++)
 			for (int c = 0; c < 3; c++)
 				if (!isfinite(e ? n->b[c] : n->a[c]))

@@ -2,10 +2,11 @@
  *
  * Plain data in, meta-language out; nothing here knows about scenes.
  *
- * Nuclei are points or line segments with a weight and a colour. The
- * distance d(P, N) from a point P to a nucleus N is the Euclidean distance to
- * the nearest point of N (for a segment, to the nearest point of the closed
- * segment AB). Coordinates are 3D so the same distance serves 3D uses;
+ * Nuclei are points, line segments or polylines with a weight and a colour.
+ * The distance d(P, N) from a point P to a nucleus N is the Euclidean distance
+ * to the nearest point of N (for a segment, to the nearest point of the closed
+ * segment AB; for a polyline, the smallest over its segments: one nucleus, one
+ * cell, 1-Lipschitz like the others). Coordinates are 3D so the same distance serves 3D uses;
  * tessellations are drawn in the plane z = 0 (the z coordinates of nuclei are
  * then taken into account as given, i.e. P = (x, y, 0)).
  *
@@ -53,17 +54,19 @@ enum {
 };
 
 /* Nucleus kinds. */
-enum { VORONOI_POINT = 0, VORONOI_SEGMENT = 1 };
+enum { VORONOI_POINT = 0, VORONOI_SEGMENT = 1, VORONOI_POLYLINE = 2 };
 /* Metrics (how the weight enters). */
 enum { VORONOI_ADDITIVE = 0, VORONOI_MULTIPLICATIVE = 1 };
 
 /* One nucleus. */
 typedef struct {
-	int kind;           /* VORONOI_POINT (uses a) or VORONOI_SEGMENT (a to b) */
+	int kind;           /* VORONOI_POINT (uses a), VORONOI_SEGMENT (a to b) or VORONOI_POLYLINE (pts) */
 	double a[3];        /* the point, or the segment's first end */
 	double b[3];        /* the segment's second end (ignored for points) */
 	double weight;      /* additive: subtracted; multiplicative: divides (> 0) */
 	meta_rgb_t colour;  /* fill colour of its cell */
+	double *pts;        /* polyline: npts >= 2 points, x y z each (the caller's; never written here) */
+	size_t npts;
 } voronoi_nucleus_t;
 
 /* A tessellation: the nuclei, the metric and where the plane lies on the page. */

@@ -7,22 +7,37 @@
 #include "msq.h"
 #include "voronoi.h"
 
+/* The squared distance from p to the closed segment ab. */
+static inline double voronoi_seg_dist2(const double *a, const double *b, const double p[3])
+{
+	double dx = p[0] - a[0], dy = p[1] - a[1], dz = p[2] - a[2];
+	double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+	double uu = ux * ux + uy * uy + uz * uz;
+	if (uu > 0) {
+		double t = (dx * ux + dy * uy + dz * uz) / uu;
+		t = t < 0 ? 0 : t > 1 ? 1 : t;
+		dx -= t * ux;
+		dy -= t * uy;
+		dz -= t * uz;
+	}
+	return dx * dx + dy * dy + dz * dz;
+}
+
 /* d(P, N), inlined where it is hot; voronoi_distance() is this function, so
  * every caller gets bit-identical results (ISO C mode: no FMA contraction). */
 static inline double voronoi_dist(const voronoi_nucleus_t *n, const double p[3])
 {
-	double dx = p[0] - n->a[0], dy = p[1] - n->a[1], dz = p[2] - n->a[2];
-	if (n->kind == VORONOI_SEGMENT) {
-		double ux = n->b[0] - n->a[0], uy = n->b[1] - n->a[1], uz = n->b[2] - n->a[2];
-		double uu = ux * ux + uy * uy + uz * uz;
-		if (uu > 0) {
-			double t = (dx * ux + dy * uy + dz * uz) / uu;
-			t = t < 0 ? 0 : t > 1 ? 1 : t;
-			dx -= t * ux;
-			dy -= t * uy;
-			dz -= t * uz;
+	if (n->kind == VORONOI_SEGMENT)
+		return sqrt(voronoi_seg_dist2(n->a, n->b, p));
+	if (n->kind == VORONOI_POLYLINE) {
+		double d2 = INFINITY;
+		for (size_t i = 0; i + 1 < n->npts; i++) {
+			double e = voronoi_seg_dist2(n->pts + 3 * i, n->pts + 3 * i + 3, p);
+			d2 = e < d2 ? e : d2;
 		}
+		return sqrt(d2);
 	}
+	double dx = p[0] - n->a[0], dy = p[1] - n->a[1], dz = p[2] - n->a[2];
 	return sqrt(dx * dx + dy * dy + dz * dz);
 }
 

@@ -146,7 +146,8 @@ static int clip_segment(const voronoi_rect_t *r, double *ax, double *ay, double 
 }
 
 /* Mark every nucleus inside the rectangle: a disc for a point (its centre
- * inside), a round-capped stroke for a segment (the part inside), so that the
+ * inside), a round-capped stroke for a segment or each segment of a polyline
+ * (the part inside), so that the
  * marks stay within the picture when it is an inset of a larger page. */
 static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_rect_t *r, const voronoi_style_t *style)
 {
@@ -158,8 +159,19 @@ static int write_nuclei(meta_writer_t *w, const voronoi_t *v, const voronoi_rect
 	for (size_t k = 0; k < v->count; k++) {
 		const voronoi_nucleus_t *n = &v->nuclei[k];
 		double ax = m[0] + m[1] * n->a[0] + m[2] * n->a[1], ay = m[3] + m[4] * n->a[0] + m[5] * n->a[1];
-		int rc;
-		if (n->kind == VORONOI_SEGMENT) {
+		int rc = 0;
+		if (n->kind == VORONOI_POLYLINE) {
+			/* each segment's part inside, round-capped, so the joints are round too */
+			if (meta_width(w, 2 * rad) < 0 || meta_cap(w, META_CAP_ROUND) < 0)
+				return fail_meta(w, "writing a nucleus");
+			for (size_t i = 0; i + 1 < n->npts && !rc; i++) {
+				const double *a = n->pts + 3 * i, *b = a + 3;
+				double sx = m[0] + m[1] * a[0] + m[2] * a[1], sy = m[3] + m[4] * a[0] + m[5] * a[1];
+				double ex = m[0] + m[1] * b[0] + m[2] * b[1], ey = m[3] + m[4] * b[0] + m[5] * b[1];
+				if (clip_segment(r, &sx, &sy, &ex, &ey))
+					rc = meta_stroke(w) < 0 || meta_move(w, sx, sy) < 0 || meta_draw(w, ex, ey) < 0 || meta_end(w) < 0;
+			}
+		} else if (n->kind == VORONOI_SEGMENT) {
 			double bx = m[0] + m[1] * n->b[0] + m[2] * n->b[1], by = m[3] + m[4] * n->b[0] + m[5] * n->b[1];
 			if (!clip_segment(r, &ax, &ay, &bx, &by))
 				continue;

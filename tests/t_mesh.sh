@@ -181,4 +181,107 @@ end"
 	|| notok "unwritable mesh output: $(cat "$T/io.err")"
 "$R" fixtures/mesh/sphere.scene -o /dev/full 2> "$T/full.err"
 [ $? = 74 ] && ok "mesh to /dev/full: exit 74" || notok "mesh to /dev/full: $(cat "$T/full.err")"
+# 4. a distance-estimated shape (the Mandelbrot solid, no Lipschitz bound): admesh finds its
+# mesh closed, consistently oriented, one part; coarsening it is refused at the tolerance line
+if "$R" fixtures/mesh/mandelbrot.scene -o "$T/mandel.stl" --stats 2> "$T/mandel.stats" && command -v admesh > /dev/null; then
+	admesh "$T/mandel.stl" > "$T/mandel.admesh" 2>&1
+	bad=""
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$T/mandel.admesh" "$f")
+		[ "$v" = 0 ] || bad="$bad $f=$v"
+	done
+	[ -z "$bad" ] && [ "$(admesh_field "$T/mandel.admesh" "Number of parts")" = 1 ] \
+		&& ok "mandelbrot (distance estimate): admesh: $(stat triangles "$T/mandel.stats") triangles, one part, closed, consistently oriented" \
+		|| notok "mandelbrot: admesh:$bad"
+else
+	notok "mandelbrot mesh: $(tail -1 "$T/mandel.stats")"
+fi
+sed '$d' fixtures/mesh/mandelbrot.scene > "$T/mtol.scene"   # the mesh block without its end
+printf '  tolerance 1e-3\nend\n' >> "$T/mtol.scene"
+rm -f "$T/mtol.stl"
+"$R" "$T/mtol.scene" -o "$T/mtol.stl" 2> "$T/mtol.err"
+rc=$?
+[ "$rc" = 65 ] && grep -q "mtol.scene:8:1: expected tolerance 0 for a distance-estimated shape" "$T/mtol.err" && [ ! -e "$T/mtol.stl" ] \
+	&& ok "coarsening a distance-estimated shape is refused at its render block: $(cat "$T/mtol.err")" \
+	|| notok "mandelbrot tolerance: exit $rc: $(cat "$T/mtol.err")"
+# 5. the solid as tetrahedra (-o X.msh, Gmsh MSH 2.2 ASCII), read back by awk from the format
+# alone: every tetrahedron positively oriented, every face shared by exactly two tetrahedra or
+# on the boundary, the boundary closed (each of its edges in two boundary faces), the volume
+# within 0.5% of the analytic sphere's and ellipsoid's
+msh_check() {   # FILE: prints "tets= neg= flat= volume= inner= boundary= over= open_edges="
+	awk '
+	/^\$Nodes/ { mode = 1; getline; next }
+	/^\$EndNodes/ { mode = 0; next }
+	/^\$Elements/ { mode = 2; getline; next }
+	/^\$EndElements/ { mode = 0; next }
+	mode == 1 { x[$1] = $2; y[$1] = $3; z[$1] = $4; next }
+	mode == 2 && $2 == 4 {
+		a = $6; b = $7; c = $8; d = $9; n++
+		ux = x[b] - x[a]; uy = y[b] - y[a]; uz = z[b] - z[a]
+		vx = x[c] - x[a]; vy = y[c] - y[a]; vz = z[c] - z[a]
+		wx = x[d] - x[a]; wy = y[d] - y[a]; wz = z[d] - z[a]
+		v = (ux * (vy * wz - vz * wy) - uy * (vx * wz - vz * wx) + uz * (vx * wy - vy * wx)) / 6
+		vol += v; neg += v < 0; flat += v == 0
+		f[1] = b " " c " " d; f[2] = a " " c " " d; f[3] = a " " b " " d; f[4] = a " " b " " c
+		for (k = 1; k <= 4; k++) print f[k] > "/dev/stderr"
+	}
+	END { printf "tets=%d neg=%d flat=%d volume=%.9g\n", n, neg, flat, vol }' "$1" 2> "$1.faces" |
+		tr '\n' ' '
+	# faces sorted by their vertex numbers, counted; boundary faces' edges counted
+	awk '{ if ($1 > $2) { t = $1; $1 = $2; $2 = t } if ($2 > $3) { t = $2; $2 = $3; $3 = t } if ($1 > $2) { t = $1; $1 = $2; $2 = t } print }' "$1.faces" |
+		sort | uniq -c | awk '
+		{ c[$1 > 2 ? 3 : $1]++ } $1 == 1 { print $2, $3 > "/dev/stderr"; print $2, $4 > "/dev/stderr"; print $3, $4 > "/dev/stderr" }
+		END { printf "inner=%d boundary=%d over=%d ", c[2], c[1], c[3] }' 2> "$1.bedges"
+	sort "$1.bedges" | uniq -c | awk '$1 != 2 { o++ } END { printf "open_edges=%d\n", o }'
+}
+for c in "sphere 4.18879020" "ellipsoid 4.02123859"; do
+	set -- $c
+	n=$1 vol=$2
+	sed 's/^  depth .*/  depth 5/' "fixtures/mesh/$n.scene" > "$T/$n-solid.scene"
+	if ! "$R" "$T/$n-solid.scene" -o "$T/$n.msh" --stats 2> "$T/$n-solid.stats"; then
+		notok "$n: -o $n.msh: $(tail -1 "$T/$n-solid.stats")"; continue
+	fi
+	head -2 "$T/$n.msh" | tail -1 | grep -q '^2.2 0 8$' && ok "$n.msh: Gmsh MSH 2.2 ASCII" || notok "$n.msh: header $(head -2 "$T/$n.msh")"
+	r=$(msh_check "$T/$n.msh")
+	v=$(echo "$r" | sed -n 's/.*volume=\([^ ]*\).*/\1/p')
+	case "$r" in
+	*" neg=0 flat=0 "*" over=0 open_edges=0"*) ok "$n.msh read back: $r" ;;
+	*) notok "$n.msh read back: $r" ;;
+	esac
+	within "$v" "$vol" 0.5 && ok "$n.msh: volume $v within 0.5% of $vol" || notok "$n.msh: volume '$v', exact $vol"
+	[ "$(echo "$r" | sed -n 's/.*boundary=\([0-9]*\).*/\1/p')" = "$(stat triangles "$T/$n-solid.stats")" ] &&
+		ok "$n.msh: as many boundary faces as the surface has triangles" || notok "$n.msh: boundary faces against $(stat triangles "$T/$n-solid.stats") triangles"
+done
+sed '$d' fixtures/mesh/sphere.scene > "$T/stol.scene"
+printf '  tolerance 1e-3\nend\n' >> "$T/stol.scene"
+rm -f "$T/stol.msh"
+"$R" "$T/stol.scene" -o "$T/stol.msh" 2> "$T/stol.err"
+[ $? = 65 ] && grep -q "expected tolerance 0 for a solid" "$T/stol.err" && [ ! -e "$T/stol.msh" ] \
+	&& ok "a coarsened solid is refused: $(cat "$T/stol.err")" || notok "solid with tolerance: $(cat "$T/stol.err")"
+# 6. adaptive extraction: the rounded box's flat faces in coarse cells, its rounded edges fine;
+# admesh finds it closed across every change of cell size, with the analytic volume and area,
+# and with fewer triangles than the uniform mesh of the same depth
+S=fixtures/mesh/rbox-adaptive.scene
+if "$R" "$S" -o "$T/rbox.stl" --stats 2> "$T/rbox.stats" && sed '/adaptive/d' "$S" > "$T/rbox-u.scene" &&
+	"$R" "$T/rbox-u.scene" -o "$T/rbox-u.stl" --stats 2> "$T/rbox-u.stats" && command -v admesh > /dev/null; then
+	admesh "$T/rbox.stl" > "$T/rbox.admesh" 2>&1
+	bad=""
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$T/rbox.admesh" "$f")
+		[ "$v" = 0 ] || bad="$bad $f=$v"
+	done
+	[ -z "$bad" ] && [ "$(admesh_field "$T/rbox.admesh" "Number of parts")" = 1 ] \
+		&& ok "adaptive rounded box: admesh: one part, closed, consistently oriented" || notok "adaptive rounded box: admesh:$bad"
+	v=$(sed -n 's/.*Volume *: *\([0-9.]*\).*/\1/p' "$T/rbox.admesh")
+	within "$v" 7.26164 0.5 && ok "adaptive rounded box: admesh volume $v within 0.5% of 7.26164" || notok "adaptive rounded box: volume '$v'"
+	a=$(stat area "$T/rbox.stats")
+	within "$a" 19.69841 0.5 && ok "adaptive rounded box: area $a within 0.5% of 19.69841" || notok "adaptive rounded box: area '$a'"
+	ta=$(stat triangles "$T/rbox.stats") tu=$(stat triangles "$T/rbox-u.stats")
+	[ $((ta * 10)) -lt $((tu * 8)) ] && ok "adaptive rounded box: $ta triangles, uniform depth 7: $tu" \
+		|| notok "adaptive rounded box: $ta triangles against $tu uniform"
+else
+	notok "adaptive rounded box: $(tail -1 "$T/rbox.stats")"
+fi
 done_tests

@@ -73,7 +73,7 @@ esac
 ! grep -q "warning" "$T/m.txt" && ok "the smooth process is sphere-traced on its distance estimate: no bracketing warning" || notok "a warning: $(cat "$T/m.txt")"
 printf 'object m\n  c mandelbrot 0 1 10 1 0 0 0 0 1 0 0 smooth smooth\n  bound -1 -1 -1 1 1 1\nend\n' > "$T/mb.scene"
 "$R" "$T/mb.scene" -o "$T/mb.meta" 2> "$T/mb.txt"; rc=$?
-[ "$rc" = 65 ] && grep -q "mb.scene:2:46: expected 'smooth', 'revolve' or the end of the line, found 'smooth'" "$T/mb.txt" \
+[ "$rc" = 65 ] && grep -q "mb.scene:2:46: expected 'smooth', 'revolve', 'stepping' or the end of the line, found 'smooth'" "$T/mb.txt" \
 	&& ok "a repeated mandelbrot flag is refused at its column" || notok "repeated flag: exit $rc $(cat "$T/mb.txt")"
 printf 'object m\n  c 2\n  bound -1 -1 -1 1 1 1\nend\n' > "$T/ce.scene"
 expect_exit 65 "no elements and a constant c refused" "$R" "$T/ce.scene" -o "$T/ce.meta"

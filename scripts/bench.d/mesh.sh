@@ -7,7 +7,8 @@
 # wall times (locus-render writing the PLY; python3 starting, importing, evaluating, extracting),
 # triangle counts and the
 # Hausdorff distance of each mesh to the exact surface, measured by the same script
-# (docs/benchmarks.md, docs/mesh.md).
+# (docs/benchmarks.md, docs/mesh.md). Then the adaptive extraction of a rounded box against the
+# uniform one of the same depth (mesh_adaptive below).
 
 bench_mesh() {
 	if ! have_bin locus-render; then skip mesh "$BIN/locus-render not built yet"; return; fi
@@ -60,4 +61,69 @@ bench_mesh() {
 				"rss_note=whole_process time_note=in_process_field_and_extraction"
 		done
 	done
+	mesh_adaptive
+}
+
+# The rounded box (fixtures/mesh/rbox-adaptive.scene: flat faces, rounded edges and corners) at
+# depth 7, adaptive within 3e-4 against the uniform extraction of the same depth: both Hausdorff
+# distances to the exact surface (skimage_mc.py's measure, its shape functions replaced by the
+# rounded box's exact distance |d_box(P) - 0.4| and points spread over its faces, edges and
+# corners), triangle counts, in-process times (medians of mesh_ms). One BENCH line: Locus
+# adaptive against Locus uniform (anchor=locus-uniform).
+mesh_adaptive() {
+	n=mesh-rbox-adaptive-d7
+	S=fixtures/mesh/rbox-adaptive.scene
+	sed '/adaptive/d' "$S" > "$W/$n-u.scene"
+	cat > "$W/rbox_h.py" <<'PY'
+import sys
+sys.path.insert(0, "tests/bench")
+import numpy as np
+import skimage_mc as sk
+B, R = 0.6, 0.4
+def dist_surface(shape, p):
+    q = np.abs(p) - B
+    return np.abs(np.linalg.norm(np.maximum(q, 0), axis=1) + np.minimum(q.max(axis=1), 0) - R)
+def surface_points(shape, n=200000):
+    rng = np.random.default_rng(1)
+    af, ae, ac = 6 * (2 * B) ** 2, 12 * 2 * B * np.pi * R / 2, 4 * np.pi * R * R
+    nf, ne = int(n * af / (af + ae + ac)), int(n * ae / (af + ae + ac))
+    nc = n - nf - ne
+    u, a, s = rng.uniform(-B, B, (nf, 2)), rng.integers(0, 3, nf), rng.choice([-1.0, 1.0], nf)
+    F = np.zeros((nf, 3))
+    F[np.arange(nf), a] = s * (B + R)
+    F[np.arange(nf), (a + 1) % 3], F[np.arange(nf), (a + 2) % 3] = u[:, 0], u[:, 1]
+    a, t, th = rng.integers(0, 3, ne), rng.uniform(-B, B, ne), rng.uniform(0, np.pi / 2, ne)
+    s1, s2 = rng.choice([-1.0, 1.0], ne), rng.choice([-1.0, 1.0], ne)
+    E = np.zeros((ne, 3))
+    E[np.arange(ne), a] = t
+    E[np.arange(ne), (a + 1) % 3] = s1 * (B + R * np.cos(th))
+    E[np.arange(ne), (a + 2) % 3] = s2 * (B + R * np.sin(th))
+    v = rng.normal(size=(nc, 3))
+    v /= np.linalg.norm(v, axis=1)[:, None]
+    return np.concatenate([F, E, np.sign(v) * B + v * R])
+sk.dist_surface, sk.surface_points = dist_surface, surface_points
+h, hms, hsm = sk.hausdorff("rbox", *sk.read_ply(sys.argv[1]))
+print("HAUSDORFF hausdorff=%.4g h_mesh_to_surface=%.4g h_surface_to_mesh=%.4g" % (h, hms, hsm))
+PY
+	for v in u a; do
+		sc=$S
+		[ "$v" = u ] && sc=$W/$n-u.scene
+		if ! measure "$SLOW_RUNS" /dev/null "$BIN/locus-render" "$sc" -o "$W/$n-$v.ply" --stats; then
+			fail "$n" "$M_ERR"; return
+		fi
+		if [ "$v" = u ]; then
+			ms_u=$(stat_med mesh_ms "$W/errs") tri_u=$(stat triangles "$W/err") mib_u=$M_MIB
+		else
+			ms_a=$(stat_med mesh_ms "$W/errs") tri_a=$(stat triangles "$W/err") mib_a=$M_MIB
+		fi
+		if ! "$MESH_PY" "$W/rbox_h.py" "$W/$n-$v.ply" > "$W/$n-$v.h" 2>&1; then
+			fail "$n" "hausdorff: $(tail -1 "$W/$n-$v.h")"; return
+		fi
+	done
+	l_s=$(awk -v m="${ms_a:-0}" 'BEGIN {printf "%.4f", m / 1000}')
+	a_s=$(awk -v m="${ms_u:-0}" 'BEGIN {printf "%.4f", m / 1000}')
+	line "$n" "$l_s" locus-uniform "$a_s" "$mib_a" "$mib_u" "depth=7 adaptive=3e-4" \
+		"locus_triangles=$tri_a anchor_triangles=$tri_u ratio_triangles=$(ratio "$tri_u" "$tri_a")" \
+		"locus_hausdorff=$(stat hausdorff "$W/$n-a.h") anchor_hausdorff=$(stat hausdorff "$W/$n-u.h")" \
+		"time_note=in_process_field_and_extraction"
 }

@@ -39,13 +39,13 @@ static void sink_free(sink_t *s)
 
 static voronoi_nucleus_t point(double x, double y, double w)
 {
-	voronoi_nucleus_t n = { VORONOI_POINT, { x, y, 0 }, { 0, 0, 0 }, w, 0 };
+	voronoi_nucleus_t n = { VORONOI_POINT, { x, y, 0 }, { 0, 0, 0 }, w, 0, NULL, 0 };
 	return n;
 }
 
 static voronoi_nucleus_t segment(double x0, double y0, double x1, double y1, double w)
 {
-	voronoi_nucleus_t n = { VORONOI_SEGMENT, { x0, y0, 0 }, { x1, y1, 0 }, w, 0 };
+	voronoi_nucleus_t n = { VORONOI_SEGMENT, { x0, y0, 0 }, { x1, y1, 0 }, w, 0, NULL, 0 };
 	return n;
 }
 
@@ -59,17 +59,17 @@ static void unmap(const double m[6], double px, double py, double p[3])
 
 static void test_distance(void)
 {
-	voronoi_nucleus_t s = { VORONOI_SEGMENT, { 0, 0, 0 }, { 4, 0, 0 }, 0, 0 };
+	voronoi_nucleus_t s = { VORONOI_SEGMENT, { 0, 0, 0 }, { 4, 0, 0 }, 0, 0, NULL, 0 };
 	double p1[3] = { 2, 3, 4 }, p2[3] = { -3, 4, 0 }, p3[3] = { 7, 0, 4 };
 	CHECK(fabs(voronoi_distance(&s, p1) - 5) < 1e-12, "3D distance to a segment's inside is perpendicular");
 	CHECK(fabs(voronoi_distance(&s, p2) - 5) < 1e-12, "beyond the first end: distance to the end");
 	CHECK(fabs(voronoi_distance(&s, p3) - 5) < 1e-12, "beyond the second end: distance to the end");
-	voronoi_nucleus_t pt = { VORONOI_POINT, { 1, 2, 2 }, { 0, 0, 0 }, 1.5, 0 };
+	voronoi_nucleus_t pt = { VORONOI_POINT, { 1, 2, 2 }, { 0, 0, 0 }, 1.5, 0, NULL, 0 };
 	double o[3] = { 0, 0, 0 };
 	CHECK(fabs(voronoi_distance(&pt, o) - 3) < 1e-12, "3D distance to a point");
 	CHECK(fabs(voronoi_weighted_distance(&pt, VORONOI_ADDITIVE, o) - 1.5) < 1e-12, "additive: d - w");
 	CHECK(fabs(voronoi_weighted_distance(&pt, VORONOI_MULTIPLICATIVE, o) - 2) < 1e-12, "multiplicative: d / w");
-	voronoi_nucleus_t deg = { VORONOI_SEGMENT, { 1, 1, 0 }, { 1, 1, 0 }, 0, 0 };
+	voronoi_nucleus_t deg = { VORONOI_SEGMENT, { 1, 1, 0 }, { 1, 1, 0 }, 0, 0, NULL, 0 };
 	double q[3] = { 4, 5, 0 };
 	CHECK(fabs(voronoi_distance(&deg, q) - 5) < 1e-12, "a zero-length segment is a point");
 	voronoi_nucleus_t two[2] = { point(0, 0, 0), point(2, 0, 0) };
