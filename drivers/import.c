@@ -12,7 +12,7 @@ static int out_write(void *user, const void *buf, size_t n)
 	return io_write(user, buf, n);
 }
 
-int mimp_run(const char *in, const char *out)
+int mimp_run(const char *in, const char *out, const char *pens)
 {
 	char err[700];
 	io_transport_t *t = io_open_read(in, err, sizeof err);
@@ -57,10 +57,13 @@ int mimp_run(const char *in, const char *out)
 	meta_writer_t *w = meta_writer_new(out_write, o, META_ENC_TEXT);
 	int rc = w ? 0 : -70;
 	snprintf(err, sizeof err, "out of memory");
-	if (w && plotmeta_is(buf, n))
+	if (w && plotmeta_is(buf, n) && pens) {
+		snprintf(err, sizeof err, "locus-meta: --pens: %s is a plotutils metafile, which has no pens", name);
+		rc = -64;
+	} else if (w && plotmeta_is(buf, n))
 		rc = plotmeta_import(buf, n, name, w, err, sizeof err);
 	else if (w)
-		rc = mimp_hpgl(buf, n, name, 4.0, w, err, sizeof err);
+		rc = mimp_hpgl_pens(buf, n, name, 4.0, pens, w, err, sizeof err);
 	free(buf);
 	if (w) {
 		int c = meta_writer_close(w);
@@ -68,6 +71,12 @@ int mimp_run(const char *in, const char *out)
 			snprintf(err, sizeof err, "%s", io_failed(o) ? io_error(o) : "cannot finish the meta file");
 			rc = -74;
 		}
+	}
+	if (rc == -64) {   /* a bad --pens spec: err is "pens: ..." */
+		char msg[sizeof err];
+		snprintf(msg, sizeof msg, "%s", err);
+		if (strncmp(msg, "locus-meta: ", 12))
+			snprintf(err, sizeof err, "locus-meta: --%.680s", msg);
 	}
 	if (rc) {
 		if (io_failed(o))

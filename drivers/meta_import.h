@@ -23,8 +23,9 @@ int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm
 		meta_writer_t *w, char *err, size_t errlen);
 
 /* The subcommand: import the file in (HP-GL, or a GNU plotutils metafile, portable or binary:
- * told from its content) to out (NULL: stdout) in the text form. Prints one line on failure;
- * returns the exit status (0, 65 bad input, 66 no input, 70, 74). */
-int mimp_run(const char *in, const char *out);
+ * told from its content) to out (NULL: stdout) in the text form; pens (NULL: none) as
+ * mimp_hpgl_pens for HP-GL (refused for a plotutils metafile, which has no pens). Prints one
+ * line on failure; returns the exit status (0, 64 bad pens, 65 bad input, 66 no input, 70, 74). */
+int mimp_run(const char *in, const char *out, const char *pens);
 
 #endif

@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <math.h>
 #include <fcntl.h>
+#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,7 +24,8 @@ static const char usage_text[] =
 	"       locus-meta fmt [IN] [-o OUT]\n"
 	"       locus-meta info FILE\n"
 	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
-	"       locus-meta import [IN] [-o OUT]   (HP-GL, HP-GL/2, plotutils metafiles)\n"
+	"       locus-meta import [IN] [-o OUT] [--pens SPEC]   (HP-GL, HP-GL/2, plotutils\n"
+	"         metafiles; SPEC the pens a file sets no PC/PW for: \"1=black:0.5mm,2=red\")\n"
 	"Check, canonically format, describe or convert a Locus meta-language file\n"
 	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
 	"file is written to a new temporary beside it and renamed only when the whole\n"
@@ -333,8 +335,16 @@ static int cmd_info(const char *path)
 
 int main(int argc, char **argv)
 {
-	const char *in = NULL, *out = NULL, *sub;
-	int enc = -1, i;
+	const char *in = NULL, *out = NULL, *pens = NULL, *sub;
+	int enc = -1, c;
+	static const struct option longopts[] = {
+		{ "help", no_argument, NULL, 'h' },
+		{ "version", no_argument, NULL, 'V' },
+		{ "text", no_argument, NULL, 't' },
+		{ "binary", no_argument, NULL, 'b' },
+		{ "pens", required_argument, NULL, 'p' },
+		{ NULL, 0, NULL, 0 }
+	};
 	if (argc >= 2 && strcmp(argv[1], "--help") == 0) {
 		fputs(usage_text, stdout);
 		return stdout_status();
@@ -345,28 +355,45 @@ int main(int argc, char **argv)
 	}
 	if (argc < 2)
 		return usage("missing subcommand");
+	if (argv[1][0] == '-')
+		return usage("the subcommand comes first");
 	sub = argv[1];
-	for (i = 2; i < argc; i++) {
-		const char *a = argv[i];
-		if (strcmp(a, "--help") == 0) {
+	/* the subcommand's options and file names, parsed after it (argv[1] is getopt's name) */
+	opterr = 0;
+	optind = 1;
+	while ((c = getopt_long(argc - 1, argv + 1, ":o:", longopts, NULL)) != -1) {
+		switch (c) {
+		case 'h':
 			fputs(usage_text, stdout);
 			return stdout_status();
-		} else if (strcmp(a, "-o") == 0) {
-			if (++i >= argc)
-				return usage("-o needs a file name");
-			out = argv[i];
-		} else if (strcmp(a, "--text") == 0 || strcmp(a, "--binary") == 0) {
+		case 'V':
+			printf("locus-meta %s (meta-language version %d)\n", LOCUS_VERSION, META_VERSION);
+			return stdout_status();
+		case 'o':
+			out = optarg;
+			break;
+		case 't': case 'b':
 			if (strcmp(sub, "convert") != 0)
 				return usage("--text and --binary belong to 'convert'");
-			enc = a[2] == 't' ? META_ENC_TEXT : META_ENC_BINARY;
-		} else if (a[0] == '-' && a[1]) {
-			fprintf(stderr, "locus-meta: unknown option '%s'\n", a);
+			enc = c == 't' ? META_ENC_TEXT : META_ENC_BINARY;
+			break;
+		case 'p':
+			if (strcmp(sub, "import") != 0)
+				return usage("--pens belongs to 'import'");
+			pens = optarg;
+			break;
+		case ':':
+			fprintf(stderr, "locus-meta: option '%s' needs an argument\n", argv[optind]);
 			return usage(NULL);
-		} else if (!in) {
-			in = a;
-		} else {
-			return usage("too many file names");
+		default:
+			fprintf(stderr, "locus-meta: unknown option '%s'\n", argv[optind]);
+			return usage(NULL);
 		}
+	}
+	for (int i = optind + 1; i < argc; i++) {
+		if (in)
+			return usage("too many file names");
+		in = argv[i];
 	}
 	if (strcmp(sub, "check") == 0 || strcmp(sub, "info") == 0) {
 		if (!in || out)
@@ -378,7 +405,7 @@ int main(int argc, char **argv)
 	if (strcmp(sub, "convert") == 0)
 		return cmd_copy(in ? in : "-", out, enc);
 	if (strcmp(sub, "import") == 0)
-		return mimp_run(in ? in : "-", out);   /* drivers/import.c */
+		return mimp_run(in ? in : "-", out, pens);   /* drivers/import.c */
 	fprintf(stderr, "locus-meta: unknown subcommand '%s'\n", sub);
 	return usage(NULL);
 }

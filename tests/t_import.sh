@@ -124,6 +124,19 @@ head -c 40 "$T/g1.plot" > "$T/cut.plot"
 printf '#PLOT 2\no\nQ 1 2\nx\n' > "$T/q.plot"
 "$M" import "$T/q.plot" 2> "$T/err" > /dev/null; rc=$?
 [ $rc = 65 ] && grep -q "q.plot: byte 10: unknown plotutils op code" "$T/err" && ok "unknown op code: 65 at its byte" || notok "unknown op: $rc $(cat "$T/err")"
+# --pens: a profile's carousel for the pens a file sets no PC/PW for (hp2xx-lo.hp: SP1, no PC,
+# no PW): pen 1 red and 1 mm (4 px at the import's 4 px/mm); a file's own PW still wins
+# (hp2xx-la.hp sets PW 5.0 for its pen 1); a bad spec and a metafile are usage errors, no output
+"$M" import --pens "1=red:1mm" $C/hp2xx-lo.hp -o "$T/pens.meta" && grep -q "^colour #d02020" "$T/pens.meta" && grep -q "^width 4$" "$T/pens.meta" \
+	&& ! grep -q "^colour #d02020" fixtures/import/hp2xx-lo.hp.meta && ok "--pens: pen 1 takes the spec's colour and width" || notok "--pens: $(grep -E '^(colour|width)' "$T/pens.meta" | sort -u)"
+"$M" import --pens "1=red:1mm" $C/hp2xx-la.hp | grep -q "^width 20$" && ok "--pens: the file's own PW 5.0 wins over the spec" || notok "--pens against PW"
+rm -f "$T/bad.meta"
+"$M" import --pens "1=zz" $C/hp2xx-lo.hp -o "$T/bad.meta" 2> "$T/err"; rc=$?
+[ $rc = 64 ] && [ "$(wc -l < "$T/err")" = 1 ] && grep -q "^locus-meta: --pens: '1=zz': unknown colour" "$T/err" && [ ! -e "$T/bad.meta" ] \
+	&& ok "a bad --pens spec: 64, one line, no output: $(cat "$T/err")" || notok "bad pens: $rc $(cat "$T/err")"
+"$M" import --pens "1=red" fixtures/import/zigzag.plot > /dev/null 2> "$T/err"; rc=$?
+[ $rc = 64 ] && grep -q "plotutils metafile, which has no pens" "$T/err" && ok "--pens on a plotutils metafile: 64" || notok "pens on plot: $rc $(cat "$T/err")"
+
 # goldens (fixtures/import/, looked at; fixtures/README.md): corpus files and graph's zigzag
 I=fixtures/import
 for f in hp2xx-arcs.hp inkscape-hpgl_output-shapes.hpgl hp2xx-fill.plt hp2xx-fwedges.plt hp2xx-pm.hp \
