@@ -1,5 +1,6 @@
 /* quant.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -338,6 +339,59 @@ static double on_grid(double v, unsigned bits)
 	return quant_dac8((unsigned)(x < 0 ? 0 : x > 63 ? 63 : x));
 }
 
+/* One pass's assignment of colours [lo, hi) to their nearest entries: sums into acc (k x
+ * (r, g, b, weight)), the colour of the largest weighted error into worst / wi. */
+typedef struct {
+	const qcol_t *col;
+	size_t lo, hi, k;
+	int pass;
+	const qnear_t *q;
+	const int (*ic)[3];
+	const long *quarter;
+	const double (*means)[3];
+	uint8_t *was;
+	double (*acc)[4];
+	double worst;
+	size_t wi;
+} qassign_t;
+
+static void *assign(void *arg)
+{
+	qassign_t *a = arg;
+	const qcol_t *col = a->col;
+	memset(a->acc, 0, a->k * sizeof *a->acc);
+	a->worst = -1, a->wi = a->lo;
+	for (size_t i = a->lo; i < a->hi; i++) {
+		int r = (int)lround(col[i].c[0] * 4), g = (int)lround(col[i].c[1] * 4), b = (int)lround(col[i].c[2] * 4);
+		unsigned e;
+		if (a->pass) {
+			/* Hamerly's test: a colour nearer to its entry than half the distance from that
+			 * entry to any other keeps it, with no search (strictly nearer: the same answer) */
+			const int *c = a->ic[a->was[i]];
+			long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
+			e = dr * dr + dg * dg + db * db < a->quarter[a->was[i]] ? a->was[i] :
+				quant_near_find_from(a->q, r, g, b, a->was[i]);
+		} else {
+			e = quant_near_find(a->q, r, g, b);
+		}
+		a->was[i] = (uint8_t)e;
+		double d = 0;
+		for (int c = 0; c < 3; c++) {
+			a->acc[e][c] += col[i].c[c] * col[i].w;
+			d += (col[i].c[c] - a->means[e][c]) * (col[i].c[c] - a->means[e][c]);
+		}
+		a->acc[e][3] += col[i].w;
+		if (d * col[i].w > a->worst)
+			a->worst = d * col[i].w, a->wi = i;
+	}
+	return NULL;
+}
+
+/* Colours of at least this many are assigned in two halves, the second on a thread of its
+ * own; the halves' sums are added in one order, so the palette depends only on the input
+ * (the same when the thread cannot start: the halves then run one after the other). */
+#define QKSPLIT 4096
+
 /* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
  * nearest to them; entries below fixed (the flat colours) stay. An entry left with no colour
  * is moved to the colour of the largest weighted error. With grid, every entry is held at
@@ -346,26 +400,26 @@ static double on_grid(double v, unsigned bits)
 static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
 		unsigned grid)
 {
-	double (*acc)[4] = malloc(k * sizeof *acc);
+	double (*acc)[4] = malloc(2 * k * sizeof *acc);
 	uint8_t *was = malloc(n ? n : 1);   /* each colour's entry in the pass before */
-	if (!acc || !was) {
+	qnear_t *q = malloc(sizeof *q);
+	if (!acc || !was || !q) {
 		free(acc);
 		free(was);
+		free(q);
 		return -1;
 	}
 	if (grid)
 		for (size_t e = 0; e < k; e++)
 			for (int c = 0; c < 3; c++)
 				means[e][c] = on_grid(means[e][c], grid);
+	unsigned nparts = n >= QKSPLIT ? 2 : 1;
 	for (int pass = 0; pass < passes; pass++) {
 		int ic[QUANT_MAX][3];
-		qnear_t q;
 		for (size_t e = 0; e < k; e++)
 			for (int c = 0; c < 3; c++)
 				ic[e][c] = (int)lround(means[e][c] * 4);
-		quant_near_init(&q, (const int (*)[3])ic, (unsigned)k);
-		/* Hamerly's test: a colour nearer to its entry than half the distance from that entry
-		 * to any other keeps it, with no search (strictly nearer: the same answer) */
+		quant_near_init(q, (const int (*)[3])ic, (unsigned)k);
 		long quarter[QUANT_MAX];
 		for (size_t e = 0; e < k; e++) {
 			long m = -1;
@@ -379,36 +433,32 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			}
 			quarter[e] = m < 0 ? 0 : m / 4;
 		}
-		memset(acc, 0, k * sizeof *acc);
-		double worst = -1;
-		size_t wi = 0;
-		for (size_t i = 0; i < n; i++) {
-			int r = (int)lround(col[i].c[0] * 4), g = (int)lround(col[i].c[1] * 4), b = (int)lround(col[i].c[2] * 4);
-			unsigned e;
-			if (pass) {
-				const int *c = ic[was[i]];
-				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
-				e = dr * dr + dg * dg + db * db < quarter[was[i]] ? was[i] :
-					quant_near_find_from(&q, r, g, b, was[i]);
-			} else {
-				e = quant_near_find(&q, r, g, b);
-			}
-			was[i] = (uint8_t)e;
-			double d = 0;
-			for (int c = 0; c < 3; c++) {
-				acc[e][c] += col[i].c[c] * col[i].w;
-				d += (col[i].c[c] - means[e][c]) * (col[i].c[c] - means[e][c]);
-			}
-			acc[e][3] += col[i].w;
-			if (d * col[i].w > worst)
-				worst = d * col[i].w, wi = i;
+		qassign_t part[2];
+		for (unsigned t = 0; t < nparts; t++)
+			part[t] = (qassign_t){ col, n * t / nparts, n * (t + 1) / nparts, k, pass, q,
+				(const int (*)[3])ic, quarter, (const double (*)[3])means, was, acc + t * k, -1, 0 };
+		pthread_t th;
+		int threaded = nparts == 2 && pthread_create(&th, NULL, assign, &part[1]) == 0;
+		assign(&part[0]);
+		if (threaded)
+			pthread_join(th, NULL);
+		else if (nparts == 2)
+			assign(&part[1]);
+		double worst = part[0].worst;
+		size_t wi = part[0].wi;
+		if (nparts == 2) {
+			for (size_t e = 0; e < k; e++)
+				for (int c = 0; c < 4; c++)
+					acc[e][c] += acc[k + e][c];
+			if (part[1].worst > worst)
+				worst = part[1].worst, wi = part[1].wi;
 		}
 		double moved = 0;
 		for (size_t e = fixed; e < k; e++) {
 			double nc[3];
 			if (acc[e][3] > 0) {
 				for (int c = 0; c < 3; c++)
-					nc[c] = acc[e][3] > 0 ? acc[e][c] / acc[e][3] : means[e][c];
+					nc[c] = acc[e][c] / acc[e][3];
 			} else if (worst > 0) {
 				memcpy(nc, col[wi].c, sizeof nc);
 				worst = 0;
@@ -427,6 +477,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 	}
 	free(acc);
 	free(was);
+	free(q);
 	return 0;
 }
 
