@@ -58,6 +58,9 @@ unsigned quant_near_find(const qnear_t *q, int r, int g, int b);
 /* The same, starting from the guess hint (an index, or -1 for none): same answer, faster when
  * the guess is near (k-means: the entry of the pass before). */
 unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
+/* The nearest entry (as quant_near_find: ties to the lowest index) and the squared distances
+ * to it (*d1) and to the nearest of all the other entries (*d2; -1 when there is no other). */
+unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2);
 /* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
 void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
 

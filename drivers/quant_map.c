@@ -198,6 +198,8 @@ typedef struct {
 
 static int clamp8(int v) { return v < 0 ? 0 : v > 255 ? 255 : v; }
 
+static unsigned nearest_cached(qmap_t *m, const int *t);
+
 /* Index chosen for an 8-bit colour; its shown colour in out. */
 static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 {
@@ -212,9 +214,8 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 	int e = m->cache[key];
 	if (e < 0) {
 		/* the DAC colour of this bin stands for every 8-bit colour in it */
-		int cr = (int)quant_dac8(key >> 12) * 4, cg = (int)quant_dac8(key >> 6 & 63) * 4;
-		int cb = (int)quant_dac8(key & 63) * 4;
-		e = (int)quant_near_find(&m->near, cr, cg, cb);
+		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
+		e = (int)nearest_cached(m, c);
 		m->cache[key] = (int16_t)e;
 	}
 	memcpy(out, m->show[e], sizeof m->show[0]);
