@@ -188,6 +188,8 @@ typedef struct {
 	int16_t *cache;             /* QBINS, -1 = not yet searched */
 	int16_t *exact;             /* QBINS: holds(), -2 = not yet known */
 	int16_t *pure;              /* QBINS: nearest entry of a one-colour bin, -1 = not yet */
+	int16_t *whole;             /* QBINS: the entry nearest to every colour of the bin | 0x100,
+	                             * or 0 when no one entry is (-1 = not yet known) */
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
 	uint16_t cellcount[4096];
 	uint8_t *pool;
@@ -199,6 +201,7 @@ typedef struct {
 static int clamp8(int v) { return v < 0 ? 0 : v > 255 ? 255 : v; }
 
 static unsigned nearest_cached(qmap_t *m, const int *t);
+static unsigned nearest_fast(qmap_t *m, const int *t);
 
 /* Index chosen for an 8-bit colour; its shown colour in out. */
 static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
@@ -215,7 +218,7 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 	if (e < 0) {
 		/* the DAC colour of this bin stands for every 8-bit colour in it */
 		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
-		e = (int)nearest_cached(m, c);
+		e = (int)nearest_fast(m, c);
 		m->cache[key] = (int16_t)e;
 	}
 	memcpy(out, m->show[e], sizeof m->show[0]);
@@ -326,7 +329,28 @@ static unsigned nearest_cached(qmap_t *m, const int *t)
 	return bi;
 }
 
-static unsigned nearest_cached(qmap_t *m, const int *t);
+/* The entry nearest to an 8-bit colour, exactly (the same answer as nearest_cached), in one
+ * look-up when one entry is the nearest for every colour of the colour's DAC bin: no colour of
+ * a bin is farther than r = 2 * sqrt(3) 8-bit steps from the colour the bin shows (each channel
+ * rounds by at most 2), so when the second-nearest entry to that colour is more than 2r farther
+ * than the nearest, the nearest is strictly nearest for the whole bin (triangle inequality). */
+static unsigned nearest_fast(qmap_t *m, const int *t)
+{
+	uint32_t key = quant_key((unsigned)t[0], (unsigned)t[1], (unsigned)t[2]);
+	int w = m->whole[key];
+	if (w < 0) {
+		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
+		long best, second;
+		unsigned bi = quant_near_find2(&m->near, c[0] * 4, c[1] * 4, c[2] * 4, &best, &second);
+		/* 2r in search units (times 4), and a margin for the rounding of sqrt */
+		const double r2 = 2 * 4 * 2 * 1.7320508075688772 + 1e-6;
+		w = second < 0 || sqrt((double)second) - sqrt((double)best) > r2 ? (int)bi | 0x100 : 0;
+		m->whole[key] = (int16_t)w;
+	}
+	if (w)
+		return (unsigned)w & 0xff;
+	return nearest_cached(m, t);
+}
 
 /* Index of a flat colour: the entry holding its colour exactly, or -1. */
 static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p)
@@ -339,7 +363,7 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 		return holds(m, h, key);     /* one exact colour that the palette holds: as is */
 	if (m->pal && m->pal->bits == 8) {   /* 8-bit entries: the pixel's own colour, if held */
 		int t[3] = { p[0], p[1], p[2] };
-		unsigned e = nearest_cached(m, t);
+		unsigned e = nearest_fast(m, t);
 		return m->show[e][0] == p[0] && m->show[e][1] == p[1] && m->show[e][2] == p[2] ? (int)e : -1;
 	}
 	if (!quant_bin_flat(h, q, thr))
@@ -372,10 +396,10 @@ static unsigned nearest_of_pixel(qmap_t *m, const quant_hist_t *h, const uint8_t
 	uint32_t key = quant_key(p[0], p[1], p[2]);
 	int t[3] = { p[0], p[1], p[2] };
 	if (h->bin[key].first & QMIXED)
-		return nearest_cached(m, t);
+		return nearest_fast(m, t);
 	int e = m->pure[key];
 	if (e < 0)
-		m->pure[key] = (int16_t)(e = (int)nearest_cached(m, t));
+		m->pure[key] = (int16_t)(e = (int)nearest_fast(m, t));
 	return (unsigned)e;
 }
 
@@ -454,7 +478,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				int sh[3], t[3] = { p[0], p[1], p[2] };
 				unsigned e;
 				if (m->pal->bits == 8) {
-					e = nearest_cached(m, t);
+					e = nearest_fast(m, t);
 					memcpy(sh, m->show[e], sizeof sh);
 				} else {
 					e = pick(m, p[0], p[1], p[2], sh);
@@ -474,7 +498,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 					t[c] = clamp8(p[c] + in);
 				}
 				if (m->pal) {
-					v = nearest_cached(m, t);
+					v = nearest_fast(m, t);
 					memcpy(shown, m->show[v], sizeof shown);
 				} else {
 					v = pick(m, t[0], t[1], t[2], shown);
@@ -531,15 +555,18 @@ static qmap_t *qmap_new(const quant_palette_t *pal)
 	m->cache = malloc(QBINS * sizeof *m->cache);
 	m->exact = malloc(QBINS * sizeof *m->exact);
 	m->pure = malloc(QBINS * sizeof *m->pure);
-	if (!m->cache || !m->exact || !m->pure) {
+	m->whole = malloc(QBINS * sizeof *m->whole);
+	if (!m->cache || !m->exact || !m->pure || !m->whole) {
 		free(m->cache);
 		free(m->exact);
 		free(m->pure);
+		free(m->whole);
 		free(m);
 		return NULL;
 	}
 	memset(m->cache, 0xff, QBINS * sizeof *m->cache);
 	memset(m->pure, 0xff, QBINS * sizeof *m->pure);
+	memset(m->whole, 0xff, QBINS * sizeof *m->whole);
 	for (size_t k = 0; k < QBINS; k++)
 		m->exact[k] = -2;
 	m->pal = pal;
@@ -557,6 +584,7 @@ static void qmap_free(qmap_t *m)
 	free(m->cache);
 	free(m->exact);
 	free(m->pure);
+	free(m->whole);
 	free(m->pool);
 	free(m->pooldist);
 	free(m);
