@@ -188,6 +188,8 @@ typedef struct {
 	int16_t *cache;             /* QBINS, -1 = not yet searched */
 	int16_t *exact;             /* QBINS: holds(), -2 = not yet known */
 	int16_t *pure;              /* QBINS: nearest entry of a one-colour bin, -1 = not yet */
+	const uint8_t *mixed;       /* QBINS bits: the bin holds more than one 24-bit colour (a
+	                             * copy of the histogram's flags small enough for the caches) */
 	int16_t *whole;             /* QBINS: the entry nearest to every colour of the bin | 0x100,
 	                             * or 0 when no one entry is (-1 = not yet known) */
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
@@ -358,15 +360,14 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 	if (!h)
 		return -1;
 	uint32_t key = quant_key(p[0], p[1], p[2]);
-	const qbin_t *q = &h->bin[key];
-	if (m->pal && !(q->first & QMIXED))
+	if (m->pal && !(m->mixed[key >> 3] >> (key & 7) & 1))
 		return holds(m, h, key);     /* one exact colour that the palette holds: as is */
 	if (m->pal && m->pal->bits == 8) {   /* 8-bit entries: the pixel's own colour, if held */
 		int t[3] = { p[0], p[1], p[2] };
 		unsigned e = nearest_fast(m, t);
 		return m->show[e][0] == p[0] && m->show[e][1] == p[1] && m->show[e][2] == p[2] ? (int)e : -1;
 	}
-	if (!quant_bin_flat(h, q, thr))
+	if (!quant_bin_flat(h, &h->bin[key], thr))
 		return -1;
 	if (!m->pal) {
 		int shown[3];
@@ -391,11 +392,11 @@ static int contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, u
 
 /* Undithered: the entry nearest to the pixel's own colour; searched once per bin when one
  * colour fills the bin (vector content), per pixel otherwise. */
-static unsigned nearest_of_pixel(qmap_t *m, const quant_hist_t *h, const uint8_t *p)
+static unsigned nearest_of_pixel(qmap_t *m, const uint8_t *p)
 {
 	uint32_t key = quant_key(p[0], p[1], p[2]);
 	int t[3] = { p[0], p[1], p[2] };
-	if (h->bin[key].first & QMIXED)
+	if (m->mixed[key >> 3] >> (key & 7) & 1)
 		return nearest_fast(m, t);
 	int e = m->pure[key];
 	if (e < 0)
@@ -519,7 +520,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				int off = ((2 * bayer8[y & 7][x & 7] + 1) * spread) / 128 - spread / 2;
 				v = pick(m, p[0] + off, p[1] + off, p[2] + off, shown);
 			} else if (h && m->pal) {
-				v = nearest_of_pixel(m, h, p);
+				v = nearest_of_pixel(m, p);
 			} else {
 				v = pick(m, p[0], p[1], p[2], shown);
 			}
@@ -622,11 +623,19 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 	qpart_t part[2];
 	unsigned nparts = (size_t)w * hgt >= QSPLIT_PIXELS && hgt >= 2 ? 2 : 1;
 	int rc = 0;
+	uint8_t *mixed = h ? calloc(QBINS / 8, 1) : NULL;
+	if (h && !mixed)
+		rc = -1;
+	for (size_t k = 0; mixed && k < h->nused; k++)
+		if (h->bin[h->used[k]].first & QMIXED)
+			mixed[h->used[k] >> 3] |= (uint8_t)(1u << (h->used[k] & 7));
 	for (unsigned k = 0; k < nparts; k++) {
 		part[k] = (qpart_t){ qmap_new(pal), h, rgb, w, hgt, hgt * k / nparts, hgt * (k + 1) / nparts,
 			stride, dither, -1, out8, out16 };
 		if (!part[k].m)
 			rc = -1;
+		else
+			part[k].m->mixed = mixed;
 	}
 	if (rc == 0 && pal && h && dither != QUANT_DITHER_NONE && exact_palette(part[0].m, h))
 		for (unsigned k = 0; k < nparts; k++)   /* every colour of the picture is in the palette */
@@ -645,6 +654,7 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 	}
 	for (unsigned k = 0; k < nparts; k++)
 		qmap_free(part[k].m);
+	free(mixed);
 	return rc;
 }
 
