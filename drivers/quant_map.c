@@ -1,6 +1,7 @@
 /* quant_map.c: fixed and file palettes, and mapping pixels to a palette or 5-6-5 with dithering. */
 #include <math.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,17 +182,29 @@ static const uint8_t bayer8[8][8] = {
 	{ 15, 47, 7, 39, 13, 45, 5, 37 }, { 63, 31, 55, 23, 61, 29, 53, 21 },
 };
 
+/* Answers per DAC bin, each a function of the palette and the picture only, so the threads
+ * mapping the parts of one picture share them: a part that finds an answer unknown works it
+ * out and stores it; another part doing the same at the same moment stores the same value.
+ * Relaxed atomics make those plain 16-bit loads and stores well defined. */
+typedef struct {
+	_Atomic int16_t cache[QBINS];   /* pick(): the entry nearest to the bin's colour, -1 = not yet */
+	_Atomic int16_t exact[QBINS];   /* holds(), -2 = not yet known */
+	_Atomic int16_t pure[QBINS];    /* nearest entry of a one-colour bin, -1 = not yet */
+	_Atomic int16_t whole[QBINS];   /* the entry nearest to every colour of the bin | 0x100, or
+	                                 * 0 when no one entry is (-1 = not yet known) */
+} qbins_t;
+
+#define BIN_GET(a, k) atomic_load_explicit(&(a)[k], memory_order_relaxed)
+#define BIN_PUT(a, k, v) atomic_store_explicit(&(a)[k], (int16_t)(v), memory_order_relaxed)
+
 /* The target space of a mapping: a palette (through a cache per DAC colour) or 5-6-5. */
 typedef struct {
 	const quant_palette_t *pal;
 	qnear_t near;
-	int16_t *cache;             /* QBINS, -1 = not yet searched */
-	int16_t *exact;             /* QBINS: holds(), -2 = not yet known */
-	int16_t *pure;              /* QBINS: nearest entry of a one-colour bin, -1 = not yet */
+	qbins_t *bc;                /* the per-bin answers, shared by the parts of a mapping */
+	int own_bc;                 /* 1: this part made bc (and frees it) */
 	const uint8_t *mixed;       /* QBINS bits: the bin holds more than one 24-bit colour (a
 	                             * copy of the histogram's flags small enough for the caches) */
-	int16_t *whole;             /* QBINS: the entry nearest to every colour of the bin | 0x100,
-	                             * or 0 when no one entry is (-1 = not yet known) */
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
 	uint16_t cellcount[4096];
 	uint8_t *pool;
@@ -216,12 +229,12 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 		return r5 << 11 | g6 << 5 | b5;
 	}
 	uint32_t key = quant_key((unsigned)r, (unsigned)g, (unsigned)b);
-	int e = m->cache[key];
+	int e = BIN_GET(m->bc->cache, key);
 	if (e < 0) {
 		/* the DAC colour of this bin stands for every 8-bit colour in it */
 		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
 		e = (int)nearest_fast(m, c);
-		m->cache[key] = (int16_t)e;
+		BIN_PUT(m->bc->cache, key, e);
 	}
 	memcpy(out, m->show[e], sizeof m->show[0]);
 	return (unsigned)e;
@@ -231,7 +244,7 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
  * 24-bit colour), or -1; remembered per bin. */
 static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
 {
-	int e = m->exact[key];
+	int e = BIN_GET(m->bc->exact, key);
 	if (e != -2)
 		return e;
 	const qbin_t *q = &h->bin[key];
@@ -251,7 +264,7 @@ static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
 		if ((uint32_t)(d[0] << 12 | d[1] << 6 | d[2]) != key)
 			e = -1;
 	}
-	m->exact[key] = (int16_t)e;
+	BIN_PUT(m->bc->exact, key, e);
 	return e;
 }
 
@@ -339,7 +352,7 @@ static unsigned nearest_cached(qmap_t *m, const int *t)
 static unsigned nearest_fast(qmap_t *m, const int *t)
 {
 	uint32_t key = quant_key((unsigned)t[0], (unsigned)t[1], (unsigned)t[2]);
-	int w = m->whole[key];
+	int w = BIN_GET(m->bc->whole, key);
 	if (w < 0) {
 		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
 		long best, second;
@@ -347,7 +360,7 @@ static unsigned nearest_fast(qmap_t *m, const int *t)
 		/* 2r in search units (times 4), and a margin for the rounding of sqrt */
 		const double r2 = 2 * 4 * 2 * 1.7320508075688772 + 1e-6;
 		w = second < 0 || sqrt((double)second) - sqrt((double)best) > r2 ? (int)bi | 0x100 : 0;
-		m->whole[key] = (int16_t)w;
+		BIN_PUT(m->bc->whole, key, w);
 	}
 	if (w)
 		return (unsigned)w & 0xff;
@@ -398,9 +411,9 @@ static unsigned nearest_of_pixel(qmap_t *m, const uint8_t *p)
 	int t[3] = { p[0], p[1], p[2] };
 	if (m->mixed[key >> 3] >> (key & 7) & 1)
 		return nearest_fast(m, t);
-	int e = m->pure[key];
+	int e = BIN_GET(m->bc->pure, key);
 	if (e < 0)
-		m->pure[key] = (int16_t)(e = (int)nearest_fast(m, t));
+		e = (int)nearest_fast(m, t), BIN_PUT(m->bc->pure, key, e);
 	return (unsigned)e;
 }
 
@@ -547,29 +560,28 @@ static int exact_palette(qmap_t *m, const quant_hist_t *h)
 	return 1;
 }
 
-/* A mapping of its own for one part of the picture (each part has its own caches). */
-static qmap_t *qmap_new(const quant_palette_t *pal)
+/* A mapping for one part of the picture: the per-bin answers of another part (shared), or
+ * new ones when shared is NULL; the cell candidates are its own. */
+static qmap_t *qmap_new(const quant_palette_t *pal, qbins_t *shared)
 {
 	qmap_t *m = calloc(1, sizeof *m);
 	if (!m || !pal)
 		return m;
-	m->cache = malloc(QBINS * sizeof *m->cache);
-	m->exact = malloc(QBINS * sizeof *m->exact);
-	m->pure = malloc(QBINS * sizeof *m->pure);
-	m->whole = malloc(QBINS * sizeof *m->whole);
-	if (!m->cache || !m->exact || !m->pure || !m->whole) {
-		free(m->cache);
-		free(m->exact);
-		free(m->pure);
-		free(m->whole);
-		free(m);
-		return NULL;
+	m->bc = shared;
+	if (!m->bc) {
+		m->bc = malloc(sizeof *m->bc);
+		if (!m->bc) {
+			free(m);
+			return NULL;
+		}
+		m->own_bc = 1;
+		for (size_t k = 0; k < QBINS; k++) {
+			atomic_init(&m->bc->cache[k], -1);
+			atomic_init(&m->bc->exact[k], -2);
+			atomic_init(&m->bc->pure[k], -1);
+			atomic_init(&m->bc->whole[k], -1);
+		}
 	}
-	memset(m->cache, 0xff, QBINS * sizeof *m->cache);
-	memset(m->pure, 0xff, QBINS * sizeof *m->pure);
-	memset(m->whole, 0xff, QBINS * sizeof *m->whole);
-	for (size_t k = 0; k < QBINS; k++)
-		m->exact[k] = -2;
 	m->pal = pal;
 	quant_near_palette(&m->near, pal);
 	for (unsigned k = 0; k < pal->n; k++)
@@ -582,10 +594,8 @@ static void qmap_free(qmap_t *m)
 {
 	if (!m)
 		return;
-	free(m->cache);
-	free(m->exact);
-	free(m->pure);
-	free(m->whole);
+	if (m->own_bc)
+		free(m->bc);
 	free(m->pool);
 	free(m->pooldist);
 	free(m);
@@ -630,8 +640,8 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 		if (h->bin[h->used[k]].first & QMIXED)
 			mixed[h->used[k] >> 3] |= (uint8_t)(1u << (h->used[k] & 7));
 	for (unsigned k = 0; k < nparts; k++) {
-		part[k] = (qpart_t){ qmap_new(pal), h, rgb, w, hgt, hgt * k / nparts, hgt * (k + 1) / nparts,
-			stride, dither, -1, out8, out16 };
+		part[k] = (qpart_t){ qmap_new(pal, k && part[0].m ? part[0].m->bc : NULL), h, rgb, w, hgt,
+			hgt * k / nparts, hgt * (k + 1) / nparts, stride, dither, -1, out8, out16 };
 		if (!part[k].m)
 			rc = -1;
 		else
@@ -652,7 +662,7 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 			if (part[k].rc)
 				rc = -1;
 	}
-	for (unsigned k = 0; k < nparts; k++)
+	for (unsigned k = nparts; k-- > 0;)   /* part 0 owns the shared answers: freed last */
 		qmap_free(part[k].m);
 	free(mixed);
 	return rc;
