@@ -190,8 +190,6 @@ typedef struct {
 	_Atomic int16_t cache[QBINS];   /* pick(): the entry nearest to the bin's colour, -1 = not yet */
 	_Atomic int16_t exact[QBINS];   /* holds(), -2 = not yet known */
 	_Atomic int16_t pure[QBINS];    /* nearest entry of a one-colour bin, -1 = not yet */
-	_Atomic int16_t whole[QBINS];   /* the entry nearest to every colour of the bin | 0x100, or
-	                                 * 0 when no one entry is (-1 = not yet known) */
 } qbins_t;
 
 #define BIN_GET(a, k) atomic_load_explicit(&(a)[k], memory_order_relaxed)
@@ -216,7 +214,6 @@ typedef struct {
 static int clamp8(int v) { return v < 0 ? 0 : v > 255 ? 255 : v; }
 
 static unsigned nearest_cached(qmap_t *m, const int *t);
-static unsigned nearest_fast(qmap_t *m, const int *t);
 
 /* Index chosen for an 8-bit colour; its shown colour in out. */
 static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
@@ -233,7 +230,7 @@ static unsigned pick(qmap_t *m, int r, int g, int b, int *out)
 	if (e < 0) {
 		/* the DAC colour of this bin stands for every 8-bit colour in it */
 		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
-		e = (int)nearest_fast(m, c);
+		e = (int)nearest_cached(m, c);
 		BIN_PUT(m->bc->cache, key, e);
 	}
 	memcpy(out, m->show[e], sizeof m->show[0]);
@@ -344,29 +341,6 @@ static unsigned nearest_cached(qmap_t *m, const int *t)
 	return bi;
 }
 
-/* The entry nearest to an 8-bit colour, exactly (the same answer as nearest_cached), in one
- * look-up when one entry is the nearest for every colour of the colour's DAC bin: no colour of
- * a bin is farther than r = 2 * sqrt(3) 8-bit steps from the colour the bin shows (each channel
- * rounds by at most 2), so when the second-nearest entry to that colour is more than 2r farther
- * than the nearest, the nearest is strictly nearest for the whole bin (triangle inequality). */
-static unsigned nearest_fast(qmap_t *m, const int *t)
-{
-	uint32_t key = quant_key((unsigned)t[0], (unsigned)t[1], (unsigned)t[2]);
-	int w = BIN_GET(m->bc->whole, key);
-	if (w < 0) {
-		int c[3] = { (int)quant_dac8(key >> 12), (int)quant_dac8(key >> 6 & 63), (int)quant_dac8(key & 63) };
-		long best, second;
-		unsigned bi = quant_near_find2(&m->near, c[0] * 4, c[1] * 4, c[2] * 4, &best, &second);
-		/* 2r in search units (times 4), and a margin for the rounding of sqrt */
-		const double r2 = 2 * 4 * 2 * 1.7320508075688772 + 1e-6;
-		w = second < 0 || sqrt((double)second) - sqrt((double)best) > r2 ? (int)bi | 0x100 : 0;
-		BIN_PUT(m->bc->whole, key, w);
-	}
-	if (w)
-		return (unsigned)w & 0xff;
-	return nearest_cached(m, t);
-}
-
 /* Index of a flat colour: the entry holding its colour exactly, or -1. */
 static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p)
 {
@@ -377,7 +351,7 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 		return holds(m, h, key);     /* one exact colour that the palette holds: as is */
 	if (m->pal && m->pal->bits == 8) {   /* 8-bit entries: the pixel's own colour, if held */
 		int t[3] = { p[0], p[1], p[2] };
-		unsigned e = nearest_fast(m, t);
+		unsigned e = nearest_cached(m, t);
 		return m->show[e][0] == p[0] && m->show[e][1] == p[1] && m->show[e][2] == p[2] ? (int)e : -1;
 	}
 	if (!quant_bin_flat(h, &h->bin[key], thr))
@@ -410,10 +384,10 @@ static unsigned nearest_of_pixel(qmap_t *m, const uint8_t *p)
 	uint32_t key = quant_key(p[0], p[1], p[2]);
 	int t[3] = { p[0], p[1], p[2] };
 	if (m->mixed[key >> 3] >> (key & 7) & 1)
-		return nearest_fast(m, t);
+		return nearest_cached(m, t);
 	int e = BIN_GET(m->bc->pure, key);
 	if (e < 0)
-		e = (int)nearest_fast(m, t), BIN_PUT(m->bc->pure, key, e);
+		e = (int)nearest_cached(m, t), BIN_PUT(m->bc->pure, key, e);
 	return (unsigned)e;
 }
 
@@ -492,7 +466,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				int sh[3], t[3] = { p[0], p[1], p[2] };
 				unsigned e;
 				if (m->pal->bits == 8) {
-					e = nearest_fast(m, t);
+					e = nearest_cached(m, t);
 					memcpy(sh, m->show[e], sizeof sh);
 				} else {
 					e = pick(m, p[0], p[1], p[2], sh);
@@ -512,7 +486,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 					t[c] = clamp8(p[c] + in);
 				}
 				if (m->pal) {
-					v = nearest_fast(m, t);
+					v = nearest_cached(m, t);
 					memcpy(shown, m->show[v], sizeof shown);
 				} else {
 					v = pick(m, t[0], t[1], t[2], shown);
@@ -579,7 +553,6 @@ static qmap_t *qmap_new(const quant_palette_t *pal, qbins_t *shared)
 			atomic_init(&m->bc->cache[k], -1);
 			atomic_init(&m->bc->exact[k], -2);
 			atomic_init(&m->bc->pure[k], -1);
-			atomic_init(&m->bc->whole[k], -1);
 		}
 	}
 	m->pal = pal;
