@@ -405,8 +405,8 @@ static void *assign(void *arg)
 }
 
 /* Colours of at least this many are assigned in two halves, the second on a thread of its
- * own; the halves' sums are added in one order, so the palette depends only on the input
- * (the same when the thread cannot start: the halves then run one after the other). */
+ * own when a core is spare (quant_spare_core); the halves' sums are added in one order, so the
+ * palette depends only on the input (the same when the halves run one after the other). */
 #define QKSPLIT 4096
 
 /* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
@@ -434,6 +434,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			for (int c = 0; c < 3; c++)
 				means[e][c] = on_grid(means[e][c], grid);
 	unsigned nparts = n >= QKSPLIT ? 2 : 1;
+	int spare = nparts == 2 && quant_spare_core();
 	int ic[QUANT_MAX][3], prev[QUANT_MAX][3];
 	for (int pass = 0; pass < passes; pass++) {
 		double half[QUANT_MAX], delta[QUANT_MAX], dmax1 = 0, dmax2 = 0;
@@ -471,7 +472,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				(const int (*)[3])ic, half, delta, dmax1, dmax2, dmaxi, (const double (*)[3])means, was, u, l,
 				acc + t * k, -1, 0 };
 		pthread_t th;
-		int threaded = nparts == 2 && pthread_create(&th, NULL, assign, &part[1]) == 0;
+		int threaded = spare && pthread_create(&th, NULL, assign, &part[1]) == 0;
 		assign(&part[0]);
 		if (threaded)
 			pthread_join(th, NULL);

@@ -1,6 +1,7 @@
 /* quant_hist.c: the histogram of DAC colours and the nearest palette entry search. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "quant_int.h"
 
 /* ---- histogram ---------------------------------------------------------------------- */
@@ -115,6 +116,13 @@ unsigned long quant_flat_threshold(const quant_hist_t *h)
 {
 	unsigned long t = h->npix / 2048;
 	return t < 32 ? 32 : t;
+}
+
+int quant_spare_core(void)
+{
+	long n = sysconf(_SC_NPROCESSORS_ONLN);
+	double load;
+	return n >= 2 && getloadavg(&load, 1) == 1 && load < (double)n - 0.5;
 }
 
 /* ---- nearest entry ------------------------------------------------------------------ */

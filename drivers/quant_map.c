@@ -594,10 +594,10 @@ static void *map_part(void *arg)
 }
 
 /* Pictures of at least this many pixels are mapped as two halves (top and bottom rows), the
- * bottom one on a second thread: each half is diffused on its own, from zero error at its
- * first row. The split depends only on the picture's size, never on the machine, so the
- * output is the same everywhere (and the same when the thread cannot start: the halves are
- * then mapped one after the other). */
+ * bottom one on a second thread when a core is spare (quant_spare_core): each half is diffused
+ * on its own, from zero error at its first row. The split depends only on the picture's size,
+ * never on the machine, so the output is the same everywhere (the halves are mapped one after
+ * the other, with one set of caches, when no core is spare or the thread cannot start). */
 #define QSPLIT_PIXELS (1u << 18)
 
 static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
@@ -625,12 +625,16 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 			part[k].dither = QUANT_DITHER_NONE;
 	if (rc == 0) {
 		pthread_t th;
-		int threaded = nparts == 2 && pthread_create(&th, NULL, map_part, &part[1]) == 0;
+		int threaded = nparts == 2 && quant_spare_core() && pthread_create(&th, NULL, map_part, &part[1]) == 0;
 		map_part(&part[0]);
-		if (threaded)
+		if (threaded) {
 			pthread_join(th, NULL);
-		else if (nparts == 2)
+		} else if (nparts == 2) {   /* one after the other: the first part's caches serve */
+			qmap_free(part[1].m);
+			part[1].m = part[0].m;
 			map_part(&part[1]);
+			part[1].m = NULL;
+		}
 		for (unsigned k = 0; k < nparts; k++)
 			if (part[k].rc)
 				rc = -1;
