@@ -9,17 +9,4 @@ static const fbm_mode_t xga_modes[] = {
 		"direct colour, 16 bits per pixel 5-6-5, no palette" },
 };
 
-const fbm_modes_t xga_mode_list = { xga_modes, sizeof xga_modes / sizeof xga_modes[0] };
-
-static int xga_open(dev_device_t *d)
-{
-	return fbm_open(d, &xga_mode_list);
-}
-
-const dev_ops_t dev_xga_ops = {
-	.name = "xga", .description = "XGA framebuffer: 1024x768x256 or 640x480 5-6-5; dump, PNG, PCX, BMP, fbdev",
-	.extension = ".png", .caps = DEV_CAP_RASTER, .colours = 256, .option_list = fbm_options,
-	.priv_size = FBM_PRIV_SIZE,
-	.open = xga_open, .begin_page = fbm_begin_page, .write_band = fbm_write_band,
-	.end_page = fbm_end_page, .close = fbm_close,
-};
+FBM_DEVICE(xga, "XGA framebuffer: 1024x768x256 or 640x480 5-6-5; dump, PNG, PCX, BMP, fbdev");

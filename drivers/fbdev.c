@@ -1,12 +1,14 @@
 /* fbdev.c: a picture onto a Linux framebuffer node: screen info ioctls, mmap, colour map. */
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <linux/fb.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/mman.h>
+#include <time.h>
 #include <unistd.h>
 #include "fbdev.h"
 
@@ -24,7 +26,18 @@ struct fbdev {
 	uint16_t cmap_saved[3][256];
 	int have_cmap;               /* 1 if the colour map was read at open */
 	int cmap_changed;
+	int guarded;                 /* fbdev_guard(): the signals below are caught */
+	struct sigaction old[3];     /* their actions before */
+	int installed[3];
 };
+
+static const int guard_sig[3] = { SIGINT, SIGTERM, SIGHUP };
+static volatile sig_atomic_t guard_caught;
+
+static void on_guard(int sig)
+{
+	guard_caught = sig;          /* only noted: fbdev_hold() restores, then ends the program */
+}
 
 fbdev_t *fbdev_open(const char *path, char *err, size_t errlen)
 {
@@ -169,6 +182,55 @@ int fbdev_restore(fbdev_t *fb, char *err, size_t errlen)
 		fb->cmap_changed = 0;
 	}
 	return 0;
+}
+
+void fbdev_guard(fbdev_t *fb)
+{
+	if (fb->guarded)
+		return;
+	guard_caught = 0;
+	for (int k = 0; k < 3; k++) {
+		struct sigaction sa;
+		fb->installed[k] = 0;
+		if (sigaction(guard_sig[k], NULL, &fb->old[k]) < 0)
+			continue;
+		if (!(fb->old[k].sa_flags & SA_SIGINFO) && fb->old[k].sa_handler == SIG_IGN)
+			continue;            /* ignored (nohup): stays ignored */
+		memset(&sa, 0, sizeof sa);
+		sa.sa_handler = on_guard;
+		sigemptyset(&sa.sa_mask);
+		fb->installed[k] = sigaction(guard_sig[k], &sa, NULL) == 0;
+	}
+	fb->guarded = 1;
+}
+
+int fbdev_hold(fbdev_t *fb, double seconds, char *err, size_t errlen)
+{
+	struct timespec t0, now;
+	clock_gettime(CLOCK_MONOTONIC, &t0);
+	/* short naps, so that a signal taken by another thread of the program ends the wait too */
+	while (!guard_caught) {
+		clock_gettime(CLOCK_MONOTONIC, &now);
+		double left = seconds - ((double)(now.tv_sec - t0.tv_sec) + (double)(now.tv_nsec - t0.tv_nsec) * 1e-9);
+		if (left <= 0)
+			break;
+		double nap = left < 0.05 ? left : 0.05;
+		struct timespec ts = { 0, (long)(nap * 1e9) };
+		nanosleep(&ts, NULL);
+	}
+	int rc = fbdev_restore(fb, err, errlen);
+	int sig = guard_caught;
+	if (fb->guarded) {
+		for (int k = 0; k < 3; k++)
+			if (fb->installed[k])
+				sigaction(guard_sig[k], &fb->old[k], NULL);
+		fb->guarded = 0;
+	}
+	if (sig) {
+		guard_caught = 0;
+		raise(sig);              /* its old action: default (ends the program) or the program's */
+	}
+	return rc;
 }
 
 void fbdev_close(fbdev_t *fb)

@@ -36,6 +36,15 @@ int fbdev_show(fbdev_t *fb, const uint8_t *idx, const quant_palette_t *pal, cons
 		unsigned w, unsigned h, char *err, size_t errlen);
 /* Put back the screen contents and colour map saved at open. 0 or <0 with a message. */
 int fbdev_restore(fbdev_t *fb, char *err, size_t errlen);
+/* Ctrl-C during --hold. fbdev_guard() (call it before fbdev_show) catches SIGINT, SIGTERM and
+ * SIGHUP (those not ignored) from then on, only noting them. fbdev_hold() then waits seconds,
+ * or until such a signal came (also one that came during the show), puts back the screen and
+ * colour map (fbdev_restore), gives the signals their old actions back and, if one came,
+ * raises it again, so the program ends as that signal ends it (exit status 128 + signal: 130
+ * for Ctrl-C) with the screen as it was: the one way this module ends a program. 0, or <0
+ * with a message when the restore failed. */
+void fbdev_guard(fbdev_t *fb);
+int fbdev_hold(fbdev_t *fb, double seconds, char *err, size_t errlen);
 /* Unmap and close (does not restore). NULL is fine. */
 void fbdev_close(fbdev_t *fb);
 

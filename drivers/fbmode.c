@@ -2,7 +2,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include "fbdev.h"
 #include "fbmode.h"
 #include "fbout.h"
@@ -221,13 +220,6 @@ int fbm_write_band(dev_device_t *d, const dev_band_t *b)
 	return 0;
 }
 
-static void sleep_seconds(double s)
-{
-	struct timespec ts = { (time_t)s, (long)((s - (double)(time_t)s) * 1e9) };
-	while (nanosleep(&ts, &ts) != 0)
-		;
-}
-
 static int show_on_fb(dev_device_t *d, fbm_t *f, unsigned ncol)
 {
 	char err[400];
@@ -245,13 +237,16 @@ static int show_on_fb(dev_device_t *d, fbm_t *f, unsigned ncol)
 			}
 		}
 	}
-	if (fbdev_show(f->fb, f->idx, &f->pal, f->shown, f->w, f->h, err, sizeof err))
+	if (f->hold > 0)             /* Ctrl-C from here on: the old screen back, then exit 130 */
+		fbdev_guard(f->fb);
+	if (fbdev_show(f->fb, f->idx, &f->pal, f->shown, f->w, f->h, err, sizeof err)) {
+		char e2[400];
+		if (f->hold > 0)         /* put back what the failed show changed */
+			fbdev_hold(f->fb, 0, e2, sizeof e2);
 		return dev_fail(d, DEV_EDEVICE, "%s", err);
-	if (f->hold > 0) {
-		sleep_seconds(f->hold);
-		if (fbdev_restore(f->fb, err, sizeof err))
-			return dev_fail(d, DEV_EDEVICE, "%s", err);
 	}
+	if (f->hold > 0 && fbdev_hold(f->fb, f->hold, err, sizeof err))
+		return dev_fail(d, DEV_EDEVICE, "%s", err);
 	return 0;
 }
 

@@ -45,6 +45,25 @@ int fbm_write_band(dev_device_t *d, const dev_band_t *b);
 int fbm_end_page(dev_device_t *d, const dev_page_t *pg);
 int fbm_close(dev_device_t *d);
 
+/* The operations every framebuffer device shares (all but name, description and open). */
+#define FBM_OPS_COMMON \
+	.extension = ".png", .caps = DEV_CAP_RASTER, .colours = 256, .option_list = fbm_options, \
+	.priv_size = FBM_PRIV_SIZE, .begin_page = fbm_begin_page, .write_band = fbm_write_band, \
+	.end_page = fbm_end_page, .close = fbm_close
+
+/* Define a framebuffer device from its table of modes `static const fbm_mode_t NAME_modes[]`
+ * (dev-vga.c, dev-xga.c): the mode list NAME_mode_list, an open() that gives fbm_open() that
+ * list, and the operations dev_NAME_ops registered as device "NAME". */
+#define FBM_DEVICE(NAME, DESCRIPTION) \
+	const fbm_modes_t NAME##_mode_list = { NAME##_modes, sizeof NAME##_modes / sizeof NAME##_modes[0] }; \
+	static int NAME##_open(dev_device_t *d) { return fbm_open(d, &NAME##_mode_list); } \
+	const dev_ops_t dev_##NAME##_ops = { .name = #NAME, .description = DESCRIPTION, .open = NAME##_open, \
+		FBM_OPS_COMMON }
+
+/* The two devices and their modes (dev-vga.c, dev-xga.c). */
+extern const dev_ops_t dev_vga_ops, dev_xga_ops;
+extern const fbm_modes_t vga_mode_list, xga_mode_list;
+
 /* The whole program locus-vga / locus-xga (fbcli.c): options, --list-modes, -o fb:NODE, the
  * job. Prints its own messages; returns the exit status. */
 int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, const fbm_modes_t *ml);

@@ -229,10 +229,15 @@ static void pcx_line(wbuf_t *w, const uint8_t *b, unsigned n)
 	}
 }
 
+/* 256-colour and direct modes: one plane of 8-bit indices, the palette after 0x0C at the end
+ * (24-bit: three planes of R, G, B). The 16-colour planar mode as PCX 16-colour files are
+ * (the EGA's own layout): four planes of 1 bit, plane k holding bit k of each index, the most
+ * significant bit the leftmost pixel, and the 16-colour palette in the header. */
 static int write_pcx(wbuf_t *w, const fbout_picture_t *p)
 {
-	int direct = p->layout == FBOUT_DIRECT565;
-	unsigned planes = direct ? 3 : 1, bpl = (p->width + 1) & ~1u;
+	int direct = p->layout == FBOUT_DIRECT565, planar = p->layout == FBOUT_PLANAR4;
+	unsigned planes = direct ? 3 : planar ? 4 : 1;
+	unsigned bpl = planar ? ((p->width + 7) / 8 + 1) & ~1u : (p->width + 1) & ~1u;
 	uint8_t *line = calloc(bpl, 1);
 	if (!line) {
 		snprintf(w->err, w->errlen, "pcx: out of memory");
@@ -240,10 +245,14 @@ static int write_pcx(wbuf_t *w, const fbout_picture_t *p)
 	}
 	uint8_t hdr[128];
 	memset(hdr, 0, sizeof hdr);
-	hdr[0] = 10, hdr[1] = 5, hdr[2] = 1, hdr[3] = 8;
+	hdr[0] = 10, hdr[1] = 5, hdr[2] = 1, hdr[3] = planar ? 1 : 8;
 	unsigned v[8] = { 0, 0, p->width - 1, p->height - 1, density_x(p, 300), 300 };
 	for (int k = 0; k < 6; k++)
 		hdr[4 + 2 * k] = (uint8_t)v[k], hdr[5 + 2 * k] = (uint8_t)(v[k] >> 8);
+	if (planar)                  /* the 16-colour palette: bytes 16..63 */
+		for (unsigned k = 0; k < 16; k++)
+			for (int c = 0; c < 3; c++)
+				hdr[16 + 3 * k + c] = (uint8_t)(k < p->pal->n ? quant_show(p->pal, p->pal->dac[k][c]) : 0);
 	hdr[65] = (uint8_t)planes;
 	hdr[66] = (uint8_t)bpl, hdr[67] = (uint8_t)(bpl >> 8);
 	hdr[68] = 1;                 /* palette info: colour */
@@ -253,19 +262,26 @@ static int write_pcx(wbuf_t *w, const fbout_picture_t *p)
 	for (unsigned y = 0; y < p->height; y++) {
 		size_t base = (size_t)y * p->width;
 		for (unsigned plane = 0; plane < planes; plane++) {
-			for (unsigned x = 0; x < p->width; x++) {
-				if (direct) {
-					uint8_t c[3];
-					rgb_of(p, base + x, c);
-					line[x] = c[plane];
-				} else {
-					line[x] = p->idx[base + x];
+			if (planar) {
+				memset(line, 0, bpl);
+				for (unsigned x = 0; x < p->width; x++)
+					if (p->idx[base + x] >> plane & 1)
+						line[x / 8] |= (uint8_t)(0x80 >> (x & 7));
+			} else {
+				for (unsigned x = 0; x < p->width; x++) {
+					if (direct) {
+						uint8_t c[3];
+						rgb_of(p, base + x, c);
+						line[x] = c[plane];
+					} else {
+						line[x] = p->idx[base + x];
+					}
 				}
 			}
 			pcx_line(w, line, bpl);
 		}
 	}
-	if (!direct) {
+	if (!direct && !planar) {
 		put_byte(w, 0x0c);
 		for (unsigned k = 0; k < 256; k++)
 			for (int c = 0; c < 3; c++)

@@ -1,9 +1,6 @@
 /* main-vga.c: locus-vga, a meta file onto VGA mode 13h or 12h (files or a Linux framebuffer). */
 #include "fbmode.h"
 
-extern const dev_ops_t dev_vga_ops;
-extern const fbm_modes_t vga_mode_list;
-
 int main(int argc, char **argv)
 {
 	return fbcli_main(argc, argv, "locus-vga", &dev_vga_ops, &vga_mode_list);

@@ -1,5 +1,6 @@
 /* quant.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -338,6 +339,76 @@ static double on_grid(double v, unsigned bits)
 	return quant_dac8((unsigned)(x < 0 ? 0 : x > 63 ? 63 : x));
 }
 
+/* One pass's assignment of colours [lo, hi) to their nearest entries: sums into acc (k x
+ * (r, g, b, weight)), the colour of the largest weighted error into worst / wi. Hamerly's
+ * bounds skip most searches: u[i] bounds from above the distance from colour i to its entry
+ * was[i], l[i] from below its distance to every other entry (both kept through the entries'
+ * moves by the triangle inequality); when u[i] < max(l[i], half the distance from the entry
+ * to its nearest other), the entry is strictly the nearest: the same answer as a search. */
+typedef struct {
+	const qcol_t *col;
+	const int (*c4)[3];         /* the colours in search units (times 4, rounded) */
+	size_t lo, hi, k;
+	int pass;
+	const qnear_t *q;
+	const int (*ic)[3];
+	const double *half;         /* half the distance from each entry to its nearest other */
+	const double *delta;        /* how far each entry moved since the pass before */
+	double dmax1, dmax2;        /* the largest move, and the largest of the others */
+	unsigned dmaxi;             /* the entry that moved most */
+	const double (*means)[3];
+	uint8_t *was;
+	double *u, *l;
+	double (*acc)[4];
+	double worst;
+	size_t wi;
+} qassign_t;
+
+static void *assign(void *arg)
+{
+	qassign_t *a = arg;
+	const qcol_t *col = a->col;
+	memset(a->acc, 0, a->k * sizeof *a->acc);
+	a->worst = -1, a->wi = a->lo;
+	for (size_t i = a->lo; i < a->hi; i++) {
+		int r = a->c4[i][0], g = a->c4[i][1], b = a->c4[i][2];
+		unsigned e = a->was[i];
+		int search = a->pass == 0;
+		if (!search) {
+			a->u[i] += a->delta[e];
+			a->l[i] -= e == a->dmaxi ? a->dmax2 : a->dmax1;
+			double m = a->l[i] > a->half[e] ? a->l[i] : a->half[e];
+			if (!(a->u[i] < m)) {
+				const int *c = a->ic[e];
+				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
+				a->u[i] = sqrt((double)(dr * dr + dg * dg + db * db));
+				search = !(a->u[i] < m);
+			}
+		}
+		if (search) {
+			long d1, d2;
+			e = quant_near_find2(a->q, r, g, b, &d1, &d2);
+			a->u[i] = sqrt((double)d1);
+			a->l[i] = d2 < 0 ? 1e30 : sqrt((double)d2);
+		}
+		a->was[i] = (uint8_t)e;
+		double d = 0;
+		for (int c = 0; c < 3; c++) {
+			a->acc[e][c] += col[i].c[c] * col[i].w;
+			d += (col[i].c[c] - a->means[e][c]) * (col[i].c[c] - a->means[e][c]);
+		}
+		a->acc[e][3] += col[i].w;
+		if (d * col[i].w > a->worst)
+			a->worst = d * col[i].w, a->wi = i;
+	}
+	return NULL;
+}
+
+/* Colours of at least this many are assigned in two halves, the second on a thread of its
+ * own when a core is spare (quant_spare_core); the halves' sums are added in one order, so the
+ * palette depends only on the input (the same when the halves run one after the other). */
+#define QKSPLIT 4096
+
 /* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
  * nearest to them; entries below fixed (the flat colours) stay. An entry left with no colour
  * is moved to the colour of the largest weighted error. With grid, every entry is held at
@@ -346,27 +417,43 @@ static double on_grid(double v, unsigned bits)
 static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
 		unsigned grid)
 {
-	double (*acc)[4] = malloc(k * sizeof *acc);
-	uint8_t *was = malloc(n ? n : 1);   /* each colour's entry in the pass before */
-	if (!acc || !was) {
-		free(acc);
-		free(was);
+	double (*acc)[4] = malloc(2 * k * sizeof *acc);
+	uint8_t *was = calloc(n ? n : 1, 1);   /* each colour's entry in the pass before */
+	qnear_t *q = malloc(sizeof *q);
+	int (*c4)[3] = malloc((n ? n : 1) * sizeof *c4);
+	double *u = malloc((n ? n : 1) * sizeof *u), *l = malloc((n ? n : 1) * sizeof *l);
+	if (!acc || !was || !q || !c4 || !u || !l) {
+		free(acc), free(was), free(q), free(c4), free(u), free(l);
 		return -1;
 	}
+	for (size_t i = 0; i < n; i++)
+		for (int c = 0; c < 3; c++)
+			c4[i][c] = (int)lround(col[i].c[c] * 4);
 	if (grid)
 		for (size_t e = 0; e < k; e++)
 			for (int c = 0; c < 3; c++)
 				means[e][c] = on_grid(means[e][c], grid);
+	unsigned nparts = n >= QKSPLIT ? 2 : 1;
+	int spare = nparts == 2 && quant_spare_core();
+	int ic[QUANT_MAX][3], prev[QUANT_MAX][3];
 	for (int pass = 0; pass < passes; pass++) {
-		int ic[QUANT_MAX][3];
-		qnear_t q;
-		for (size_t e = 0; e < k; e++)
+		double half[QUANT_MAX], delta[QUANT_MAX], dmax1 = 0, dmax2 = 0;
+		unsigned dmaxi = 0;
+		for (size_t e = 0; e < k; e++) {
 			for (int c = 0; c < 3; c++)
 				ic[e][c] = (int)lround(means[e][c] * 4);
-		quant_near_init(&q, (const int (*)[3])ic, (unsigned)k);
-		/* Hamerly's test: a colour nearer to its entry than half the distance from that entry
-		 * to any other keeps it, with no search (strictly nearer: the same answer) */
-		long quarter[QUANT_MAX];
+			delta[e] = 0;
+			if (pass) {
+				long dr = ic[e][0] - prev[e][0], dg = ic[e][1] - prev[e][1], db = ic[e][2] - prev[e][2];
+				delta[e] = sqrt((double)(dr * dr + dg * dg + db * db));
+			}
+			if (delta[e] > dmax1)
+				dmax2 = dmax1, dmax1 = delta[e], dmaxi = (unsigned)e;
+			else if (delta[e] > dmax2)
+				dmax2 = delta[e];
+		}
+		memcpy(prev, ic, sizeof prev);
+		quant_near_init(q, (const int (*)[3])ic, (unsigned)k);
 		for (size_t e = 0; e < k; e++) {
 			long m = -1;
 			for (size_t f = 0; f < k; f++) {
@@ -377,38 +464,35 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				if (m < 0 || d < m)
 					m = d;
 			}
-			quarter[e] = m < 0 ? 0 : m / 4;
+			half[e] = m < 0 ? 1e30 : sqrt((double)m) / 2;
 		}
-		memset(acc, 0, k * sizeof *acc);
-		double worst = -1;
-		size_t wi = 0;
-		for (size_t i = 0; i < n; i++) {
-			int r = (int)lround(col[i].c[0] * 4), g = (int)lround(col[i].c[1] * 4), b = (int)lround(col[i].c[2] * 4);
-			unsigned e;
-			if (pass) {
-				const int *c = ic[was[i]];
-				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
-				e = dr * dr + dg * dg + db * db < quarter[was[i]] ? was[i] :
-					quant_near_find_from(&q, r, g, b, was[i]);
-			} else {
-				e = quant_near_find(&q, r, g, b);
-			}
-			was[i] = (uint8_t)e;
-			double d = 0;
-			for (int c = 0; c < 3; c++) {
-				acc[e][c] += col[i].c[c] * col[i].w;
-				d += (col[i].c[c] - means[e][c]) * (col[i].c[c] - means[e][c]);
-			}
-			acc[e][3] += col[i].w;
-			if (d * col[i].w > worst)
-				worst = d * col[i].w, wi = i;
+		qassign_t part[2];
+		for (unsigned t = 0; t < nparts; t++)
+			part[t] = (qassign_t){ col, (const int (*)[3])c4, n * t / nparts, n * (t + 1) / nparts, k, pass, q,
+				(const int (*)[3])ic, half, delta, dmax1, dmax2, dmaxi, (const double (*)[3])means, was, u, l,
+				acc + t * k, -1, 0 };
+		pthread_t th;
+		int threaded = spare && pthread_create(&th, NULL, assign, &part[1]) == 0;
+		assign(&part[0]);
+		if (threaded)
+			pthread_join(th, NULL);
+		else if (nparts == 2)
+			assign(&part[1]);
+		double worst = part[0].worst;
+		size_t wi = part[0].wi;
+		if (nparts == 2) {
+			for (size_t e = 0; e < k; e++)
+				for (int c = 0; c < 4; c++)
+					acc[e][c] += acc[k + e][c];
+			if (part[1].worst > worst)
+				worst = part[1].worst, wi = part[1].wi;
 		}
 		double moved = 0;
 		for (size_t e = fixed; e < k; e++) {
 			double nc[3];
 			if (acc[e][3] > 0) {
 				for (int c = 0; c < 3; c++)
-					nc[c] = acc[e][3] > 0 ? acc[e][c] / acc[e][3] : means[e][c];
+					nc[c] = acc[e][c] / acc[e][3];
 			} else if (worst > 0) {
 				memcpy(nc, col[wi].c, sizeof nc);
 				worst = 0;
@@ -425,8 +509,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 		if (moved < (grid ? 0.5 : 0.01 * (double)(k - fixed)))
 			break;
 	}
-	free(acc);
-	free(was);
+	free(acc), free(was), free(q), free(c4), free(u), free(l);
 	return 0;
 }
 

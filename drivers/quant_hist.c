@@ -1,6 +1,7 @@
 /* quant_hist.c: the histogram of DAC colours and the nearest palette entry search. */
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "quant_int.h"
 
 /* ---- histogram ---------------------------------------------------------------------- */
@@ -117,6 +118,13 @@ unsigned long quant_flat_threshold(const quant_hist_t *h)
 	return t < 32 ? 32 : t;
 }
 
+int quant_spare_core(void)
+{
+	long n = sysconf(_SC_NPROCESSORS_ONLN);
+	double load;
+	return n >= 2 && getloadavg(&load, 1) == 1 && load < (double)n - 0.5;
+}
+
 /* ---- nearest entry ------------------------------------------------------------------ */
 
 void quant_near_init(qnear_t *q, const int (*col)[3], unsigned n)
@@ -192,6 +200,53 @@ unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint)
 			}
 		}
 	}
+	return bi;
+}
+
+unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2)
+{
+	int key = r + g + b;
+	unsigned lo = 0, hi = q->n;
+	while (lo < hi) {
+		unsigned mid = (lo + hi) / 2;
+		if (q->key[mid] < key)
+			lo = mid + 1;
+		else
+			hi = mid;
+	}
+	/* as quant_near_find_from, the bound being the second best: no entry beyond a key
+	 * difference dk is nearer than dk^2 / 3 */
+	long best = -1, second = -1;
+	unsigned bi = 0;
+	int up = (int)lo, down = (int)lo - 1;
+	while (up < (int)q->n || down >= 0) {
+		for (int side = 0; side < 2; side++) {
+			int j = side ? down : up;
+			if (side ? j < 0 : j >= (int)q->n)
+				continue;
+			long dk = side ? key - q->key[j] : q->key[j] - key;
+			if (second >= 0 && dk * dk > 3 * second) {
+				if (side)
+					down = -1;
+				else
+					up = (int)q->n;
+				continue;
+			}
+			long dr = q->c[j][0] - r, dg = q->c[j][1] - g, db = q->c[j][2] - b;
+			long d = dr * dr + dg * dg + db * db;
+			if (best < 0 || d < best || (d == best && q->idx[j] < bi)) {
+				second = best;
+				best = d, bi = q->idx[j];
+			} else if (second < 0 || d < second) {
+				second = d;
+			}
+			if (side)
+				down--;
+			else
+				up++;
+		}
+	}
+	*d1 = best, *d2 = second;
 	return bi;
 }
 

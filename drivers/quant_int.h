@@ -58,6 +58,14 @@ unsigned quant_near_find(const qnear_t *q, int r, int g, int b);
 /* The same, starting from the guess hint (an index, or -1 for none): same answer, faster when
  * the guess is near (k-means: the entry of the pass before). */
 unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
+/* The nearest entry (as quant_near_find: ties to the lowest index) and the squared distances
+ * to it (*d1) and to the nearest of all the other entries (*d2; -1 when there is no other). */
+unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2);
+/* 1 when a second thread can be expected to run beside this one: at least two processors
+ * online and a load average below their number less a half. The parts of a mapping or of a
+ * k-means pass run on two threads only then (on a busy machine a second thread only adds
+ * work); the answer never depends on it. */
+int quant_spare_core(void);
 /* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
 void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
 

@@ -58,6 +58,26 @@ for mode in $MODES; do
 		same_file "F $mode $fmt: netpbm $np reads exactly the dump's colours" "$T/f.rgb" "$T/f.$fmt.pnm.rgb"
 	done
 done
+# 12h PCX is a PCX 16-colour file: four 1-bit planes (plane k = bit k of the index), the 16
+# EGA colours in the header. Sixteen bars, one of each EGA colour (every bit of every plane),
+# read back by ImageMagick and pcxtoppm to exactly the dump's colours
+{ echo "LOCUS-META 1"; echo "page 160 120"; echo "clear #000000"
+  k=0; for c in 000000 0000aa 00aa00 00aaaa aa0000 aa00aa aa5500 aaaaaa 555555 5555ff 55ff55 55ffff ff5555 ff55ff ffff55 ffffff; do
+	y=$((k * 7)); r=0; while [ $r -lt 7 ]; do echo "span 0 $((y + r)) 160 #$c"; r=$((r + 1)); done; k=$((k + 1)); done
+  echo "end-page"; } > "$T/ega16.meta"
+$BIN/locus-vga --mode 12h --palette ega --dither none "$T/ega16.meta" -o "$T/ega16.dump"
+$BIN/locus-vga --mode 12h --palette ega --dither none "$T/ega16.meta" -o "$T/ega16.pcx"
+$CHK expect "$T/ega16.dump" 12h "$T/ega16.rgb"
+n=$(od -An -tu1 -v -w3 "$T/ega16.rgb" | sort -u | wc -l)
+[ "$n" = 16 ] && ok "12h pcx: the bar picture uses all 16 EGA colours" || notok "12h pcx: the bar picture has $n colours"
+convert "$T/ega16.pcx" -depth 8 "rgb:$T/ega16.im.rgb" 2>/dev/null
+same_file "12h pcx, 16 colours: ImageMagick reads exactly the dump's colours" "$T/ega16.rgb" "$T/ega16.im.rgb"
+pcxtoppm "$T/ega16.pcx" 2>/dev/null | tail -c "$(wc -c < "$T/ega16.rgb")" > "$T/ega16.np.rgb"
+same_file "12h pcx, 16 colours: pcxtoppm reads exactly the dump's colours" "$T/ega16.rgb" "$T/ega16.np.rgb"
+# the header's 48 palette bytes are the dump's 16 DAC entries at 8 bits
+od -An -tu1 -v -j16 -N48 "$T/ega16.pcx" | xargs echo > "$T/ega16.hp"
+tail -c 48 "$T/ega16.dump" | od -An -tu1 -v | xargs -n1 | awk '{printf("%s%d", (NR > 1 ? " " : ""), $1 * 4 + int($1 / 16))} END {print ""}' > "$T/ega16.dp"
+same_file "12h pcx: the EGA palette in the header (bytes 16-63)" "$T/ega16.dp" "$T/ega16.hp"
 # -f wins over the suffix; stdin to stdout
 $BIN/locus-vga -f pcx $F -o "$T/fpcx.png" && cmp -s "$T/fpcx.png" "$T/f.pcx" 2>/dev/null || true
 $BIN/locus-vga $F -o "$T/f13.pcx"

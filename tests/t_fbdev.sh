@@ -2,7 +2,8 @@
 # t_fbdev.sh: locus-vga -o fb:/dev/fb0 through the real open, ioctl and mmap path, on fake
 # framebuffers under umockdev (tests/fbdev/fbharness.c): 32-bit true colour with unusual bit
 # fields, 24-bit packed, 16-bit 5-6-5, 8-bit pseudo-colour with FBIOPUTCMAP, padded lines; the node's memory
-# read back and compared with the dump of the same picture; --hold restores screen and colour map.
+# read back and compared with the dump of the same picture; --hold restores screen and colour map,
+# also when SIGINT or SIGTERM ends the hold.
 . tests/lib.sh
 : "${TESTBIN:=build/native/tests}"
 H=$TESTBIN/fbharness
@@ -33,6 +34,24 @@ fb "13h on an 8-bit screen" 8 320 200 200 150 352 "$T/f13.dump" 13h -- $F -o fb:
 fb "12h on an 8-bit screen" 8 640 480 320 240 672 "$T/f12.dump" 12h -- --mode 12h $F -o fb:/dev/fb0
 fb "32-bit, --hold: restored" 32 320 200 200 150 1344 - 13h -- --hold 0.02 $F -o fb:/dev/fb0
 fb "8-bit, --hold: restored" 8 320 200 200 150 352 - 13h -- --hold 0.02 $F -o fb:/dev/fb0
+# Ctrl-C (SIGINT) or SIGTERM during a long --hold: the old screen and colour map come back at
+# once and the program ends as the signal ends it (130, 143), not after the 30 seconds
+sig() {   # sig DESC SIGNAL STATUS BPP LINE_LENGTH
+	d=$1 s=$2 want=$3 bpp=$4 ll=$5
+	t0=$(date +%s)
+	FBH_SIGNAL=$s "$H" "$bpp" 320 200 200 150 "$ll" "$T/o" -- "$BIN/locus-vga" --hold 30 $F -o fb:/dev/fb0 > "$T/err" 2>&1
+	r=$? t=$(( $(date +%s) - t0 ))
+	if [ "$r" = "$want" ] && [ "$t" -lt 20 ] && grep -q "signal $s" "$T/o.log"; then
+		ok "$d: exit $r after ${t} s"
+	else
+		notok "$d: exit $r (wanted $want) after ${t} s: $(head -c 200 "$T/err")"
+	fi
+	$CHK fbmem "$T/o.mem" "$bpp" 320 200 "$ll" - 13h "$T/o.cmap" "$d"
+}
+sig "8-bit, SIGINT during --hold" INT 130 8 352
+grep -c FBIOPUTCMAP "$T/o.log" | grep -qx 2 && ok "8-bit, SIGINT: the colour map put twice (the picture's, then the old one)" ||
+	notok "8-bit, SIGINT: FBIOPUTCMAP $(grep -c FBIOPUTCMAP "$T/o.log") times"
+sig "32-bit, SIGTERM during --hold" TERM 143 32 1344
 # the same through locus-play's device option
 PROG=locus-play fb "locus-play -d vga -O fb=/dev/fb0" 8 320 200 200 150 352 "$T/f13.dump" 13h -- -d vga -O fb=/dev/fb0 $F
 done_tests

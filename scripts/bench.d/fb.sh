@@ -1,17 +1,50 @@
 # scripts/bench.d/fb.sh (sourced by scripts/bench.sh): issue 7, the framebuffer devices.
-#  - fb-quant-PIC-MODE: 256-colour quantisation of a 1024x768 24-bit picture (PIC: plate, a
+#  - fb-quant-PIC-...: 256-colour quantisation of a 1024x768 24-bit picture (PIC: plate, a
 #    rendered gallery plate; plasma, a seeded ImageMagick plasma; photo, the astronaut photograph
 #    of python3-skimage), fed to locus-xga as a binary meta file holding the picture as an image
 #    and written as an indexed PNG, against pngquant 2.17 (default dithered / --nofs) and
 #    ImageMagick -colors 256 (-dither FloydSteinberg / +dither) on the PNG of the same picture.
-#    PSNR against the 24-bit original (ImageMagick compare) and whole-program time each. Target:
-#    PSNR at least pngquant's at no more than half its time (ratio >= 2). The -dac8 lines give
-#    Locus 8-bit palette entries as pngquant has (the default is the hardware's 6-bit DAC).
+#    PSNR against the 24-bit original (ImageMagick compare) and whole-program time each.
+#    Which rows are the issue's targets (issue_target=yes): the -dac8 rows against pngquant.
+#    The issue asks for "PSNR at least pngquant's ... at no more than half its time" of an
+#    indexed PNG; pngquant's PNG holds 8-bit palette entries, and so does Locus's with
+#    -O dac=8: the same kind of file, dithered against dithered, undithered against --nofs
+#    (target: PSNR >= pngquant's and ratio >= 2). The rows without -dac8 are the hardware's
+#    6-bit DAC (the framebuffer modes, issue item 4: "at the DAC's 6-bit precision"): no
+#    palette of 6-bit entries, of any size, with any dithering, does better than every pixel
+#    shown as its nearest 6-bit colour, printed as ceiling_db= (the bound; 44.3 dB on the plate,
+#    below pngquant's 59 dB with 8-bit entries). Their target (issue_target=dac6): PSNR at
+#    least min(anchor's, ceiling - 0.05 dB) and, against pngquant, ratio >= 2. Against
+#    ImageMagick only the PSNR is compared (target=psnr), 6-bit rows with the same ceiling rule.
 #  - fb-a-13h, fb-a-xga: workload a (990,000 segments) to mode 13h and XGA as indexed PNG,
 #    against locus-raster's PNG of the same file (target: at most 1.3x its time, ratio >= 0.77).
 
 # psnr ORIG PIC: PSNR in dB (ImageMagick), "inf" when identical
 fb_psnr() { compare -metric PSNR "$1" "$2" null: 2>&1 | awk '{print $1}'; }
+
+# fb_ceiling PNG: the PSNR (dB) of the picture with every channel shown as its nearest 6-bit DAC
+# level ((v << 2) | (v >> 4)): the best any palette of 6-bit entries can do, dithered or not
+fb_ceiling() {
+	python3 - "$1" <<'EOF'
+import math, subprocess, sys
+ppm = subprocess.run(["convert", sys.argv[1], "-strip", "-depth", "8", "ppm:-"], capture_output=True, check=True).stdout
+fields, pos = [], 0
+while len(fields) < 4:                 # P6, width, height, maxval, then one whitespace byte
+    while ppm[pos:pos + 1].isspace():
+        pos += 1
+    end = pos
+    while not ppm[end:end + 1].isspace():
+        end += 1
+    fields.append(ppm[pos:end])
+    pos = end
+data = ppm[pos + 1:]
+levels = [(v << 2) | (v >> 4) for v in range(64)]
+err = bytes(min(abs(c - l) for l in levels) for c in range(256))
+e = data.translate(err)
+se = sum(e.count(bytes([k])) * k * k for k in range(1, 4))
+print("inf" if se == 0 else "%.3f" % (10 * math.log10(255.0 * 255.0 * len(data) / se)))
+EOF
+}
 
 # fb_png2meta PNG OUT: the picture as one image statement (text), then binary
 fb_png2meta() {
@@ -38,13 +71,15 @@ EOF
 	"$BIN/locus-meta" convert --binary "$W/fb-img.meta" -o "$2"
 }
 
-# fb_pair NAME PIC LOCUS_OPTS ANCHOR ANCHOR_CMD...: rounds of Locus and the anchor, one line;
-# the target (PSNR at least the anchor's, time ratio >= 2) is the issue's for pngquant; against
-# ImageMagick only the PSNR is compared (target=psnr)
+# fb_pair NAME PIC LOCUS_OPTS ANCHOR ANCHOR_CMD...: rounds of Locus and the anchor, one line.
+# Against pngquant the time ratio must be >= 2; against ImageMagick only the PSNR counts. Rows
+# with dac=8 in LOCUS_OPTS: PSNR at least the anchor's; the others (6-bit DAC): at least
+# min(the anchor's, the 6-bit ceiling - 0.05 dB), with ceiling_db= on the line.
 fb_pair() {
 	p_n=$1 p_pic=$2 p_opt=$3 p_an=$4
 	shift 4
 	case $p_an in pngquant*) p_t=2 ;; *) p_t=0 ;; esac
+	case $p_opt in *dac=8*) p_c=inf ;; *) eval "p_c=\$fb_ceil_$p_pic" ;; esac
 	: > "$W/r.fbl"
 	: > "$W/r.fba"
 	ERR="" i=0
@@ -61,10 +96,16 @@ fb_pair() {
 	lp=$(fb_psnr "$W/$p_pic.png" "$W/$p_n.locus.png")
 	ap=$(fb_psnr "$W/$p_pic.png" "$W/$p_n.anchor.png")
 	r=$(ratio "$a_s" "$M_S")
-	good=$(awk -v l="$lp" -v a="$ap" -v r="$r" -v t="$p_t" 'BEGIN {print (l + 0 >= a + 0 && r + 0 >= t) ? "yes" : "no"}')
+	good=$(awk -v l="$lp" -v a="$ap" -v r="$r" -v t="$p_t" -v c="$p_c" 'BEGIN {
+		want = a + 0; if (c != "inf" && c - 0.05 < want) want = c - 0.05
+		print (l + 0 >= want && r + 0 >= t) ? "yes" : "no"}')
 	tg=$([ "$p_t" = 2 ] && echo 2 || echo psnr)
-	line "$p_n" "$M_S" "$p_an" "$a_s" "$M_MIB" "$a_mib" "target=$tg pass=$good $(cpu "$M_CPU" "$a_cpu")" \
-		"locus_psnr_db=$lp anchor_psnr_db=$ap colours=$(identify -format %k "$W/$p_n.locus.png")"
+	case $p_opt in
+	*dac=8*) it=$([ "$p_t" = 2 ] && echo yes || echo no) ceil="" ;;
+	*) it=dac6 ceil="ceiling_db=$p_c" ;;
+	esac
+	line "$p_n" "$M_S" "$p_an" "$a_s" "$M_MIB" "$a_mib" "target=$tg pass=$good issue_target=$it $(cpu "$M_CPU" "$a_cpu")" \
+		"locus_psnr_db=$lp anchor_psnr_db=$ap${ceil:+ $ceil} colours=$(identify -format %k "$W/$p_n.locus.png")"
 }
 
 bench_fb() {
@@ -93,6 +134,10 @@ bench_fb() {
 		if ! fb_png2meta "$W/$p.png" "$W/$p.lmb" 2> "$W/fb.log"; then
 			fail "fb-quant-$p" "meta of the picture: $(tail -1 "$W/fb.log")"; continue
 		fi
+		if ! c=$(fb_ceiling "$W/$p.png" 2> "$W/fb.log"); then
+			fail "fb-quant-$p" "the 6-bit ceiling: $(tail -1 "$W/fb.log")"; continue
+		fi
+		eval "fb_ceil_$p=\$c"
 		fb_pair "fb-quant-$p-fs" "$p" "" pngquant \
 			pngquant --force --output "$W/fb-quant-$p-fs.anchor.png" 256 "$W/$p.png"
 		fb_pair "fb-quant-$p-nofs" "$p" "-O dither=none" pngquant-nofs \
@@ -106,6 +151,10 @@ bench_fb() {
 			convert "$W/$p.png" -dither FloydSteinberg -colors 256 "PNG8:$W/fb-quant-$p-im-fs.anchor.png"
 		fb_pair "fb-quant-$p-im-nofs" "$p" "-O dither=none" im-colors-256-nodither \
 			convert "$W/$p.png" +dither -colors 256 "PNG8:$W/fb-quant-$p-im-nofs.anchor.png"
+		fb_pair "fb-quant-$p-im-fs-dac8" "$p" "-O dac=8" im-colors-256 \
+			convert "$W/$p.png" -dither FloydSteinberg -colors 256 "PNG8:$W/fb-quant-$p-im-fs-dac8.anchor.png"
+		fb_pair "fb-quant-$p-im-nofs-dac8" "$p" "-O dither=none,dac=8" im-colors-256-nodither \
+			convert "$W/$p.png" +dither -colors 256 "PNG8:$W/fb-quant-$p-im-nofs-dac8.anchor.png"
 	done
 	# workload a onto the framebuffer modes against locus-raster
 	if [ ! -f "$W/a.meta" ]; then

@@ -125,8 +125,17 @@ def header(path, fmt, mode):
         report(d[0] == 10 and d[1] == 5 and d[2] == 1, f"{mode} pcx: version 5, RLE")
         xmax, ymax = struct.unpack("<HH", d[8:12])
         report((xmax + 1, ymax + 1) == (w, h), f"{mode} pcx: {xmax + 1}x{ymax + 1}")
-        if layout != "direct565":
+        bits, planes, bpl = d[3], d[65], struct.unpack("<H", d[66:68])[0]
+        if layout == "planar4":
+            # a PCX 16-colour file: 4 planes of 1 bit, the EGA palette in the header, no 0x0C
+            report((bits, planes, bpl) == (1, 4, (w + 15) // 16 * 2),
+                   f"{mode} pcx: 4 planes of 1 bit, {bpl} bytes a plane line")
+            report(d[-769] != 12 or len(d) < 769, f"{mode} pcx: no 256-colour palette at the end")
+        elif layout == "linear8":
+            report((bits, planes) == (8, 1), f"{mode} pcx: one plane of 8 bits")
             report(d[-769] == 12, f"{mode} pcx: 0x0C then the 256-colour palette")
+        else:
+            report((bits, planes) == (8, 3), f"{mode} pcx: three planes of 8 bits")
     elif fmt == "bmp":
         off, = struct.unpack("<I", d[10:14])
         bw, bh, planes, bits, comp = struct.unpack("<iiHHI", d[18:34])

@@ -12,7 +12,11 @@
  * true colour with red at bit 0, green 8, blue 16 (the reverse of the usual order, so that a
  * program ignoring the bit fields shows); 24 is packed B, G, R bytes (red at bit 16); 16 is
  * 5-6-5; 8 is pseudo-colour.
- * Exits with the program's status (or 70 when the harness itself fails).
+ * With FBH_SIGNAL=INT|TERM in the environment, the harness sends that signal to the program
+ * FBH_SIGNAL_MS milliseconds (default 300) after the program first changed the screen's top
+ * row (an interrupt during --hold).
+ * Exits with the program's status, 128 + the signal when a signal ended it (as a shell
+ * reports it), or 70 when the harness itself fails.
  */
 #include <errno.h>
 #include <stddef.h>
@@ -23,6 +27,9 @@
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/wait.h>
+#include <signal.h>
+#include <time.h>
+#include <fcntl.h>
 #include <umockdev.h>
 #include <unistd.h>
 
@@ -174,11 +181,34 @@ int main(int argc, char **argv)
 		_exit(127);
 	}
 	int status = 0;
+	const char *sn = getenv("FBH_SIGNAL"), *sms = getenv("FBH_SIGNAL_MS");
+	int sig = !sn ? 0 : !strcmp(sn, "INT") ? SIGINT : !strcmp(sn, "TERM") ? SIGTERM : 0;
+	double delay = (sms ? atof(sms) : 300) / 1000, changed = -1;
+	int nfd = sig ? open(node, O_RDONLY) : -1;
+	unsigned char *top = malloc(fix.line_length ? fix.line_length : 1);
 	while (waitpid(pid, &status, WNOHANG) == 0) {
 		while (g_main_context_iteration(NULL, FALSE))
 			;
 		usleep(500);
+		if (nfd < 0 || !top)
+			continue;
+		struct timespec ts;
+		clock_gettime(CLOCK_MONOTONIC, &ts);
+		double now = (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+		if (changed < 0 && pread(nfd, top, fix.line_length, 0) == (ssize_t)fix.line_length)
+			for (unsigned k = 0; k < fix.line_length && changed < 0; k++)
+				if (top[k] != 0x5a)
+					changed = now;
+		if (changed >= 0 && now - changed >= delay) {
+			fprintf(logfp, "signal %s\n", sn);
+			kill(pid, sig);
+			close(nfd);
+			nfd = -1;
+		}
 	}
+	free(top);
+	if (nfd >= 0)
+		close(nfd);
 	f = fopen(node, "rb");
 	snprintf(path, sizeof path, "%s.mem", out);
 	FILE *m = fopen(path, "wb");
@@ -203,5 +233,5 @@ int main(int argc, char **argv)
 	g_object_unref(handler);
 	g_object_unref(tb);
 	g_free(root);
-	return WIFEXITED(status) ? WEXITSTATUS(status) : 70;
+	return WIFEXITED(status) ? WEXITSTATUS(status) : WIFSIGNALED(status) ? 128 + WTERMSIG(status) : 70;
 }
