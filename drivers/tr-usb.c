@@ -264,11 +264,13 @@ long tr_usb_write(io_transport_t *t, const void *buf, size_t n)
 			r = LIBUSB_ERROR_TIMEOUT;   /* nothing taken: busy */
 		if (r == LIBUSB_ERROR_PIPE && stalls++ == 0)
 			continue;   /* a stall with nothing sent: try once more */
+		/* a signal first: it can end the transfer's wait, which libusb may then report as an I/O
+		 * error (seen under umockdev), and what the user did is what the message must say */
+		if (tr_check_interrupt(t))
+			return -1;
 		if (r == LIBUSB_ERROR_NO_DEVICE || r == LIBUSB_ERROR_IO)
 			return io_link_tempfail(t, "the printer went away after %lld bytes (unplugged or off): %s",
 				s->sent, libusb_strerror(r));
-		if (tr_check_interrupt(t))
-			return -1;
 		if (r == LIBUSB_ERROR_TIMEOUT && tr_now_ms() - start < s->timeout_ms)
 			continue;   /* busy: wait for it */
 		const char *w = port_words(s->h, s->iface);
