@@ -17,6 +17,14 @@ typedef struct {
 	uint32_t len;
 } rec_t;
 
+/* A painter's own reader of the spool (pread at its own offset, so that two painters replay
+ * it at once): records skipped within the buffer cost no system call. */
+typedef struct {
+	unsigned char *buf;
+	size_t cap, len, pos;   /* buf[pos, len) not consumed yet */
+	uint64_t off;           /* file offset of buf[len] */
+} reader_t;
+
 /* What replaying records onto one band needs (one per painting thread). */
 typedef struct {
 	scan_band_t band;
@@ -24,6 +32,9 @@ typedef struct {
 	scan_path_t path;       /* deserialised path */
 	meta_run_t *runs;
 	size_t cap_runs;
+	reader_t rd;
+	int err_no;             /* errno of a failed spool read (0: short), for the message */
+	int read_failed;        /* the spool could not be read back */
 } painter_t;
 
 /* A block of spool records in memory, handed from the reading thread to the helper. */
@@ -43,6 +54,10 @@ typedef struct {
 #define AUTO_BAND ((size_t)8 << 20)
 /* Pages with fewer rows are painted by one thread. */
 #define SPLIT_MIN_ROWS 128
+/* Automatic bands of a page painted by two threads have at least this many rows. */
+#define PAIR_MIN_ROWS 32
+/* A painter reads the spool in blocks of this many bytes. */
+#define READ_BYTES ((size_t)256 << 10)
 
 struct dev_render {
 	unsigned width, height, band_rows, bands;
@@ -54,8 +69,16 @@ struct dev_render {
 	char err[320];          /* the last failure (dev_render_error) */
 	int clear_pending;      /* a spooled clear not written yet (with the next record) */
 	meta_rgb_t clear_rgb;
-	unsigned char *rbuf;    /* record payload while replaying */
-	size_t rcap;
+	size_t budget;          /* bytes the page buffers may take */
+	/* multi-band page painted by two threads: the caller's paints bands 0, 2, 4 ... into pix,
+	 * a helper bands 1, 3, 5 ... into pix2, each replaying the spool with its own reader;
+	 * finished bands go to the band function in order (the thread holding the next band calls
+	 * it, the other one paints on meanwhile) */
+	uint8_t *pix2;
+	unsigned next_band;     /* the band to hand over next */
+	int bstop, brc, bread;  /* stop painting; the first error; it was a spool read */
+	dev_band_fn bfn;
+	void *buser;
 	/* split single-band page: a helper thread paints rows [0, mid) from records that the
 	 * caller's thread queues while it paints rows [mid, height) itself; the two bands are
 	 * disjoint rows painted in statement order each, so the pixels are those of one thread */
@@ -255,12 +278,18 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 		goto nomem;
 	r->width = width;
 	r->height = height;
+	r->budget = budget;
 	size_t row = (size_t)width * 3;
 	if (band_rows == 0) {
-		if (row * height > AUTO_WHOLE_MAX && budget > AUTO_BAND)
-			budget = AUTO_BAND;
-		size_t fit = budget / row;
-		band_rows = fit >= height ? height : fit < 1 ? 1 : (unsigned)fit;
+		/* a page that is banded is painted by two threads, each band in half the budget
+		 * (two bands of AUTO_BAND at most), unless those halves would be thin slices */
+		if (row * height > AUTO_WHOLE_MAX && budget > 2 * AUTO_BAND)
+			budget = 2 * AUTO_BAND;
+		size_t fit = budget / row, half = budget / 2 / row;
+		if (fit >= height)
+			band_rows = height;
+		else
+			band_rows = half >= PAIR_MIN_ROWS ? (unsigned)half : fit < 1 ? 1 : (unsigned)fit;
 	}
 	if (band_rows > height)
 		band_rows = height;
@@ -309,12 +338,13 @@ void dev_render_free(dev_render_t *r)
 	if (r->spool)
 		fclose(r->spool);
 	free(r->pix);
-	free(r->rbuf);
+	free(r->pix2);
 	painter_t *pt[2] = { &r->main, &r->help };
 	for (int k = 0; k < 2; k++) {
 		scan_ctx_free(pt[k]->ctx);
 		scan_path_free(&pt[k]->path);
 		free(pt[k]->runs);
+		free(pt[k]->rd.buf);
 	}
 	free(r->fill.buf);
 	free(r->work.buf);
@@ -584,31 +614,154 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 	return rc;
 }
 
-static int replay(dev_render_t *r)
+/* Make at least need bytes of the spool available at d->buf + d->pos (reading on at d->off).
+ * Returns 0, META_ENOMEM, or META_EIO with pt->err_no set (0 when the spool ended short). */
+static int rd_need(int fd, painter_t *pt, size_t need)
 {
-	rec_t h;
-	if (fseek(r->spool, 0, SEEK_SET))
-		return spool_fail(r, errno, "cannot seek in it");
-	while (fread(&h, sizeof h, 1, r->spool) == 1) {
-		if (h.jhi <= r->main.band.jlo || h.jlo >= r->main.band.jhi) {
-			if (fseek(r->spool, h.len, SEEK_CUR))
-				return spool_fail(r, errno, "cannot seek in it");
+	reader_t *d = &pt->rd;
+	size_t have = d->len - d->pos;
+	if (have >= need)
+		return 0;
+	if (d->pos && have)
+		memmove(d->buf, d->buf + d->pos, have);
+	d->len = have;
+	d->pos = 0;
+	if (need > d->cap) {
+		size_t cap = need > READ_BYTES ? need : READ_BYTES;
+		unsigned char *n = realloc(d->buf, cap);
+		if (!n)
+			return META_ENOMEM;
+		d->buf = n;
+		d->cap = cap;
+	}
+	while (d->len < need) {
+		ssize_t n = pread(fd, d->buf + d->len, d->cap - d->len, (off_t)d->off);
+		if (n < 0 && errno == EINTR)
+			continue;
+		if (n <= 0) {
+			pt->err_no = n < 0 ? errno : 0;
+			pt->read_failed = 1;
+			return META_EIO;
+		}
+		d->len += (size_t)n;
+		d->off += (uint64_t)n;
+	}
+	return 0;
+}
+
+/* Replay the whole spool onto pt's band, skipping records whose rows miss it. */
+static int replay(dev_render_t *r, painter_t *pt)
+{
+	int fd = fileno(r->spool);
+	reader_t *d = &pt->rd;
+	d->len = d->pos = 0;
+	d->off = 0;
+	for (uint64_t at = 0; at < r->spooled;) {
+		rec_t h;
+		int rc = rd_need(fd, pt, sizeof h);
+		if (rc)
+			return rc;
+		memcpy(&h, d->buf + d->pos, sizeof h);
+		d->pos += sizeof h;
+		at += sizeof h + h.len;
+		if (h.jhi <= pt->band.jlo || h.jlo >= pt->band.jhi) {
+			size_t have = d->len - d->pos;
+			if (h.len <= have) {
+				d->pos += h.len;
+			} else {
+				d->off += h.len - have;
+				d->len = d->pos = 0;
+			}
 			continue;
 		}
-		if (h.len > r->rcap) {
-			unsigned char *n = realloc(r->rbuf, h.len);
-			if (!n)
-				return META_ENOMEM;
-			r->rbuf = n;
-			r->rcap = h.len;
+		if ((rc = rd_need(fd, pt, h.len)) || (rc = replay_rec(pt, &h, d->buf + d->pos)))
+			return rc;
+		d->pos += h.len;
+	}
+	return 0;
+}
+
+/* Paint the bands first, first + step, ... of the spooled page into pix with painter pt and hand
+ * each to the band function in its turn. With two painters (step 2) a painter waits for the
+ * other's band before handing over its own, so bands go out in order; the first failure in band
+ * order is kept in r->brc and stops both. */
+static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned first, unsigned step)
+{
+	size_t row = (size_t)r->width * 3;
+	int two = step > 1;
+	for (unsigned k = first; k < r->bands; k += step) {
+		unsigned top = k * r->band_rows;
+		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
+		pt->band.pix = pix;
+		pt->band.jhi = (int)(r->height - top);
+		pt->band.jlo = pt->band.jhi - (int)n;
+		memset(pix, 0xff, row * n);
+		int rc = replay(r, pt);
+		if (two) {
+			pthread_mutex_lock(&r->mu);
+			while (!r->bstop && r->next_band != k)
+				pthread_cond_wait(&r->cv, &r->mu);
+			int stop = r->bstop;
+			pthread_mutex_unlock(&r->mu);
+			if (stop)
+				return 0;
 		}
-		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
-			return spool_fail(r, ferror(r->spool) ? errno : EIO, "cannot read it back");
-		int rc = replay_rec(&r->main, &h, r->rbuf);
+		if (!rc) {
+			dev_band_t out = { pix, row, r->width, top, n, r->height };
+			rc = r->bfn(r->buser, &out);
+		}
+		if (two) {
+			pthread_mutex_lock(&r->mu);
+			if (rc) {
+				r->brc = rc;
+				r->bread = pt->read_failed;
+				r->bstop = 1;
+			} else {
+				r->next_band = k + 1;
+			}
+			pthread_cond_broadcast(&r->cv);
+			pthread_mutex_unlock(&r->mu);
+		}
 		if (rc)
 			return rc;
 	}
-	return ferror(r->spool) ? spool_fail(r, errno, "cannot read it back") : 0;
+	return 0;
+}
+
+/* The helper of a two-painter multi-band page: the odd bands. */
+static void *band_helper(void *arg)
+{
+	dev_render_t *r = arg;
+	band_loop(r, &r->help, r->pix2, 1, 2);
+	return NULL;
+}
+
+/* Start the helper for a multi-band page when a second band buffer fits the budget; nonzero
+ * leaves the page to the caller's thread. */
+static int bands_start(dev_render_t *r)
+{
+	size_t bytes = (size_t)r->width * 3 * r->band_rows;
+	if (r->bands < 2 || bytes > r->budget / 2)
+		return -1;
+	if (!r->help.ctx && !(r->help.ctx = scan_ctx_new()))
+		return -1;
+	if (!r->pix2 && !(r->pix2 = malloc(bytes)))
+		return -1;
+	r->help.band = r->main.band;
+	r->next_band = 0;
+	r->bstop = r->brc = r->bread = 0;
+	if (pthread_mutex_init(&r->mu, NULL))
+		return -1;
+	if (pthread_cond_init(&r->cv, NULL)) {
+		pthread_mutex_destroy(&r->mu);
+		return -1;
+	}
+	if (pthread_create(&r->thr, NULL, band_helper, r)) {
+		pthread_cond_destroy(&r->cv);
+		pthread_mutex_destroy(&r->mu);
+		return -1;
+	}
+	return 0;
 }
 
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
@@ -632,18 +785,22 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	errno = 0;
 	if (fflush(r->spool))
 		return spool_fail(r, errno ? errno : EIO, "cannot write it");
-	for (unsigned top = 0; top < r->height; top += r->band_rows) {
-		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
-		r->main.band.jhi = (int)(r->height - top);
-		r->main.band.jlo = r->main.band.jhi - (int)n;
-		memset(r->pix, 0xff, row * n);
-		int rc = replay(r);
-		if (rc)
-			return rc;
-		out.y0 = top;
-		out.nrows = n;
-		if ((rc = fn(user, &out)))
-			return rc;
+	r->bfn = fn;
+	r->buser = user;
+	r->main.read_failed = r->help.read_failed = 0;
+	int two = bands_start(r) == 0;
+	int rc = band_loop(r, &r->main, r->pix, 0, two ? 2 : 1);
+	int bread = r->main.read_failed;
+	const painter_t *failed = &r->main;
+	if (two) {
+		pthread_join(r->thr, NULL);
+		pthread_cond_destroy(&r->cv);
+		pthread_mutex_destroy(&r->mu);
+		rc = r->brc;
+		bread = r->bread;
+		failed = r->help.read_failed && !r->main.read_failed ? &r->help : &r->main;
 	}
-	return 0;
+	if (rc == META_EIO && bread)
+		return spool_fail(r, failed->err_no ? failed->err_no : EIO, "cannot read it back");
+	return rc;
 }
