@@ -436,21 +436,82 @@ static inline int64_t tiny_ceil(int64_t n, int64_t d, double inv)
 	return q;
 }
 
+/* Sort the edges of one direction by first row (insertion: a chain has a few) and tell whether
+ * they tile rows [j0, j1] exactly, each row crossing one of them. */
+static int chain(tedge_t **ch, size_t n, int *j0, int *j1)
+{
+	for (size_t k = 1; k < n; k++) {
+		tedge_t *t = ch[k];
+		size_t m = k;
+		while (m > 0 && ch[m - 1]->j0 > t->j0) {
+			ch[m] = ch[m - 1];
+			m--;
+		}
+		ch[m] = t;
+	}
+	for (size_t k = 1; k < n; k++)
+		if (ch[k]->j0 != ch[k - 1]->j1 + 1)
+			return 0;
+	*j0 = ch[0]->j0;
+	*j1 = ch[n - 1]->j1;
+	return 1;
+}
+
+/* Paint the piece from its upward and downward chains when each row of it crosses exactly one
+ * edge of each (every convex piece, most join pieces): two crossings of opposite directions, so
+ * the row is inside by either rule between them, and only those two edges are computed on
+ * each row. Returns 0 (painted) or -1 when the chains do not tile the same rows. */
+static int fill_chains(const scan_band_t *b, tedge_t *e, size_t ne, const pen_t *pen)
+{
+	tedge_t *up[SMALL_EDGES], *dn[SMALL_EDGES];
+	size_t nu = 0, nd = 0;
+	for (size_t k = 0; k < ne; k++) {
+		if (e[k].dir > 0)
+			up[nu++] = &e[k];
+		else
+			dn[nd++] = &e[k];
+	}
+	int u0, u1, d0, d1;
+	if (!nu || !nd || !chain(up, nu, &u0, &u1) || !chain(dn, nd, &d0, &d1) || u0 != d0 || u1 != d1)
+		return -1;
+	size_t iu = 0, id = 0;
+	tedge_t *u = up[0], *d = dn[0];
+	for (int j = u0; j <= u1; j++) {
+		if (j > u->j1)
+			u = up[++iu];
+		if (j > d->j1)
+			d = dn[++id];
+		int64_t l = tiny_ceil(u->n, u->d, u->inv), r = tiny_ceil(d->n, d->d, d->inv);
+		u->n += u->s;
+		d->n += d->s;
+		if (l > r) {
+			int64_t t = l; l = r; r = t;
+		}
+		if (r > l)
+			paint(b, j, l, r, pen);
+	}
+	return 0;
+}
+
 /* Fill a piece of m <= SMALL_EDGES points within +-TINY, rows clipped to [lo, hi). */
 static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
 		const pen_t *pen, int convex, int lo, int hi)
 {
 	tedge_t e[SMALL_EDGES];
+	int64_t jv[SMALL_EDGES];   /* each vertex's first pixel-centre row at or above it */
+	for (size_t k = 0; k < m; k++)
+		jv[k] = ceil_div(pts[k].y - 500, 1000);
 	size_t ne = 0;
 	int jmin = INT32_MAX, jmax = INT32_MIN;
 	for (size_t k = 0; k < m; k++) {
-		const scan_pt_t *a = &pts[k], *z = &pts[k + 1 == m ? 0 : k + 1];
-		if (a->y == z->y)
-			continue;
+		size_t kz = k + 1 == m ? 0 : k + 1;
+		if (jv[k] == jv[kz])
+			continue;   /* no centre row between them (a horizontal edge among them) */
+		const scan_pt_t *a = &pts[k], *z = &pts[kz];
 		int up = a->y < z->y, dir = up ? 1 : -1;
 		int64_t x0 = up ? a->x : z->x, y0 = up ? a->y : z->y;
 		int64_t x1 = up ? z->x : a->x, y1 = up ? z->y : a->y;
-		int64_t j0 = ceil_div(y0 - 500, 1000), j1 = ceil_div(y1 - 500, 1000) - 1;
+		int64_t j0 = up ? jv[k] : jv[kz], j1 = (up ? jv[kz] : jv[k]) - 1;
 		if (j0 < lo)
 			j0 = lo;
 		if (j1 > hi - 1)
@@ -471,6 +532,8 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 		if (t->j1 > jmax)
 			jmax = t->j1;
 	}
+	if (ne == 0 || fill_chains(b, e, ne, pen) == 0)
+		return;
 	for (int j = jmin; j <= jmax; j++) {
 		if (convex) {
 			int64_t l = INT64_MAX, r = INT64_MIN;
