@@ -43,8 +43,10 @@ typedef struct {
 	size_t len, cap;
 } chunk_t;
 
-/* Records are handed to the helper in blocks of about this many bytes. */
-#define CHUNK_BYTES ((size_t)1 << 20)
+/* Records are handed to the helper in blocks of about this many bytes: small enough that the
+ * helper starts at once (workload b's 10,000 fills spool 1.2 MB: in blocks of 1 MB the helper
+ * waited for 80% of the input before its first block), large enough that hand-overs are rare. */
+#define CHUNK_BYTES ((size_t)64 << 10)
 /* Automatic banding of a page buffer larger than AUTO_WHOLE_MAX: bands of at most AUTO_BAND
  * bytes, even when the budget would hold the whole page. A band that stays in the last-level
  * cache paints and hands over faster than one big buffer that is faulted in, filled white and
@@ -79,44 +81,58 @@ struct dev_render {
 	int bstop, brc, bread;  /* stop painting; the first error; it was a spool read */
 	dev_band_fn bfn;
 	void *buser;
-	/* split single-band page: a helper thread paints rows [0, mid) from records that the
-	 * caller's thread queues while it paints rows [mid, height) itself; the two bands are
-	 * disjoint rows painted in statement order each, so the pixels are those of one thread */
+	/* split single-band page: two helper threads paint rows [0, mid) and [mid, height) from
+	 * the records that the caller's thread queues as it reads the input; the two bands are
+	 * disjoint rows painted in statement order each, so the pixels are those of one thread.
+	 * Three threads on two cores: the system shares the cores between reading and painting
+	 * as each page needs (reading is two thirds of the work of workload b's small fills, a
+	 * quarter of workload a's thin polylines), which no fixed share of rows could */
 	int split, started;
 	unsigned mid;
-	painter_t help;
-	chunk_t fill, work;     /* being filled by the caller; being replayed by the helper */
-	int pending, quit, hrc;
-	pthread_t thr;
+	painter_t help, help2;  /* help: a multi-band page's odd bands, or the split's bottom rows */
+	chunk_t fill, work;     /* being filled by the caller; being replayed by the helpers */
+	unsigned gen;           /* blocks handed over so far */
+	int pending, quit, hrc; /* helpers still replaying the block; stop when done; first error */
+	pthread_t thr, thr2;
 	pthread_mutex_t mu;
 	pthread_cond_t cv;
+	struct helper_arg {
+		struct dev_render *r;
+		painter_t *pt;
+	} harg[2];
 };
+
+/* What a split helper is told: its renderer and its painter. */
+typedef struct helper_arg helper_arg_t;
 
 static int replay_rec(painter_t *pt, const rec_t *h, const unsigned char *q);
 
-/* The helper: replay each block handed over onto its band until told to quit. */
+/* A split helper: replay each block handed over onto its band until told to quit. */
 static void *helper(void *arg)
 {
-	dev_render_t *r = arg;
+	const helper_arg_t *ha = arg;
+	dev_render_t *r = ha->r;
+	unsigned seen = 0;
 	pthread_mutex_lock(&r->mu);
 	for (;;) {
-		while (!r->pending && !r->quit)
+		while (r->gen == seen && !r->quit)
 			pthread_cond_wait(&r->cv, &r->mu);
-		if (!r->pending)
+		if (r->gen == seen)
 			break;
+		seen = r->gen;
 		pthread_mutex_unlock(&r->mu);
 		int rc = 0;
 		for (size_t at = 0; at < r->work.len && rc == 0;) {
 			rec_t h;
 			memcpy(&h, r->work.buf + at, sizeof h);
-			rc = replay_rec(&r->help, &h, r->work.buf + at + sizeof h);
+			rc = replay_rec(ha->pt, &h, r->work.buf + at + sizeof h);
 			at += sizeof h + h.len;
 		}
 		pthread_mutex_lock(&r->mu);
 		if (rc && !r->hrc)
 			r->hrc = rc;
-		r->pending = 0;
-		pthread_cond_broadcast(&r->cv);
+		if (--r->pending == 0)
+			pthread_cond_broadcast(&r->cv);
 	}
 	pthread_mutex_unlock(&r->mu);
 	return NULL;
@@ -126,9 +142,10 @@ static void *helper(void *arg)
 static int split_start(dev_render_t *r)
 {
 	r->help.ctx = scan_ctx_new();
+	r->help2.ctx = scan_ctx_new();
 	r->fill.buf = malloc(CHUNK_BYTES);
 	r->work.buf = malloc(CHUNK_BYTES);
-	if (!r->help.ctx || !r->fill.buf || !r->work.buf)
+	if (!r->help.ctx || !r->help2.ctx || !r->fill.buf || !r->work.buf)
 		return -1;
 	r->fill.cap = r->work.cap = CHUNK_BYTES;
 	if (pthread_mutex_init(&r->mu, NULL))
@@ -137,10 +154,21 @@ static int split_start(dev_render_t *r)
 		pthread_mutex_destroy(&r->mu);
 		return -1;
 	}
-	/* the helper takes the bottom 3/5 of the rows: the caller's thread also reads and parses
-	 * the input (about a quarter of the work of a text file of thin polylines) */
-	r->mid = (unsigned)((uint64_t)r->height * 3 / 5);
-	if (pthread_create(&r->thr, NULL, helper, r)) {
+	r->mid = r->height / 2;
+	r->harg[0] = (helper_arg_t){ r, &r->help };
+	r->harg[1] = (helper_arg_t){ r, &r->help2 };
+	if (pthread_create(&r->thr, NULL, helper, &r->harg[0])) {
+		pthread_cond_destroy(&r->cv);
+		pthread_mutex_destroy(&r->mu);
+		return -1;
+	}
+	if (pthread_create(&r->thr2, NULL, helper, &r->harg[1])) {
+		pthread_mutex_lock(&r->mu);
+		r->quit = 1;
+		pthread_cond_broadcast(&r->cv);
+		pthread_mutex_unlock(&r->mu);
+		pthread_join(r->thr, NULL);
+		r->quit = 0;
 		pthread_cond_destroy(&r->cv);
 		pthread_mutex_destroy(&r->mu);
 		return -1;
@@ -159,7 +187,10 @@ static int split_hand(dev_render_t *r)
 	r->work = r->fill;
 	r->fill = t;
 	r->fill.len = 0;
-	r->pending = r->work.len > 0;
+	if (r->work.len) {
+		r->pending = 2;
+		r->gen++;
+	}
 	int rc = r->hrc;
 	pthread_cond_broadcast(&r->cv);
 	pthread_mutex_unlock(&r->mu);
@@ -177,6 +208,7 @@ static int split_stop(dev_render_t *r)
 	pthread_cond_broadcast(&r->cv);
 	pthread_mutex_unlock(&r->mu);
 	pthread_join(r->thr, NULL);
+	pthread_join(r->thr2, NULL);
 	pthread_cond_destroy(&r->cv);
 	pthread_mutex_destroy(&r->mu);
 	r->started = 0;
@@ -309,11 +341,12 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 		b->jhi = (int)height;
 		memset(r->pix, 0xff, row * height);
 		if (height >= SPLIT_MIN_ROWS && split_start(r) == 0) {
-			b->jlo = (int)r->mid;
 			r->help.band = *b;
 			r->help.band.pix = r->pix + (size_t)(height - r->mid) * row;
 			r->help.band.jlo = 0;
 			r->help.band.jhi = (int)r->mid;
+			r->help2.band = *b;
+			r->help2.band.jlo = (int)r->mid;
 		}
 	} else {
 		r->spool_max = dev_render_spool_default();
@@ -339,8 +372,8 @@ void dev_render_free(dev_render_t *r)
 		fclose(r->spool);
 	free(r->pix);
 	free(r->pix2);
-	painter_t *pt[2] = { &r->main, &r->help };
-	for (int k = 0; k < 2; k++) {
+	painter_t *pt[3] = { &r->main, &r->help, &r->help2 };
+	for (int k = 0; k < 3; k++) {
 		scan_ctx_free(pt[k]->ctx);
 		scan_path_free(&pt[k]->path);
 		free(pt[k]->runs);
@@ -363,8 +396,8 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 {
 	if (jlo < 0)
 		jlo = 0;
-	if (jhi > (r->split ? r->mid : r->height))
-		jhi = r->split ? r->mid : r->height;
+	if (jhi > r->height)
+		jhi = r->height;
 	if (jlo >= jhi)
 		return 0;   /* entirely off the page (or the helper's rows) */
 	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
@@ -443,10 +476,9 @@ typedef struct {
 
 int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		scan_clear(&r->main.band, rgb);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	if (r->spool) {
 		/* written with the next record (or at the finish): a clear has no failure of its own
@@ -460,11 +492,8 @@ int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 
 int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
 {
-	if (!r->spool) {
-		int rc = scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
-		if (rc || !r->split)
-			return rc;
-	}
+	if (!r->spool && !r->split)
+		return scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
 	fill_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -474,11 +503,8 @@ int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t 
 
 int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
 {
-	if (!r->spool) {
-		int rc = scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
-		if (rc || !r->split)
-			return rc;
-	}
+	if (!r->spool && !r->split)
+		return scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
 	stroke_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -499,10 +525,9 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		scan_span(&r->main.band, x, y, n, rgb);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	int64_t v[3] = { x, y, n };
 	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
@@ -518,10 +543,9 @@ static void paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run
 
 int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		paint_row(&r->main.band, x, y, runs, nruns);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	int64_t v[2] = { x, y };
 	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
