@@ -12,8 +12,8 @@ typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
 /* A renderer for one page of width x height. band_rows 0 = whole page when width*height*3 fits
  * budget bytes and 16 MiB, else bands of half the budget (at most 8 MiB; the whole budget when
  * half would hold fewer than 32 rows); band_rows >= height = whole page. A single-band page
- * is painted as the statements arrive (from 128 rows on by two threads: the caller's paints the
- * top 2/5, a helper thread the bottom 3/5 from the statements queued in memory, joined by
+ * is painted as the statements arrive (from 128 rows on by two helper threads, the top and the
+ * bottom half, from the statements the caller's thread queues in memory, joined by
  * dev_render_finish or dev_render_free); a multi-band page spools them to a temporary file and
  * replays it once per band, skipping statements whose rows miss the band: in dev_render_finish,
  * by two threads when two band buffers fit the budget (the caller's the even bands, a helper
