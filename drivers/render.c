@@ -89,6 +89,10 @@ struct dev_render {
 	 * quarter of workload a's thin polylines), which no fixed share of rows could */
 	int split, started;
 	unsigned mid;
+	/* multi-band page: the two helpers also paint its first two bands (r->pix, r->pix2) from
+	 * the records queued as they are spooled, so that reading and painting overlap there too;
+	 * pre bands are painted so (0 or 2), pre_lo is their lowest row */
+	unsigned pre, pre_lo;
 	painter_t help, help2;  /* help: a multi-band page's odd bands, or the split's bottom rows */
 	chunk_t fill, work;     /* being filled by the caller; being replayed by the helpers */
 	unsigned gen;           /* blocks handed over so far */
@@ -154,7 +158,6 @@ static int split_start(dev_render_t *r)
 		pthread_mutex_destroy(&r->mu);
 		return -1;
 	}
-	r->mid = r->height / 2;
 	r->harg[0] = (helper_arg_t){ r, &r->help };
 	r->harg[1] = (helper_arg_t){ r, &r->help2 };
 	if (pthread_create(&r->thr, NULL, helper, &r->harg[0])) {
@@ -173,7 +176,7 @@ static int split_start(dev_render_t *r)
 		pthread_mutex_destroy(&r->mu);
 		return -1;
 	}
-	r->split = r->started = 1;
+	r->started = 1;
 	return 0;
 }
 
@@ -341,6 +344,8 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 		b->jhi = (int)height;
 		memset(r->pix, 0xff, row * height);
 		if (height >= SPLIT_MIN_ROWS && split_start(r) == 0) {
+			r->split = 1;
+			r->mid = height / 2;
 			r->help.band = *b;
 			r->help.band.pix = r->pix + (size_t)(height - r->mid) * row;
 			r->help.band.jlo = 0;
@@ -354,6 +359,21 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 			snprintf(err, errlen, "%s", r->err);
 			dev_render_free(r);
 			return NULL;
+		}
+		/* the first two bands painted as the records arrive, when two bands fit the budget */
+		size_t bytes = row * band_rows;
+		if (bytes <= r->budget / 2 && (r->pix2 = malloc(bytes)) && split_start(r) == 0) {
+			r->pre = 2;
+			r->pre_lo = height > 2 * band_rows ? height - 2 * band_rows : 0;
+			memset(r->pix, 0xff, bytes);
+			memset(r->pix2, 0xff, bytes);
+			r->help.band = *b;
+			r->help.band.jhi = (int)height;
+			r->help.band.jlo = (int)(height - band_rows);
+			r->help2.band = *b;
+			r->help2.band.pix = r->pix2;
+			r->help2.band.jhi = (int)(height - band_rows);
+			r->help2.band.jlo = (int)r->pre_lo;
 		}
 	}
 	return r;
@@ -419,6 +439,8 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
 		return spool_fail(r, errno ? errno : EIO, "cannot write it");
 	r->spooled += need;
+	if (r->pre && jhi > r->pre_lo)
+		return split_put(r, &h, a, na, b, nb, c, nc);
 	return 0;
 }
 
@@ -716,11 +738,15 @@ static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned firs
 	for (unsigned k = first; k < r->bands; k += step) {
 		unsigned top = k * r->band_rows;
 		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
-		pt->band.pix = pix;
-		pt->band.jhi = (int)(r->height - top);
-		pt->band.jlo = pt->band.jhi - (int)n;
-		memset(pix, 0xff, row * n);
-		int rc = replay(r, pt);
+		uint8_t *buf = k >= r->pre ? pix : k == 0 ? r->pix : r->pix2;
+		int rc = 0;
+		if (k >= r->pre) {   /* (the first bands were painted while the page was spooled) */
+			pt->band.pix = pix;
+			pt->band.jhi = (int)(r->height - top);
+			pt->band.jlo = pt->band.jhi - (int)n;
+			memset(pix, 0xff, row * n);
+			rc = replay(r, pt);
+		}
 		if (two) {
 			pthread_mutex_lock(&r->mu);
 			while (!r->bstop && r->next_band != k)
@@ -731,7 +757,7 @@ static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned firs
 				return 0;
 		}
 		if (!rc) {
-			dev_band_t out = { pix, row, r->width, top, n, r->height };
+			dev_band_t out = { buf, row, r->width, top, n, r->height };
 			rc = r->bfn(r->buser, &out);
 		}
 		if (two) {
@@ -806,6 +832,11 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	}
 	if (r->err[0])
 		return META_EIO;
+	if (r->started) {
+		int rc = split_stop(r);
+		if (rc)
+			return rc;
+	}
 	errno = 0;
 	if (fflush(r->spool))
 		return spool_fail(r, errno ? errno : EIO, "cannot write it");
