@@ -447,8 +447,16 @@ static inline int64_t tiny_ceil(int64_t n, int64_t d, double inv)
 
 /* Sort the edges of one direction by first row (insertion: a chain has a few) and tell whether
  * they tile rows [j0, j1] exactly, each row crossing one of them. */
-static int chain(tedge_t **ch, size_t n, int *j0, int *j1)
+static inline int chain(tedge_t **ch, size_t n, int *j0, int *j1)
 {
+	if (n == 2) {   /* a parallelogram's side: most chains */
+		if (ch[0]->j0 > ch[1]->j0) {
+			tedge_t *t = ch[0]; ch[0] = ch[1]; ch[1] = t;
+		}
+		*j0 = ch[0]->j0;
+		*j1 = ch[1]->j1;
+		return ch[1]->j0 == ch[0]->j1 + 1;
+	}
 	for (size_t k = 1; k < n; k++) {
 		tedge_t *t = ch[k];
 		size_t m = k;
