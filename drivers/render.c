@@ -72,12 +72,13 @@ struct dev_render {
 	int clear_pending;      /* a spooled clear not written yet (with the next record) */
 	meta_rgb_t clear_rgb;
 	size_t budget;          /* bytes the page buffers may take */
-	/* multi-band page painted by two threads: the caller's paints bands 0, 2, 4 ... into pix,
-	 * a helper bands 1, 3, 5 ... into pix2, each replaying the spool with its own reader;
-	 * finished bands go to the band function in order (the thread holding the next band calls
-	 * it, the other one paints on meanwhile) */
+	/* multi-band page painted by two threads: the caller's paints band 0 into pix, a helper
+	 * band 1 into pix2, and each then the next band not taken, each replaying the spool with
+	 * its own reader; finished bands go to the band function in order (the thread holding the
+	 * next band calls it, the other one paints on meanwhile) */
 	uint8_t *pix2;
 	unsigned next_band;     /* the band to hand over next */
+	unsigned next_paint;    /* the next band no painter has taken */
 	int bstop, brc, bread;  /* stop painting; the first error; it was a spool read */
 	dev_band_fn bfn;
 	void *buser;
@@ -93,7 +94,7 @@ struct dev_render {
 	 * the records queued as they are spooled, so that reading and painting overlap there too;
 	 * pre bands are painted so (0 or 2), pre_lo is their lowest row */
 	unsigned pre, pre_lo;
-	painter_t help, help2;  /* help: a multi-band page's odd bands, or the split's bottom rows */
+	painter_t help, help2;  /* help: a multi-band page's second painter, or the split's bottom rows */
 	chunk_t fill, work;     /* being filled by the caller; being replayed by the helpers */
 	unsigned gen;           /* blocks handed over so far */
 	int pending, quit, hrc; /* helpers still replaying the block; stop when done; first error */
@@ -727,15 +728,15 @@ static int replay(dev_render_t *r, painter_t *pt)
 	return 0;
 }
 
-/* Paint the bands first, first + step, ... of the spooled page into pix with painter pt and hand
- * each to the band function in its turn. With two painters (step 2) a painter waits for the
- * other's band before handing over its own, so bands go out in order; the first failure in band
- * order is kept in r->brc and stops both. */
-static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned first, unsigned step)
+/* Paint bands of the spooled page into pix with painter pt, from band first on, and hand each
+ * to the band function in its turn. With two painters (two) each takes the next band nobody
+ * has taken when it has handed its own on (whoever is less busy paints more of the page), and
+ * waits for the band before its own to be handed on first, so bands go out in order; the
+ * first failure in band order is kept in r->brc and stops both. One painter takes them all. */
+static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned first, int two)
 {
 	size_t row = (size_t)r->width * 3;
-	int two = step > 1;
-	for (unsigned k = first; k < r->bands; k += step) {
+	for (unsigned k = first; k < r->bands;) {
 		unsigned top = k * r->band_rows;
 		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
 		uint8_t *buf = k >= r->pre ? pix : k == 0 ? r->pix : r->pix2;
@@ -760,29 +761,34 @@ static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned firs
 			dev_band_t out = { buf, row, r->width, top, n, r->height };
 			rc = r->bfn(r->buser, &out);
 		}
-		if (two) {
-			pthread_mutex_lock(&r->mu);
-			if (rc) {
-				r->brc = rc;
-				r->bread = pt->read_failed;
-				r->bstop = 1;
-			} else {
-				r->next_band = k + 1;
-			}
-			pthread_cond_broadcast(&r->cv);
-			pthread_mutex_unlock(&r->mu);
+		if (!two) {
+			if (rc)
+				return rc;
+			k++;
+			continue;
 		}
+		pthread_mutex_lock(&r->mu);
+		if (rc) {
+			r->brc = rc;
+			r->bread = pt->read_failed;
+			r->bstop = 1;
+		} else {
+			r->next_band = k + 1;
+			k = r->next_paint++;
+		}
+		pthread_cond_broadcast(&r->cv);
+		pthread_mutex_unlock(&r->mu);
 		if (rc)
 			return rc;
 	}
 	return 0;
 }
 
-/* The helper of a two-painter multi-band page: the odd bands. */
+/* The helper of a two-painter multi-band page: band 1, then whichever comes next. */
 static void *band_helper(void *arg)
 {
 	dev_render_t *r = arg;
-	band_loop(r, &r->help, r->pix2, 1, 2);
+	band_loop(r, &r->help, r->pix2, 1, 1);
 	return NULL;
 }
 
@@ -799,6 +805,7 @@ static int bands_start(dev_render_t *r)
 		return -1;
 	r->help.band = r->main.band;
 	r->next_band = 0;
+	r->next_paint = 2;
 	r->bstop = r->brc = r->bread = 0;
 	if (pthread_mutex_init(&r->mu, NULL))
 		return -1;
@@ -844,7 +851,7 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	r->buser = user;
 	r->main.read_failed = r->help.read_failed = 0;
 	int two = bands_start(r) == 0;
-	int rc = band_loop(r, &r->main, r->pix, 0, two ? 2 : 1);
+	int rc = band_loop(r, &r->main, r->pix, 0, two);
 	int bread = r->main.read_failed;
 	const painter_t *failed = &r->main;
 	if (two) {

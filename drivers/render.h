@@ -16,9 +16,10 @@ typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
  * bottom half, from the statements the caller's thread queues in memory, joined by
  * dev_render_finish or dev_render_free); a multi-band page spools them to a temporary file and
  * replays it once per band, skipping statements whose rows miss the band: in dev_render_finish,
- * by two threads when two band buffers fit the budget (the caller's the even bands, a helper
- * the odd ones, each handing its band to fn in turn, so fn sees the bands in order, one call at
- * a time, from either thread). Returns NULL with a message in err on failure. */
+ * by two threads when two band buffers fit the budget (the first two bands painted by two
+ * helpers while the page is spooled, then each thread the next band not taken, each handing its
+ * band to fn in turn, so fn sees the bands in order, one call at a time, from either thread).
+ * Returns NULL with a message in err on failure. */
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen);
 /* The spool of a multi-band page is a temporary file in $TMPDIR (else /tmp), unlinked as soon as
