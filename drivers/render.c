@@ -43,6 +43,11 @@ typedef struct {
 	size_t len, cap;
 } chunk_t;
 
+/* Blocks queued for the split helpers: each helper replays them at its own pace, and the
+ * caller's thread waits only when the slower one is this many blocks behind (two blocks made
+ * the faster helper wait for the slower one at every block: workload c's bottom half has half
+ * as much again to paint as its top half). */
+#define RING 16
 /* Records are handed to the helper in blocks of about this many bytes: small enough that the
  * helper starts at once (workload b's 10,000 fills spool 1.2 MB: in blocks of 1 MB the helper
  * waited for 80% of the input before its first block), large enough that hand-overs are rare. */
@@ -95,15 +100,17 @@ struct dev_render {
 	 * pre bands are painted so (0 or 2), pre_lo is their lowest row */
 	unsigned pre, pre_lo;
 	painter_t help, help2;  /* help: a multi-band page's second painter, or the split's bottom rows */
-	chunk_t fill, work;     /* being filled by the caller; being replayed by the helpers */
-	unsigned gen;           /* blocks handed over so far */
-	int pending, quit, hrc; /* helpers still replaying the block; stop when done; first error */
+	chunk_t ring[RING];     /* blocks: block s (s = 0, 1, ...) is ring[s % RING] */
+	unsigned head;          /* blocks handed over so far; ring[head % RING] is being filled */
+	unsigned done[2];       /* blocks each helper has replayed */
+	int quit, hrc;          /* stop when done; the first error */
 	pthread_t thr, thr2;
 	pthread_mutex_t mu;
 	pthread_cond_t cv;
 	struct helper_arg {
 		struct dev_render *r;
 		painter_t *pt;
+		int idx;
 	} harg[2];
 };
 
@@ -117,27 +124,27 @@ static void *helper(void *arg)
 {
 	const helper_arg_t *ha = arg;
 	dev_render_t *r = ha->r;
-	unsigned seen = 0;
+	unsigned *done = &r->done[ha->idx];
 	pthread_mutex_lock(&r->mu);
 	for (;;) {
-		while (r->gen == seen && !r->quit)
+		while (*done == r->head && !r->quit)
 			pthread_cond_wait(&r->cv, &r->mu);
-		if (r->gen == seen)
+		if (*done == r->head)
 			break;
-		seen = r->gen;
+		const chunk_t *w = &r->ring[*done % RING];
 		pthread_mutex_unlock(&r->mu);
 		int rc = 0;
-		for (size_t at = 0; at < r->work.len && rc == 0;) {
+		for (size_t at = 0; at < w->len && rc == 0;) {
 			rec_t h;
-			memcpy(&h, r->work.buf + at, sizeof h);
-			rc = replay_rec(ha->pt, &h, r->work.buf + at + sizeof h);
+			memcpy(&h, w->buf + at, sizeof h);
+			rc = replay_rec(ha->pt, &h, w->buf + at + sizeof h);
 			at += sizeof h + h.len;
 		}
 		pthread_mutex_lock(&r->mu);
 		if (rc && !r->hrc)
 			r->hrc = rc;
-		if (--r->pending == 0)
-			pthread_cond_broadcast(&r->cv);
+		++*done;
+		pthread_cond_broadcast(&r->cv);
 	}
 	pthread_mutex_unlock(&r->mu);
 	return NULL;
@@ -148,19 +155,16 @@ static int split_start(dev_render_t *r)
 {
 	r->help.ctx = scan_ctx_new();
 	r->help2.ctx = scan_ctx_new();
-	r->fill.buf = malloc(CHUNK_BYTES);
-	r->work.buf = malloc(CHUNK_BYTES);
-	if (!r->help.ctx || !r->help2.ctx || !r->fill.buf || !r->work.buf)
+	if (!r->help.ctx || !r->help2.ctx)
 		return -1;
-	r->fill.cap = r->work.cap = CHUNK_BYTES;
 	if (pthread_mutex_init(&r->mu, NULL))
 		return -1;
 	if (pthread_cond_init(&r->cv, NULL)) {
 		pthread_mutex_destroy(&r->mu);
 		return -1;
 	}
-	r->harg[0] = (helper_arg_t){ r, &r->help };
-	r->harg[1] = (helper_arg_t){ r, &r->help2 };
+	r->harg[0] = (helper_arg_t){ r, &r->help, 0 };
+	r->harg[1] = (helper_arg_t){ r, &r->help2, 1 };
 	if (pthread_create(&r->thr, NULL, helper, &r->harg[0])) {
 		pthread_cond_destroy(&r->cv);
 		pthread_mutex_destroy(&r->mu);
@@ -181,22 +185,19 @@ static int split_start(dev_render_t *r)
 	return 0;
 }
 
-/* Hand the filled block to the helper (waiting until it has finished the previous one). */
+/* Hand the filled block to the helpers, and wait until the next one is free (both helpers
+ * have replayed the block that used it RING blocks ago). */
 static int split_hand(dev_render_t *r)
 {
 	pthread_mutex_lock(&r->mu);
-	while (r->pending)
-		pthread_cond_wait(&r->cv, &r->mu);
-	chunk_t t = r->work;
-	r->work = r->fill;
-	r->fill = t;
-	r->fill.len = 0;
-	if (r->work.len) {
-		r->pending = 2;
-		r->gen++;
+	if (r->ring[r->head % RING].len) {
+		r->head++;
+		pthread_cond_broadcast(&r->cv);
 	}
+	while (r->done[0] + RING <= r->head || r->done[1] + RING <= r->head)
+		pthread_cond_wait(&r->cv, &r->mu);
+	r->ring[r->head % RING].len = 0;
 	int rc = r->hrc;
-	pthread_cond_broadcast(&r->cv);
 	pthread_mutex_unlock(&r->mu);
 	return rc;
 }
@@ -224,19 +225,22 @@ static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, 
 		size_t nb, const void *c, size_t nc)
 {
 	size_t need = sizeof *h + na + nb + nc;
-	if (r->fill.len && r->fill.len + need > r->fill.cap) {
+	chunk_t *f = &r->ring[r->head % RING];
+	if (f->len && f->len + need > f->cap) {
 		int rc = split_hand(r);
 		if (rc)
 			return rc;
+		f = &r->ring[r->head % RING];
 	}
-	if (need > r->fill.cap) {
-		unsigned char *n = realloc(r->fill.buf, need);
+	if (need > f->cap) {   /* (a block is made on first use; a large record gets its own) */
+		size_t cap = need > CHUNK_BYTES ? need : CHUNK_BYTES;
+		unsigned char *n = realloc(f->buf, cap);
 		if (!n)
 			return META_ENOMEM;
-		r->fill.buf = n;
-		r->fill.cap = need;
+		f->buf = n;
+		f->cap = cap;
 	}
-	unsigned char *w = r->fill.buf + r->fill.len;
+	unsigned char *w = f->buf + f->len;
 	memcpy(w, h, sizeof *h);
 	w += sizeof *h;
 	if (na)
@@ -245,7 +249,7 @@ static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, 
 		memcpy(w + na, b, nb);
 	if (nc)
 		memcpy(w + na + nb, c, nc);
-	r->fill.len += need;
+	f->len += need;
 	return 0;
 }
 
@@ -400,8 +404,8 @@ void dev_render_free(dev_render_t *r)
 		free(pt[k]->runs);
 		free(pt[k]->rd.buf);
 	}
-	free(r->fill.buf);
-	free(r->work.buf);
+	for (int k = 0; k < RING; k++)
+		free(r->ring[k].buf);
 	free(r);
 }
 
