@@ -96,6 +96,15 @@ static inline int same(const uint8_t *p, const uint8_t *q, size_t n)
 		if (u != v)
 			return 0;
 	}
+	if (i + 4 <= n) {   /* k = 4: 12 bytes, one word and a half; the tail byte by byte was a
+			     * sixth of an anti-aliased replay of workload b (callgrind) */
+		uint32_t u, v;
+		memcpy(&u, p + i, 4);
+		memcpy(&v, q + i, 4);
+		if (u != v)
+			return 0;
+		i += 4;
+	}
 	for (; i < n; i++)
 		if (p[i] != q[i])
 			return 0;

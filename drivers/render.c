@@ -1,194 +1,15 @@
 /* render.c: banded raster rendering: paint directly, or spool and replay per band with culling. */
 #include <errno.h>
-#include <pthread.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "render.h"
+#include "render_int.h"
 
-enum { REC_CLEAR = 1, REC_FILL, REC_STROKE, REC_SPAN, REC_ROW };
-
-/* Spool record header: kind, then the page rows [jlo, jhi) the record may touch, payload size. */
-typedef struct {
-	int32_t kind, jlo, jhi;
-	uint32_t len;
-} rec_t;
-
-/* What replaying records onto one band needs (one per painting thread). */
-typedef struct {
-	scan_band_t band;
-	scan_ctx_t *ctx;
-	scan_path_t path;       /* deserialised path */
-	meta_run_t *runs;
-	size_t cap_runs;
-} painter_t;
-
-/* A block of spool records in memory, handed from the reading thread to the helper. */
-typedef struct {
-	unsigned char *buf;
-	size_t len, cap;
-} chunk_t;
-
-/* Records are handed to the helper in blocks of about this many bytes. */
-#define CHUNK_BYTES ((size_t)1 << 20)
-/* Automatic banding of a page buffer larger than AUTO_WHOLE_MAX: bands of at most AUTO_BAND
- * bytes, even when the budget would hold the whole page. A band that stays in the last-level
- * cache paints and hands over faster than one big buffer that is faulted in, filled white and
- * painted from memory: anti-aliased 4 x 4 replays of workloads b and c (a 4096 x 3072 sample
- * page) took a third less CPU in bands of 8 MiB than whole, a about the same (docs/drivers.md). */
-#define AUTO_WHOLE_MAX ((size_t)16 << 20)
-#define AUTO_BAND ((size_t)8 << 20)
-/* Pages with fewer rows are painted by one thread. */
-#define SPLIT_MIN_ROWS 128
-
-struct dev_render {
-	unsigned width, height, band_rows, bands;
-	uint8_t *pix;
-	painter_t main;         /* its band: the whole page, a spooled band, or the split's top */
-	FILE *spool;            /* NULL: single band, painted directly */
-	uint64_t spooled, spool_max; /* bytes in the spool; its limit */
-	char spool_dir[200];    /* where the (unlinked) spool file lives, for messages */
-	char err[320];          /* the last failure (dev_render_error) */
-	int clear_pending;      /* a spooled clear not written yet (with the next record) */
-	meta_rgb_t clear_rgb;
-	unsigned char *rbuf;    /* record payload while replaying */
-	size_t rcap;
-	/* split single-band page: a helper thread paints rows [0, mid) from records that the
-	 * caller's thread queues while it paints rows [mid, height) itself; the two bands are
-	 * disjoint rows painted in statement order each, so the pixels are those of one thread */
-	int split, started;
-	unsigned mid;
-	painter_t help;
-	chunk_t fill, work;     /* being filled by the caller; being replayed by the helper */
-	int pending, quit, hrc;
-	pthread_t thr;
-	pthread_mutex_t mu;
-	pthread_cond_t cv;
-};
-
-static int replay_rec(painter_t *pt, const rec_t *h, const unsigned char *q);
-
-/* The helper: replay each block handed over onto its band until told to quit. */
-static void *helper(void *arg)
-{
-	dev_render_t *r = arg;
-	pthread_mutex_lock(&r->mu);
-	for (;;) {
-		while (!r->pending && !r->quit)
-			pthread_cond_wait(&r->cv, &r->mu);
-		if (!r->pending)
-			break;
-		pthread_mutex_unlock(&r->mu);
-		int rc = 0;
-		for (size_t at = 0; at < r->work.len && rc == 0;) {
-			rec_t h;
-			memcpy(&h, r->work.buf + at, sizeof h);
-			rc = replay_rec(&r->help, &h, r->work.buf + at + sizeof h);
-			at += sizeof h + h.len;
-		}
-		pthread_mutex_lock(&r->mu);
-		if (rc && !r->hrc)
-			r->hrc = rc;
-		r->pending = 0;
-		pthread_cond_broadcast(&r->cv);
-	}
-	pthread_mutex_unlock(&r->mu);
-	return NULL;
-}
-
-/* Set up the split (helper thread and its buffers); nonzero leaves the page to one thread. */
-static int split_start(dev_render_t *r)
-{
-	r->help.ctx = scan_ctx_new();
-	r->fill.buf = malloc(CHUNK_BYTES);
-	r->work.buf = malloc(CHUNK_BYTES);
-	if (!r->help.ctx || !r->fill.buf || !r->work.buf)
-		return -1;
-	r->fill.cap = r->work.cap = CHUNK_BYTES;
-	if (pthread_mutex_init(&r->mu, NULL))
-		return -1;
-	if (pthread_cond_init(&r->cv, NULL)) {
-		pthread_mutex_destroy(&r->mu);
-		return -1;
-	}
-	/* the helper takes the bottom 3/5 of the rows: the caller's thread also reads and parses
-	 * the input (about a quarter of the work of a text file of thin polylines) */
-	r->mid = (unsigned)((uint64_t)r->height * 3 / 5);
-	if (pthread_create(&r->thr, NULL, helper, r)) {
-		pthread_cond_destroy(&r->cv);
-		pthread_mutex_destroy(&r->mu);
-		return -1;
-	}
-	r->split = r->started = 1;
-	return 0;
-}
-
-/* Hand the filled block to the helper (waiting until it has finished the previous one). */
-static int split_hand(dev_render_t *r)
-{
-	pthread_mutex_lock(&r->mu);
-	while (r->pending)
-		pthread_cond_wait(&r->cv, &r->mu);
-	chunk_t t = r->work;
-	r->work = r->fill;
-	r->fill = t;
-	r->fill.len = 0;
-	r->pending = r->work.len > 0;
-	int rc = r->hrc;
-	pthread_cond_broadcast(&r->cv);
-	pthread_mutex_unlock(&r->mu);
-	return rc;
-}
-
-/* Hand over what is left, let the helper finish and end it; returns its first error or 0. */
-static int split_stop(dev_render_t *r)
-{
-	if (!r->started)
-		return r->hrc;
-	split_hand(r);
-	pthread_mutex_lock(&r->mu);
-	r->quit = 1;
-	pthread_cond_broadcast(&r->cv);
-	pthread_mutex_unlock(&r->mu);
-	pthread_join(r->thr, NULL);
-	pthread_cond_destroy(&r->cv);
-	pthread_mutex_destroy(&r->mu);
-	r->started = 0;
-	return r->hrc;
-}
-
-/* Append a record for the helper to the block being filled. */
-static int split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
-		size_t nb, const void *c, size_t nc)
-{
-	size_t need = sizeof *h + na + nb + nc;
-	if (r->fill.len && r->fill.len + need > r->fill.cap) {
-		int rc = split_hand(r);
-		if (rc)
-			return rc;
-	}
-	if (need > r->fill.cap) {
-		unsigned char *n = realloc(r->fill.buf, need);
-		if (!n)
-			return META_ENOMEM;
-		r->fill.buf = n;
-		r->fill.cap = need;
-	}
-	unsigned char *w = r->fill.buf + r->fill.len;
-	memcpy(w, h, sizeof *h);
-	w += sizeof *h;
-	if (na)
-		memcpy(w, a, na);
-	if (nb)
-		memcpy(w + na, b, nb);
-	if (nc)
-		memcpy(w + na + nb, c, nc);
-	r->fill.len += need;
-	return 0;
-}
+/* The painters' threads and the spool's replay are in render_par.c; what both files share is in
+ * render_int.h. */
 
 uint64_t dev_render_spool_default(void)
 {
@@ -211,7 +32,7 @@ const char *dev_render_error(const dev_render_t *r)
 }
 
 /* Record why the spool failed (errno, or the limit when err_no is 0); returns META_EIO. */
-static int spool_fail(dev_render_t *r, int err_no, const char *doing)
+int render_spool_fail(dev_render_t *r, int err_no, const char *doing)
 {
 	if (err_no)
 		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): %s: %s", r->spool_dir,
@@ -236,13 +57,13 @@ static int spool_open(dev_render_t *r)
 	snprintf(path, sizeof path, "%s/locus-spool-XXXXXX", dir);
 	int fd = mkstemp(path);
 	if (fd < 0)
-		return spool_fail(r, errno, "cannot create it");
+		return render_spool_fail(r, errno, "cannot create it");
 	unlink(path);
 	r->spool = fdopen(fd, "w+b");
 	if (!r->spool) {
 		int e = errno;
 		close(fd);
-		return spool_fail(r, e, "cannot open it");
+		return render_spool_fail(r, e, "cannot open it");
 	}
 	return 0;
 }
@@ -255,12 +76,18 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 		goto nomem;
 	r->width = width;
 	r->height = height;
+	r->budget = budget;
 	size_t row = (size_t)width * 3;
 	if (band_rows == 0) {
-		if (row * height > AUTO_WHOLE_MAX && budget > AUTO_BAND)
-			budget = AUTO_BAND;
-		size_t fit = budget / row;
-		band_rows = fit >= height ? height : fit < 1 ? 1 : (unsigned)fit;
+		/* a page that is banded is painted by two threads, each band in half the budget
+		 * (two bands of AUTO_BAND at most), unless those halves would be thin slices */
+		if (row * height > AUTO_WHOLE_MAX && budget > 2 * AUTO_BAND)
+			budget = 2 * AUTO_BAND;
+		size_t fit = budget / row, half = budget / 2 / row;
+		if (fit >= height)
+			band_rows = height;
+		else
+			band_rows = half >= PAIR_MIN_ROWS ? (unsigned)half : fit < 1 ? 1 : (unsigned)fit;
 	}
 	if (band_rows > height)
 		band_rows = height;
@@ -279,12 +106,15 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 		b->jlo = 0;
 		b->jhi = (int)height;
 		memset(r->pix, 0xff, row * height);
-		if (height >= SPLIT_MIN_ROWS && split_start(r) == 0) {
-			b->jlo = (int)r->mid;
+		if (height >= SPLIT_MIN_ROWS && render_split_start(r) == 0) {
+			r->split = 1;
+			r->mid = height / 2;
 			r->help.band = *b;
 			r->help.band.pix = r->pix + (size_t)(height - r->mid) * row;
 			r->help.band.jlo = 0;
 			r->help.band.jhi = (int)r->mid;
+			r->help2.band = *b;
+			r->help2.band.jlo = (int)r->mid;
 		}
 	} else {
 		r->spool_max = dev_render_spool_default();
@@ -292,6 +122,21 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 			snprintf(err, errlen, "%s", r->err);
 			dev_render_free(r);
 			return NULL;
+		}
+		/* the first two bands painted as the records arrive, when two bands fit the budget */
+		size_t bytes = row * band_rows;
+		if (bytes <= r->budget / 2 && (r->pix2 = malloc(bytes)) && render_split_start(r) == 0) {
+			r->pre = 2;
+			r->pre_lo = height > 2 * band_rows ? height - 2 * band_rows : 0;
+			memset(r->pix, 0xff, bytes);
+			memset(r->pix2, 0xff, bytes);
+			r->help.band = *b;
+			r->help.band.jhi = (int)height;
+			r->help.band.jlo = (int)(height - band_rows);
+			r->help2.band = *b;
+			r->help2.band.pix = r->pix2;
+			r->help2.band.jhi = (int)(height - band_rows);
+			r->help2.band.jlo = (int)r->pre_lo;
 		}
 	}
 	return r;
@@ -305,19 +150,20 @@ void dev_render_free(dev_render_t *r)
 {
 	if (!r)
 		return;
-	split_stop(r);
+	render_split_stop(r);
 	if (r->spool)
 		fclose(r->spool);
 	free(r->pix);
-	free(r->rbuf);
-	painter_t *pt[2] = { &r->main, &r->help };
-	for (int k = 0; k < 2; k++) {
+	free(r->pix2);
+	painter_t *pt[3] = { &r->main, &r->help, &r->help2 };
+	for (int k = 0; k < 3; k++) {
 		scan_ctx_free(pt[k]->ctx);
 		scan_path_free(&pt[k]->path);
 		free(pt[k]->runs);
+		free(pt[k]->rd.buf);
 	}
-	free(r->fill.buf);
-	free(r->work.buf);
+	for (int k = 0; k < RING; k++)
+		free(r->ring[k].buf);
 	free(r);
 }
 
@@ -333,13 +179,13 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 {
 	if (jlo < 0)
 		jlo = 0;
-	if (jhi > (r->split ? r->mid : r->height))
-		jhi = r->split ? r->mid : r->height;
+	if (jhi > r->height)
+		jhi = r->height;
 	if (jlo >= jhi)
 		return 0;   /* entirely off the page (or the helper's rows) */
 	rec_t h = { kind, (int32_t)jlo, (int32_t)jhi, (uint32_t)(na + nb + nc) };
 	if (r->split)
-		return split_put(r, &h, a, na, b, nb, c, nc);
+		return render_split_put(r, &h, a, na, b, nb, c, nc);
 	if (r->err[0])
 		return META_EIO;   /* sticky */
 	if (r->clear_pending) {
@@ -350,12 +196,14 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	}
 	uint64_t need = sizeof h + na + nb + nc;
 	if (r->spooled + need > r->spool_max)
-		return spool_fail(r, 0, NULL);
+		return render_spool_fail(r, 0, NULL);
 	errno = 0;
 	if (fwrite(&h, sizeof h, 1, r->spool) != 1 || (na && fwrite(a, 1, na, r->spool) != na) ||
 			(nb && fwrite(b, 1, nb, r->spool) != nb) || (nc && fwrite(c, 1, nc, r->spool) != nc))
-		return spool_fail(r, errno ? errno : EIO, "cannot write it");
+		return render_spool_fail(r, errno ? errno : EIO, "cannot write it");
 	r->spooled += need;
+	if (r->pre && jhi > r->pre_lo)
+		return render_split_put(r, &h, a, na, b, nb, c, nc);
 	return 0;
 }
 
@@ -413,10 +261,9 @@ typedef struct {
 
 int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		scan_clear(&r->main.band, rgb);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	if (r->spool) {
 		/* written with the next record (or at the finish): a clear has no failure of its own
@@ -430,11 +277,8 @@ int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 
 int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
 {
-	if (!r->spool) {
-		int rc = scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
-		if (rc || !r->split)
-			return rc;
-	}
+	if (!r->spool && !r->split)
+		return scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
 	fill_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -444,11 +288,8 @@ int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t 
 
 int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
 {
-	if (!r->spool) {
-		int rc = scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
-		if (rc || !r->split)
-			return rc;
-	}
+	if (!r->spool && !r->split)
+		return scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
 	stroke_head_t h;
 	memset(&h, 0, sizeof h);
 	h.rgb = rgb;
@@ -469,10 +310,9 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		scan_span(&r->main.band, x, y, n, rgb);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	int64_t v[3] = { x, y, n };
 	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
@@ -488,10 +328,9 @@ static void paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run
 
 int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
-	if (!r->spool) {
+	if (!r->spool && !r->split) {
 		paint_row(&r->main.band, x, y, runs, nruns);
-		if (!r->split)
-			return 0;
+		return 0;
 	}
 	int64_t v[2] = { x, y };
 	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
@@ -539,7 +378,7 @@ static int load_path(painter_t *pt, const unsigned char *q)
 }
 
 /* Paint one record (header h, payload q) onto the painter's band. */
-static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
+int render_replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 {
 	rec_t h = *hp;
 	int rc = 0;
@@ -584,39 +423,12 @@ static int replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
 	return rc;
 }
 
-static int replay(dev_render_t *r)
-{
-	rec_t h;
-	if (fseek(r->spool, 0, SEEK_SET))
-		return spool_fail(r, errno, "cannot seek in it");
-	while (fread(&h, sizeof h, 1, r->spool) == 1) {
-		if (h.jhi <= r->main.band.jlo || h.jlo >= r->main.band.jhi) {
-			if (fseek(r->spool, h.len, SEEK_CUR))
-				return spool_fail(r, errno, "cannot seek in it");
-			continue;
-		}
-		if (h.len > r->rcap) {
-			unsigned char *n = realloc(r->rbuf, h.len);
-			if (!n)
-				return META_ENOMEM;
-			r->rbuf = n;
-			r->rcap = h.len;
-		}
-		if (h.len && fread(r->rbuf, 1, h.len, r->spool) != h.len)
-			return spool_fail(r, ferror(r->spool) ? errno : EIO, "cannot read it back");
-		int rc = replay_rec(&r->main, &h, r->rbuf);
-		if (rc)
-			return rc;
-	}
-	return ferror(r->spool) ? spool_fail(r, errno, "cannot read it back") : 0;
-}
-
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 {
 	size_t row = (size_t)r->width * 3;
 	dev_band_t out = { r->pix, row, r->width, 0, 0, r->height };
 	if (!r->spool) {
-		int rc = split_stop(r);
+		int rc = render_split_stop(r);
 		if (rc)
 			return rc;
 		out.nrows = r->height;
@@ -629,21 +441,13 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	}
 	if (r->err[0])
 		return META_EIO;
-	errno = 0;
-	if (fflush(r->spool))
-		return spool_fail(r, errno ? errno : EIO, "cannot write it");
-	for (unsigned top = 0; top < r->height; top += r->band_rows) {
-		unsigned n = r->height - top < r->band_rows ? r->height - top : r->band_rows;
-		r->main.band.jhi = (int)(r->height - top);
-		r->main.band.jlo = r->main.band.jhi - (int)n;
-		memset(r->pix, 0xff, row * n);
-		int rc = replay(r);
+	if (r->started) {
+		int rc = render_split_stop(r);
 		if (rc)
 			return rc;
-		out.y0 = top;
-		out.nrows = n;
-		if ((rc = fn(user, &out)))
-			return rc;
 	}
-	return 0;
+	errno = 0;
+	if (fflush(r->spool))
+		return render_spool_fail(r, errno ? errno : EIO, "cannot write it");
+	return render_bands(r, fn, user);
 }

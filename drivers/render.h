@@ -10,12 +10,16 @@ typedef struct dev_render dev_render_t;
 typedef int (*dev_band_fn)(void *user, const dev_band_t *band);
 
 /* A renderer for one page of width x height. band_rows 0 = whole page when width*height*3 fits
- * budget bytes and 16 MiB, else as many rows as fit the budget and (above 16 MiB) 8 MiB; band_rows >= height = whole page. A single-band page
- * is painted as the statements arrive (from 128 rows on by two threads: the caller's paints the
- * top 2/5, a helper thread the bottom 3/5 from the statements queued in memory, joined by
+ * budget bytes and 16 MiB, else bands of half the budget (at most 8 MiB; the whole budget when
+ * half would hold fewer than 32 rows); band_rows >= height = whole page. A single-band page
+ * is painted as the statements arrive (from 128 rows on by two helper threads, the top and the
+ * bottom half, from the statements the caller's thread queues in memory, joined by
  * dev_render_finish or dev_render_free); a multi-band page spools them to a temporary file and
- * replays it once per band, skipping statements whose rows miss the band. Returns NULL with a
- * message in err on failure. */
+ * replays it once per band, skipping statements whose rows miss the band: in dev_render_finish,
+ * by two threads when two band buffers fit the budget (the first two bands painted by two
+ * helpers while the page is spooled, then each thread the next band not taken, each handing its
+ * band to fn in turn, so fn sees the bands in order, one call at a time, from either thread).
+ * Returns NULL with a message in err on failure. */
 dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen);
 /* The spool of a multi-band page is a temporary file in $TMPDIR (else /tmp), unlinked as soon as
@@ -43,7 +47,8 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb);
 /* One image row at pixel row y (bottom-up page row) from x. */
 int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns);
-/* Render (if spooled) and hand every band to fn, top first. Returns fn's first error or 0. */
+/* Render (if spooled) and hand every band to fn, top first (fn may be called from the helper
+ * thread, never twice at once). Returns the first error in band order, fn's or the replay's, or 0. */
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user);
 
 #endif

@@ -21,6 +21,30 @@ typedef struct {
 	int dir;
 } cross_t;
 
+/* A fill colour as 16 pixels of bytes, made once per statement so that spans are stored as
+ * 48-byte chunks (three 16-byte stores) with nothing built per row. */
+typedef struct {
+	uint8_t pat[48];
+} pen_t;
+
+static inline void pen_make(pen_t *pen, meta_rgb_t rgb)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+	for (int k = 0; k < 48; k += 3) {
+		pen->pat[k] = (uint8_t)(rgb >> 16);
+		pen->pat[k + 1] = (uint8_t)(rgb >> 8);
+		pen->pat[k + 2] = (uint8_t)rgb;
+	}
+#else
+	/* r g b r g b ... as three little-endian 64-bit words, twice (six stores, not 48: a pen
+	 * is made for every stroke piece) */
+	uint64_t c = (uint64_t)(rgb >> 16 & 255) | (uint64_t)(rgb >> 8 & 255) << 8 | (uint64_t)(rgb & 255) << 16;
+	uint64_t w[3] = { c | c << 24 | c << 48, c >> 16 | c << 8 | c << 32 | c << 56, c >> 8 | c << 16 | c << 40 };
+	memcpy(pen->pat, w, 24);
+	memcpy(pen->pat + 24, w, 24);
+#endif
+}
+
 struct scan_ctx {
 	edge_t *edges;
 	size_t cap_edges;
@@ -30,6 +54,9 @@ struct scan_ctx {
 	size_t cap_cross;
 	scan_path_t piece;    /* stroke pieces */
 	scan_path_t dashed;   /* dash pieces */
+	pen_t pen;            /* the pen of pen_rgb (pen_set: made) */
+	meta_rgb_t pen_rgb;
+	int pen_set;
 };
 
 scan_ctx_t *scan_ctx_new(void)
@@ -156,28 +183,24 @@ static inline void edge_step(edge_t *e)
 	e->i += e->sq - neg;
 }
 
-/* A fill colour as 16 pixels of bytes, made once per statement so that spans are stored as
- * 48-byte chunks (three 16-byte stores) with nothing built per row. */
-typedef struct {
-	uint8_t pat[48];
-} pen_t;
-
-static inline void pen_make(pen_t *pen, meta_rgb_t rgb)
+/* Store n pixels (1 <= n <= 16) of the pen at p: two fixed-size stores that overlap, each
+ * starting on a pixel (a short row was 3 byte stores per pixel, the most frequent instructions
+ * of thin strokes). */
+static inline void store_short(uint8_t *p, int64_t n, const pen_t *pen)
 {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
-	for (int k = 0; k < 48; k += 3) {
-		pen->pat[k] = (uint8_t)(rgb >> 16);
-		pen->pat[k + 1] = (uint8_t)(rgb >> 8);
-		pen->pat[k + 2] = (uint8_t)rgb;
+	size_t e = (size_t)n * 3;
+	if (n >= 8) {
+		memcpy(p, pen->pat, 24);
+		memcpy(p + e - 24, pen->pat, 24);
+	} else if (n >= 4) {
+		memcpy(p, pen->pat, 12);
+		memcpy(p + e - 12, pen->pat, 12);
+	} else if (n >= 2) {
+		memcpy(p, pen->pat, 6);
+		memcpy(p + e - 6, pen->pat, 6);
+	} else {
+		memcpy(p, pen->pat, 3);
 	}
-#else
-	/* r g b r g b ... as three little-endian 64-bit words, twice (six stores, not 48: a pen
-	 * is made for every stroke piece) */
-	uint64_t c = (uint64_t)(rgb >> 16 & 255) | (uint64_t)(rgb >> 8 & 255) << 8 | (uint64_t)(rgb & 255) << 16;
-	uint64_t w[3] = { c | c << 24 | c << 48, c >> 16 | c << 8 | c << 32 | c << 56, c >> 8 | c << 16 | c << 40 };
-	memcpy(pen->pat, w, 24);
-	memcpy(pen->pat + 24, w, 24);
-#endif
 }
 
 /* Paint pixels [a, b) of page row j (already known to be inside the band). */
@@ -191,12 +214,8 @@ static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, cons
 		return;
 	uint8_t *p = b->pix + (size_t)(b->jhi - 1 - j) * b->stride + (size_t)a * 3;
 	int64_t n = e - a;
-	if (n < 16) {
-		uint8_t r = pen->pat[0], g = pen->pat[1], bl = pen->pat[2];
-		for (int64_t k = 0; k < n; k++) {
-			p[0] = r; p[1] = g; p[2] = bl;
-			p += 3;
-		}
+	if (n <= 16) {
+		store_short(p, n, pen);
 		return;
 	}
 	/* whole chunks, then one more ending at the span's end (it overlaps the last one with the
@@ -209,26 +228,16 @@ static inline void paint(const scan_band_t *b, int j, int64_t a, int64_t e, cons
 		memcpy(end - 48, pen->pat, 48);
 }
 
-/* paint() from a colour: short rows byte by byte, a pen only for a long one. */
-static inline void paint_rgb(const scan_band_t *b, int j, int64_t a, int64_t e, meta_rgb_t rgb)
+/* The context's pen for rgb, made when the colour changes (strokes are cut into many pieces
+ * of one colour). */
+static inline const pen_t *ctx_pen(scan_ctx_t *c, meta_rgb_t rgb)
 {
-	if (e - a < 16) {
-		if (a < 0)
-			a = 0;
-		if (e > b->width)
-			e = b->width;
-		if (a >= e)
-			return;
-		uint8_t *p = b->pix + (size_t)(b->jhi - 1 - j) * b->stride + (size_t)a * 3;
-		uint8_t r = (uint8_t)(rgb >> 16), g = (uint8_t)(rgb >> 8), bl = (uint8_t)rgb;
-		for (int64_t k = a; k < e; k++, p += 3) {
-			p[0] = r; p[1] = g; p[2] = bl;
-		}
-		return;
+	if (!c->pen_set || c->pen_rgb != rgb) {
+		pen_make(&c->pen, rgb);
+		c->pen_rgb = rgb;
+		c->pen_set = 1;
 	}
-	pen_t pen;
-	pen_make(&pen, rgb);
-	paint(b, j, a, e, &pen);
+	return &c->pen;
 }
 
 /* Insert crossing x into cr[0..n) kept sorted by pixel index (n is the count before). */
@@ -279,36 +288,73 @@ static int cmp_edge(const void *a, const void *b)
 	return (x->jf > y->jf) - (x->jf < y->jf);
 }
 
-/* Few edges (stroke pieces): no sorting of edges, crossings by insertion. */
-static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, meta_rgb_t rgb)
+/* Paint row j of a closed polygon from its na active edges. Two crossings (most rows of most
+ * polygons) have opposite directions, as a row crosses every closed contour as often upwards as
+ * downwards: inside by either rule between them, so no sorting or winding walk is needed. */
+static inline void paint_active(const scan_band_t *b, int j, edge_t *const *act, size_t na,
+		cross_t *cr, int rule, const pen_t *pen)
 {
-	pen_t pen;
-	pen_make(&pen, rgb);
-	int j0 = e[0].jf, j1 = e[0].jl;
-	for (size_t k = 1; k < n; k++) {
-		if (e[k].jf < j0) j0 = e[k].jf;
-		if (e[k].jl > j1) j1 = e[k].jl;
-	}
-	cross_t cr[SMALL_EDGES];
-	for (int j = j0; j <= j1; j++) {
-		size_t na = 0;
-		for (size_t k = 0; k < n; k++) {
-			edge_t *a = &e[k];
-			if (j < a->jf || j > a->jl)
-				continue;
-			insert_crossing(cr, na++, (cross_t){ a->i, a->dir });
-			if (j < a->jl)
-				edge_step(a);
+	if (na == 2) {
+		int64_t x0 = act[0]->i, x1 = act[1]->i;
+		if (x0 > x1) {
+			int64_t t = x0; x0 = x1; x1 = t;
 		}
-		paint_crossings(b, j, cr, na, rule, &pen);
+		if (x1 > x0)
+			paint(b, j, x0, x1, pen);
+		return;
+	}
+	for (size_t k = 0; k < na; k++)
+		insert_crossing(cr, k, (cross_t){ act[k]->i, act[k]->dir });
+	paint_crossings(b, j, cr, na, rule, pen);
+}
+
+/* Step the active edges to the next row and retire those ending at row j; the new count. */
+static inline size_t step_active(edge_t **act, size_t na, int j)
+{
+	size_t keep = 0;
+	for (size_t k = 0; k < na; k++) {
+		if (act[k]->jl == j)
+			continue;
+		edge_step(act[k]);
+		act[keep++] = act[k];
+	}
+	return keep;
+}
+
+/* Few edges (small polygons, stroke pieces): the edges ordered by first row by insertion, and
+ * each row visits only the edges active on it (testing every edge on every row was most of
+ * the time of workload b's 10,000 small polygons). */
+static void sweep_small(const scan_band_t *b, edge_t *e, size_t n, int rule, const pen_t *pen)
+{
+	edge_t *ord[SMALL_EDGES], *act[SMALL_EDGES];
+	cross_t cr[SMALL_EDGES];
+	int jmax = e[0].jl;
+	for (size_t k = 0; k < n; k++) {
+		size_t m = k;
+		while (m > 0 && ord[m - 1]->jf > e[k].jf) {
+			ord[m] = ord[m - 1];
+			m--;
+		}
+		ord[m] = &e[k];
+		if (e[k].jl > jmax)
+			jmax = e[k].jl;
+	}
+	size_t next = 0, na = 0;
+	for (int j = ord[0]->jf; j <= jmax; j++) {
+		while (next < n && ord[next]->jf == j)
+			act[na++] = ord[next++];
+		if (na == 0) {
+			j = ord[next]->jf - 1;   /* a gap between contours: edges remain, as j <= jmax */
+			continue;
+		}
+		paint_active(b, j, act, na, cr, rule, pen);
+		na = step_active(act, na, j);
 	}
 }
 
 /* Convex polygons: every row crosses exactly two edges (or none), the span lies between. */
-static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, meta_rgb_t rgb)
+static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, const pen_t *pen)
 {
-	pen_t pen;
-	pen_make(&pen, rgb);
 	int j0 = e[0].jf, j1 = e[0].jl;
 	for (size_t k = 1; k < n; k++) {
 		if (e[k].jf < j0) j0 = e[k].jf;
@@ -326,7 +372,7 @@ static void sweep_convex(const scan_band_t *b, edge_t *e, size_t n, meta_rgb_t r
 				edge_step(a);
 		}
 		if (hi > lo)
-			paint(b, j, lo, hi, &pen);
+			paint(b, j, lo, hi, pen);
 	}
 }
 
@@ -335,15 +381,14 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 {
 	if (n == 0)
 		return 0;
+	const pen_t *pen = ctx_pen(c, rgb);
 	if (n <= SMALL_EDGES) {
-		sweep_small(b, c->edges, n, rule, rgb);
+		sweep_small(b, c->edges, n, rule, pen);
 		return 0;
 	}
 	if (grow((void **)&c->active, &c->cap_active, n, sizeof(edge_t *)) ||
 			grow((void **)&c->cross, &c->cap_cross, n, sizeof(cross_t)))
 		return META_ENOMEM;
-	pen_t pen;
-	pen_make(&pen, rgb);
 	edge_t *e = c->edges;
 	if (n > 1)
 		qsort(e, n, sizeof(edge_t), cmp_edge);
@@ -362,20 +407,8 @@ static int sweep(scan_ctx_t *c, const scan_band_t *b, size_t n, int rule, meta_r
 				j = e[next].jf - 1;
 			continue;
 		}
-		/* collect crossings, insertion-sorted by pixel index */
-		for (size_t k = 0; k < na; k++) {
-			insert_crossing(cr, k, (cross_t){ act[k]->i, act[k]->dir });
-		}
-		paint_crossings(b, j, cr, na, rule, &pen);
-		/* step and retire */
-		size_t keep = 0;
-		for (size_t k = 0; k < na; k++) {
-			if (act[k]->jl == j)
-				continue;
-			edge_step(act[k]);
-			act[keep++] = act[k];
-		}
-		na = keep;
+		paint_active(b, j, act, na, cr, rule, pen);
+		na = step_active(act, na, j);
 	}
 	return 0;
 }
@@ -392,37 +425,109 @@ typedef struct {
 	int j0, j1, dir;
 } tedge_t;
 
+/* ceil((v - 500) / 1000) for |v| < TINY: the first pixel row (column) whose centre is at or
+ * above (right of) v, as floor((v + 499) / 1000) shifted positive by 16777 * 1000 so that
+ * an unsigned 32-bit division (a multiply) computes it, not a signed 64-bit one and its
+ * correction (ceil_div was a tenth of workload a's instructions). */
+static inline int64_t tiny_row(int64_t v)
+{
+	return (int64_t)((uint32_t)(v + 16777499) / 1000u) - 16777;
+}
+
 /* ceil(n / d) for d > 0, |n| < 2^52: the estimate n * inv is within one of it. */
 static inline int64_t tiny_ceil(int64_t n, int64_t d, double inv)
 {
 	int64_t q = (int64_t)ceil((double)n * inv);
-	while (q * d < n)
-		q++;
-	while ((q - 1) * d >= n)
-		q--;
-	return q;
+	/* q is right when 0 <= q*d - n < d; being within one, a step either way without a loop
+	 * (the two correction loops were a tenth of a film frame's instructions) */
+	int64_t r = q * d - n;
+	return q + (r < 0) - (r >= d);
+}
+
+/* Sort the edges of one direction by first row (insertion: a chain has a few) and tell whether
+ * they tile rows [j0, j1] exactly, each row crossing one of them. */
+static inline int chain(tedge_t **ch, size_t n, int *j0, int *j1)
+{
+	if (n == 2) {   /* a parallelogram's side: most chains */
+		if (ch[0]->j0 > ch[1]->j0) {
+			tedge_t *t = ch[0]; ch[0] = ch[1]; ch[1] = t;
+		}
+		*j0 = ch[0]->j0;
+		*j1 = ch[1]->j1;
+		return ch[1]->j0 == ch[0]->j1 + 1;
+	}
+	for (size_t k = 1; k < n; k++) {
+		tedge_t *t = ch[k];
+		size_t m = k;
+		while (m > 0 && ch[m - 1]->j0 > t->j0) {
+			ch[m] = ch[m - 1];
+			m--;
+		}
+		ch[m] = t;
+	}
+	for (size_t k = 1; k < n; k++)
+		if (ch[k]->j0 != ch[k - 1]->j1 + 1)
+			return 0;
+	*j0 = ch[0]->j0;
+	*j1 = ch[n - 1]->j1;
+	return 1;
+}
+
+/* Paint the piece from its upward and downward chains when each row of it crosses exactly one
+ * edge of each (every convex piece, most join pieces): two crossings of opposite directions, so
+ * the row is inside by either rule between them, and only those two edges are computed on
+ * each row. Returns 0 (painted) or -1 when the chains do not tile the same rows. */
+static int fill_chains(const scan_band_t *b, tedge_t *e, size_t ne, const pen_t *pen)
+{
+	tedge_t *up[SMALL_EDGES], *dn[SMALL_EDGES];
+	size_t nu = 0, nd = 0;
+	for (size_t k = 0; k < ne; k++) {
+		if (e[k].dir > 0)
+			up[nu++] = &e[k];
+		else
+			dn[nd++] = &e[k];
+	}
+	int u0, u1, d0, d1;
+	if (!nu || !nd || !chain(up, nu, &u0, &u1) || !chain(dn, nd, &d0, &d1) || u0 != d0 || u1 != d1)
+		return -1;
+	size_t iu = 0, id = 0;
+	tedge_t *u = up[0], *d = dn[0];
+	for (int j = u0; j <= u1; j++) {
+		if (j > u->j1)
+			u = up[++iu];
+		if (j > d->j1)
+			d = dn[++id];
+		int64_t l = tiny_ceil(u->n, u->d, u->inv), r = tiny_ceil(d->n, d->d, d->inv);
+		u->n += u->s;
+		d->n += d->s;
+		if (l > r) {
+			int64_t t = l; l = r; r = t;
+		}
+		if (r > l)
+			paint(b, j, l, r, pen);
+	}
+	return 0;
 }
 
 /* Fill a piece of m <= SMALL_EDGES points within +-TINY, rows clipped to [lo, hi). */
 static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
-		meta_rgb_t rgb, int convex, int lo, int hi)
+		const pen_t *pen, int convex, int lo, int hi)
 {
-	/* stroke pieces are small: a pen only for the pieces that sort crossings, convex ones
-	 * paint their (mostly short) rows from the colour */
-	pen_t pen;
-	if (!convex)
-		pen_make(&pen, rgb);
 	tedge_t e[SMALL_EDGES];
+	int64_t jv[SMALL_EDGES];   /* each vertex's first pixel-centre row at or above it */
+	for (size_t k = 0; k < m; k++)
+		jv[k] = tiny_row(pts[k].y);
 	size_t ne = 0;
 	int jmin = INT32_MAX, jmax = INT32_MIN;
 	for (size_t k = 0; k < m; k++) {
-		const scan_pt_t *a = &pts[k], *z = &pts[k + 1 == m ? 0 : k + 1];
-		if (a->y == z->y)
-			continue;
+		size_t kz = k + 1 == m ? 0 : k + 1;
+		if (jv[k] == jv[kz])
+			continue;   /* no centre row between them (a horizontal edge among them) */
+		const scan_pt_t *a = &pts[k], *z = &pts[kz];
 		int up = a->y < z->y, dir = up ? 1 : -1;
 		int64_t x0 = up ? a->x : z->x, y0 = up ? a->y : z->y;
 		int64_t x1 = up ? z->x : a->x, y1 = up ? z->y : a->y;
-		int64_t j0 = ceil_div(y0 - 500, 1000), j1 = ceil_div(y1 - 500, 1000) - 1;
+		int64_t j0 = up ? jv[k] : jv[kz], j1 = (up ? jv[kz] : jv[k]) - 1;
 		if (j0 < lo)
 			j0 = lo;
 		if (j1 > hi - 1)
@@ -443,6 +548,8 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 		if (t->j1 > jmax)
 			jmax = t->j1;
 	}
+	if (ne == 0 || fill_chains(b, e, ne, pen) == 0)
+		return;
 	for (int j = jmin; j <= jmax; j++) {
 		if (convex) {
 			int64_t l = INT64_MAX, r = INT64_MIN;
@@ -456,7 +563,7 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 				if (i > r) r = i;
 			}
 			if (r > l)
-				paint_rgb(b, j, l, r, rgb);
+				paint(b, j, l, r, pen);
 			continue;
 		}
 		cross_t cr[SMALL_EDGES];
@@ -468,7 +575,7 @@ static void fill_tiny(const scan_band_t *b, const scan_pt_t *pts, size_t m, int 
 			insert_crossing(cr, na++, (cross_t){ tiny_ceil(t->n, t->d, t->inv), t->dir });
 			t->n += t->s;
 		}
-		paint_crossings(b, j, cr, na, rule, &pen);
+		paint_crossings(b, j, cr, na, rule, pen);
 	}
 }
 
@@ -522,11 +629,15 @@ int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, s
 		if (pts[k].y < y0) y0 = pts[k].y;
 		if (pts[k].y > y1) y1 = pts[k].y;
 	}
-	if (ceil_div(y0 - 500, 1000) > ceil_div(y1 - 500, 1000) - 1 ||
-			ceil_div(x0 - 500, 1000) > ceil_div(x1 - 500, 1000) - 1)
-		return 0;
-	if (m <= SMALL_EDGES && x0 > -TINY && x1 < TINY && y0 > -TINY && y1 < TINY) {
-		fill_tiny(b, pts, m, rule, rgb, convex, lo, hi);
+	if (x0 > -TINY && x1 < TINY && y0 > -TINY && y1 < TINY) {
+		if (tiny_row(y0) >= tiny_row(y1) || tiny_row(x0) >= tiny_row(x1))
+			return 0;
+		if (m <= SMALL_EDGES) {
+			fill_tiny(b, pts, m, rule, ctx_pen(c, rgb), convex, lo, hi);
+			return 0;
+		}
+	} else if (ceil_div(y0 - 500, 1000) > ceil_div(y1 - 500, 1000) - 1 ||
+			ceil_div(x0 - 500, 1000) > ceil_div(x1 - 500, 1000) - 1) {
 		return 0;
 	}
 	if (grow((void **)&c->edges, &c->cap_edges, m, sizeof(edge_t)))
@@ -537,7 +648,7 @@ int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, s
 		n += (size_t)edge_init(&c->edges[n], a->x, a->y, z->x, z->y, lo, hi);
 	}
 	if (convex && n > 0) {
-		sweep_convex(b, c->edges, n, rgb);
+		sweep_convex(b, c->edges, n, ctx_pen(c, rgb));
 		return 0;
 	}
 	return sweep(c, b, n, rule, rgb);

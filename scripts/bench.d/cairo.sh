@@ -3,7 +3,8 @@
 # 1024x768), exact mode against CAIRO_ANTIALIAS_NONE and --antialias (4 x 4, linear light)
 # against cairo's default anti-aliasing, in alternating rounds of the same run.
 # Lines: cairo-W (exact; target 2: at least twice as fast) and cairo-aa-W (target 1: faster).
-# Extra keys: the percentage of pixels where the two pictures differ, and their PSNR (dB).
+# Extra keys: the percentage of pixels where the two pictures differ, their PSNR (dB), and the
+# one-minute load average when the line was written (load1).
 
 # cairo_img: build the anchor into $W/cairo_anchor unless the ps group already did
 cairo_img() {
@@ -15,6 +16,10 @@ cairo_img() {
 	B_ERR="$(grep -m1 -E 'error|undefined' "$W/cairo_anchor.log" | cut -c1-160)"
 	return 1
 }
+
+# bench_load: the one-minute load average (other work on the machine: wall-time ratios of a
+# two-thread replay shrink when the cores are shared)
+bench_load() { cut -d' ' -f1 /proc/loadavg 2> /dev/null || echo na; }
 
 # cairo_psnr A B: ImageMagick's PSNR of two pictures (inf when equal, na when it cannot tell)
 cairo_psnr() {
@@ -53,14 +58,14 @@ bench_cairo() {
 		r=$(ratio "$cn_s" "$M_S")
 		line "cairo-$wl" "$M_S" cairo-antialias-none "$cn_s" "$M_MIB" "$cn_mib" "target=2 pass=$(pass "$r" 2)" \
 			"runs=$BENCH_RUNS diff_pct=$(diffpct "$W/cairo-$wl-le.ppm" "$W/cairo-$wl-cn.ppm")" \
-			"psnr_db=$(cairo_psnr "$W/cairo-$wl-le.ppm" "$W/cairo-$wl-cn.ppm") $(cpu "$M_CPU" "$cn_cpu")"
+			"psnr_db=$(cairo_psnr "$W/cairo-$wl-le.ppm" "$W/cairo-$wl-cn.ppm") $(cpu "$M_CPU" "$cn_cpu") load1=$(bench_load)"
 		med "$W/r.cd"
 		cd_s=$M_S cd_mib=$M_MIB cd_cpu=$M_CPU
 		med "$W/r.la"
 		r=$(ratio "$cd_s" "$M_S")
 		line "cairo-aa-$wl" "$M_S" cairo-antialias-default "$cd_s" "$M_MIB" "$cd_mib" "target=1 pass=$(pass "$r" 1)" \
 			"runs=$BENCH_RUNS antialias=4 diff_pct=$(diffpct "$W/cairo-$wl-la.ppm" "$W/cairo-$wl-cd.ppm")" \
-			"psnr_db=$(cairo_psnr "$W/cairo-$wl-la.ppm" "$W/cairo-$wl-cd.ppm") $(cpu "$M_CPU" "$cd_cpu")"
+			"psnr_db=$(cairo_psnr "$W/cairo-$wl-la.ppm" "$W/cairo-$wl-cd.ppm") $(cpu "$M_CPU" "$cd_cpu") load1=$(bench_load)"
 		rm -f "$W/cairo-$wl-"*.ppm
 	done
 }

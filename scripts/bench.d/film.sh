@@ -1,7 +1,8 @@
 # film.sh: bench group "film" (sourced by scripts/bench.sh): locus-film writing a slide frame
 # (4096x2730, and 8192x5460) of a ray-traced gallery plate and of workload a, against
 # ImageMagick converting locus-raster's PNG of the same picture, upscaled to the frame, to DPX.
-# One BENCH line per picture and frame: time, peak RSS, MB/s written (docs/benchmarks.md).
+# One BENCH line per picture and frame: time, peak RSS, MB/s written (docs/benchmarks.md), and
+# the one-minute load average (load1: locus-film paints with two threads, so shared cores show).
 
 # film_one NAME META W H PRESET RUNS
 film_one() {
@@ -23,7 +24,7 @@ film_one() {
 		"mem_target=0.1 mem_pass=$mem runs=$f_r frame=${f_w}x$f_h" \
 		"mb_per_s=$(awk -v b="$bytes" -v s="$ls" 'BEGIN {printf "%.1f", b / 1e6 / s}')" \
 		"anchor_mb_per_s=$(awk -v b="$abytes" -v s="$M_S" 'BEGIN {printf "%.1f", b / 1e6 / s}')" \
-		"bytes=$bytes $(cpu "$lc" "$M_CPU")"
+		"bytes=$bytes $(cpu "$lc" "$M_CPU") load1=$(cut -d' ' -f1 /proc/loadavg 2> /dev/null || echo na)"
 	rm -f "$W/film.dpx" "$W/film-im.dpx"
 }
 
