@@ -32,7 +32,7 @@ static const dev_option_t hpgl_options[] = {
 	{ "optimize", "yes|no (default yes)" },
 	{ "merge", "tolerance in mm for joining path ends, 0 = off (default 0.05)" },
 	{ "simplify", "tolerance in mm, 0 = only repeated points (default 0)" },
-	{ "budget", "2-opt time budget in seconds (default 0.2)" },
+	{ "budget", "2-opt work budget, in seconds of a reference core: deterministic (default 0.2)" },
 	{ "fill", "hatch|native|none|outline (native: HP-GL/2 FP; default hatch, outline on cutters)" },
 	{ "hatch", "hatch spacing in mm (default: the pen width)" },
 	{ "hatch-angle", "degrees (default 45)" },

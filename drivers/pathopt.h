@@ -37,7 +37,7 @@ typedef struct {
 	double merge_tol;           /* plotter units */
 	double simplify_tol;        /* Douglas-Peucker tolerance, plotter units; 0: duplicates only */
 	int reorder;                /* nearest-end ordering with reversal */
-	double budget_s;            /* 2-opt time budget in seconds (0: no 2-opt) */
+	double budget_s;            /* 2-opt work budget in seconds of a reference core (pathopt.c: counted in moves, so deterministic; 0: no 2-opt) */
 	int window;                 /* 2-opt neighbourhood (positions ahead), 0 = default 64 */
 } popt_opts_t;
 

@@ -200,6 +200,15 @@ printf '1=black\n2=red:wide\n' > "$T/bad.pens"
 bad_case 65 "bad.pens: pens: '2=red:wide'" "bad pen file" --pens "$T/bad.pens" fixtures/meta/f-test.meta
 bad_case 66 "nope.pens" "missing pen file" --pens "$T/nope.pens" fixtures/meta/f-test.meta
 bad_case 64 "pen 9 does not fit" "more pens than slots" --pens 1=black,9=red fixtures/meta/f-test.meta
+# The 2-opt budget is work, not clock time: a budget far too small for the contour plot to
+# converge (10 us of a reference core: 1,250 moves) stops at the same move every run, busy or
+# not, so the bytes are the same twice and differ from the converged default's.
+for k in 1 2; do "$P" -O budget=0.00001 fixtures/contour/trifocal.meta -o "$T/budget$k.hpgl" 2>/dev/null; done
+"$P" fixtures/contour/trifocal.meta -o "$T/budget-full.hpgl" 2>/dev/null
+cmp -s "$T/budget1.hpgl" "$T/budget2.hpgl" && ! cmp -s "$T/budget1.hpgl" "$T/budget-full.hpgl" \
+	&& ok "a 2-opt budget that runs out stops at the same point every run (deterministic bytes)" \
+	|| notok "2-opt budget: the cut-short runs differ from each other, or the budget did not bite"
+
 bad_case 64 "unknown option 'colour'" "unknown -O key" -O colour=red fixtures/meta/f-test.meta
 bad_case 64 "option rotate" "bad rotation" --rotate 45 fixtures/meta/f-test.meta
 bad_case 64 "pcl=yes frames HP-GL/2" "PCL framing on HP-GL" -O pcl=yes fixtures/meta/f-test.meta
