@@ -78,7 +78,7 @@ end-page
 M
 "$R" "$T/big.meta" -o "$T/big1.png"
 "$R" --mem-budget 1 "$T/big.meta" -o "$T/big2.png"
-same_file "--mem-budget 1 (bands of 233 rows) equals the whole page" "$T/big1.png" "$T/big2.png"
+same_file "--mem-budget 1 (bands of 116 rows, two at a time) equals the whole page" "$T/big1.png" "$T/big2.png"
 "$R" --band-rows 64 "$T/big.meta" -o "$T/big3.png"
 same_file "--band-rows 64 equals the whole page" "$T/big1.png" "$T/big3.png"
 

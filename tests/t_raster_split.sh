@@ -45,7 +45,7 @@ gen 3 > "$T/split.meta"
 	notok "test input is only $(wc -c < "$T/split.meta") bytes"
 
 check "three pages, two threads" "$R" -f ppm "$T/split.meta" -o "$T/two.ppm"
-check "three pages, banded replay in one thread" "$R" -f ppm --band-rows 13 "$T/split.meta" -o "$T/one.ppm"
+check "three pages, banded replay (bands of 13 rows, two painters)" "$R" -f ppm --band-rows 13 "$T/split.meta" -o "$T/one.ppm"
 for n in 001 002 003; do
 	same_file "page $n: two-thread page identical to the banded replay" "$T/two-$n.ppm" "$T/one-$n.ppm"
 done
