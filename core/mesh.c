@@ -197,15 +197,9 @@ static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], dou
 	if (r)
 		return (uint32_t)v;
 	mesh_t *m = x->m;
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q) {
-			x->oom = 1;
-			return 0;
-		}
-		m->v = q;
-		m->vcap = cap;
+	if (mesh_vertex_slot(m) < 0) {
+		x->oom = 1;
+		return 0;
 	}
 	double a[3], b[3], *p = m->v + 3 * m->nv;
 	grid_point(x, ga, a);
@@ -220,18 +214,35 @@ static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], dou
 
 static void triangle(ext_t *x, uint32_t a, uint32_t b, uint32_t c)
 {
-	mesh_t *m = x->m;
-	if (m->nt == MESH_MAX_TRIANGLES) {
+	int r = mesh_triangle(x->m, a, b, c);
+	if (r == -2)
 		x->too_many = 1;
-		return;
+	else if (r < 0)
+		x->oom = 1;
+}
+
+long mesh_vertex_slot(mesh_t *m)
+{
+	if (m->nv == m->vcap) {
+		size_t cap = m->vcap ? 2 * m->vcap : 4096;
+		double *q = realloc(m->v, 3 * cap * sizeof *q);
+		if (!q)
+			return -1;
+		m->v = q;
+		m->vcap = cap;
 	}
+	return (long)m->nv;
+}
+
+int mesh_triangle(mesh_t *m, uint32_t a, uint32_t b, uint32_t c)
+{
+	if (m->nt == MESH_MAX_TRIANGLES)
+		return -2;
 	if (m->nt == m->tcap) {
 		size_t cap = m->tcap ? 2 * m->tcap : 8192;
 		uint32_t *q = realloc(m->t, 3 * cap * sizeof *q);
-		if (!q) {
-			x->oom = 1;
-			return;
-		}
+		if (!q)
+			return -1;
 		m->t = q;
 		m->tcap = cap;
 	}
@@ -239,6 +250,7 @@ static void triangle(ext_t *x, uint32_t a, uint32_t b, uint32_t c)
 	t[0] = a;
 	t[1] = b;
 	t[2] = c;
+	return 0;
 }
 
 /* The 6 tetrahedra of the Kuhn triangulation of a cube (corner bits: 1 = +x, 2 = +y, 4 = +z). */
@@ -293,15 +305,9 @@ static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
 	if (r)
 		return (uint32_t)v;
 	mesh_t *m = x->m;
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q) {
-			x->oom = 1;
-			return 0;
-		}
-		m->v = q;
-		m->vcap = cap;
+	if (mesh_vertex_slot(m) < 0) {
+		x->oom = 1;
+		return 0;
 	}
 	grid_point(x, g, m->v + 3 * m->nv);
 	mesh_table_put(&x->corners, at, k, m->nv);

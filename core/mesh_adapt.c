@@ -176,25 +176,11 @@ static void build(ad_t *x, const uint64_t g[3], int level)
 
 static void triangle(ad_t *x, uint32_t a, uint32_t b, uint32_t c)
 {
-	mesh_t *m = x->m;
-	if (m->nt == MESH_MAX_TRIANGLES) {
+	int r = mesh_triangle(x->m, a, b, c);
+	if (r == -2)
 		x->too_many = 1;
-		return;
-	}
-	if (m->nt == m->tcap) {
-		size_t cap = m->tcap ? 2 * m->tcap : 8192;
-		uint32_t *q = realloc(m->t, 3 * cap * sizeof *q);
-		if (!q) {
-			x->oom = 1;
-			return;
-		}
-		m->t = q;
-		m->tcap = cap;
-	}
-	uint32_t *t = m->t + 3 * m->nt++;
-	t[0] = a;
-	t[1] = b;
-	t[2] = c;
+	else if (r < 0)
+		x->oom = 1;
 }
 
 /* The surface vertex on the edge between half-unit points a (inside) and b (outside). */
@@ -211,15 +197,9 @@ static uint32_t vertex(ad_t *x, const uint64_t a[3], const uint64_t b[3], double
 	if (r)
 		return (uint32_t)v;
 	mesh_t *m = x->m;
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q) {
-			x->oom = 1;
-			return 0;
-		}
-		m->v = q;
-		m->vcap = cap;
+	if (mesh_vertex_slot(m) < 0) {
+		x->oom = 1;
+		return 0;
 	}
 	double pa[3], pb[3];
 	ppos(x, a, pa);

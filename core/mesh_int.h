@@ -10,6 +10,12 @@ double mesh_field(const model_shape_t *s, const double p[3]);
 /* The gradient of F at p: the shape's where f is the larger term, else the box's. */
 void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3]);
 
+/* Room for one more vertex of m: its index (m->nv; the caller writes m->v[3 * index ...] and
+ * then increments m->nv), or -1 out of memory. */
+long mesh_vertex_slot(mesh_t *m);
+/* Append the triangle a b c of m's vertices. 0, -1 out of memory, -2 over MESH_MAX_TRIANGLES. */
+int mesh_triangle(mesh_t *m, uint32_t a, uint32_t b, uint32_t c);
+
 /* Append the tetrahedron a b c d of m's vertices, positively oriented (two corners swapped when
  * its volume is negative). 0, -1 out of memory, -2 over MESH_MAX_TETS. */
 int mesh_tet(mesh_t *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d);
