@@ -620,6 +620,19 @@ int model_check_nesting(model_shape_t *s, char *err, size_t errlen)
 	return 0;
 }
 
+/* The point c of segment a b nearest to p; returns |p - c|. */
+static double seg_nearest(const double *p, const double *a, const double *b, double c[3])
+{
+	double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+	double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+	double l2 = dot3(ba, ba), h = l2 > 0 ? dot3(pa, ba) / l2 : 0;
+	h = h < 0 ? 0 : h > 1 ? 1 : h;
+	for (int j = 0; j < 3; j++)
+		c[j] = a[j] + h * ba[j];
+	double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
+	return len3(d);
+}
+
 /* Nearest point q of the element to p (setup frame); returns the distance. */
 static double nearest(const model_elem_t *e, const double *p, double *q)
 {
@@ -649,14 +662,8 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 				if (k == e->np)
 					break;
 			}
-			const double *a = e->p + 6 * k, *b = a + 3;
-			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-			double l2 = dot3(ba, ba), h = l2 > 0 ? dot3(pa, ba) / l2 : 0;
-			h = h < 0 ? 0 : h > 1 ? 1 : h;
-			double c[3] = {a[0] + h * ba[0], a[1] + h * ba[1], a[2] + h * ba[2]};
-			double dv[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-			double d = len3(dv), ev = d * e->nm[k] - e->nw[k];
+			double c[3], d = seg_nearest(p, e->p + 6 * k, e->p + 6 * k + 3, c);
+			double ev = d * e->nm[k] - e->nw[k];
 			if (ev < ce) {
 				ce = ev, cd = d, cm = e->nm[k];
 				memcpy(cn, c, sizeof c);
@@ -682,14 +689,7 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 		return best;
 	case MODEL_SEGMENT: case MODEL_POLYLINE:
 		for (size_t k = 0; k + 1 < e->np; k++) {
-			const double *a = e->p + 3 * k, *b = a + 3;
-			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-			double l2 = dot3(ba, ba), h = l2 > 0 ? dot3(pa, ba) / l2 : 0;
-			h = h < 0 ? 0 : h > 1 ? 1 : h;
-			double c[3] = {a[0] + h * ba[0], a[1] + h * ba[1], a[2] + h * ba[2]};
-			double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-			double l = len3(d);
+			double c[3], l = seg_nearest(p, e->p + 3 * k, e->p + 3 * k + 3, c);
 			if (l < best) {
 				best = l;
 				memcpy(q, c, sizeof c);
@@ -720,14 +720,7 @@ static double nearest(const model_elem_t *e, const double *p, double *q)
 			return fabs(h);
 		}
 		for (size_t k = 0; k < e->np; k++) {
-			const double *a = v + 3 * k, *b = v + 3 * ((k + 1) % e->np);
-			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-			double pa[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
-			double l2 = dot3(ba, ba), t = l2 > 0 ? dot3(pa, ba) / l2 : 0;
-			t = t < 0 ? 0 : t > 1 ? 1 : t;
-			double c[3] = {a[0] + t * ba[0], a[1] + t * ba[1], a[2] + t * ba[2]};
-			double d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-			double l = len3(d);
+			double c[3], l = seg_nearest(p, v + 3 * k, v + 3 * ((k + 1) % e->np), c);
 			if (l < best) {
 				best = l;
 				memcpy(q, c, sizeof c);
