@@ -210,35 +210,25 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	return 0;
 }
 
-/* flow=escb: ESC.B before each chunk of at most half the buffer (waiting while there is no
- * room), and after it: its answer, read behind the chunk, confirms the chunk reached the plotter
- * (the journal counts what this returns), and serves as the next chunk's free space. */
+/* flow=escb through the shared pacing (link_escb.c) */
+static int escb_put(io_transport_t *t, const void *buf, size_t n)
+{
+	hid_t_ *s = t->link_state;
+	if (hid_put(t, s, buf, n))
+		return -1;
+	s->sent += (long long)n;
+	return 0;
+}
+
+static int escb_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
+{
+	return hid_ask(t, t->link_state, q, what, ms, out);
+}
+
 static long escb_write(io_transport_t *t, hid_t_ *s, const void *buf, size_t n)
 {
-	size_t chunk = (size_t)s->bufsize / 2, want = n < chunk ? n : chunk;
-	long long start = tr_now_ms();
-	long space = s->space;
-	s->space = -1;
-	for (;;) {
-		if (space < 0 && hid_ask(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &space))
-			return -1;
-		if (space >= (long)want)
-			break;
-		space = -1;
-		if (tr_check_interrupt(t))
-			return -1;
-		if (tr_now_ms() - start > s->timeout_ms)
-			return io_link_tempfail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
-				"of paper?)", s->timeout_ms / 1000);
-		struct timespec ts = { 0, 20000000L };
-		nanosleep(&ts, NULL);
-	}
-	if (hid_put(t, s, buf, want))
-		return -1;
-	s->sent += (long long)want;
-	if (hid_ask(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &s->space))
-		return -1;
-	return (long)want;
+	tr_escb_t e = { escb_put, escb_ask, s->bufsize, s->timeout_ms };
+	return tr_escb_write(t, &e, &s->space, buf, n);
 }
 
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n)

@@ -321,36 +321,24 @@ fail:
 	return -1;
 }
 
+static int escb_put(io_transport_t *t, const void *buf, size_t n)
+{
+	return put_all(t, t->link_state, buf, n);
+}
+
+static int escb_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
+{
+	return ask_number(t, t->link_state, q, what, ms, out);
+}
+
 long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 {
 	serial_t *s = t->link_state;
 	if (s->flow != FLOW_ESCB)
 		return put_all(t, s, buf, n) ? -1 : (long)n;
-	/* ESC.B before each chunk of at most half the buffer; wait while there is no room. The
-	 * answer after a chunk also confirms that the chunk reached the plotter (it answers when the
-	 * query arrives, behind the chunk), so what this returns is in the plotter's buffer: the job
-	 * journal counts it as acknowledged; the answer serves as the next chunk's free space. */
-	size_t chunk = (size_t)s->bufsize / 2;
-	size_t want = n < chunk ? n : chunk;
-	long long start = tr_now_ms();
-	long space = s->space;
-	s->space = -1;
-	for (;;) {
-		if (space < 0 && ask_number(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &space))
-			return -1;
-		if (space >= (long)want)
-			break;
-		space = -1;
-		if (tr_check_interrupt(t))
-			return -1;
-		if (tr_now_ms() - start > s->timeout_ms)
-			return io_link_tempfail(t, "the plotter's buffer stayed full for %ld s (paused, or out "
-				"of paper?)", s->timeout_ms / 1000);
-		sleep_ms(20);
-	}
-	if (put_all(t, s, buf, want) || ask_number(t, s, "\033.B", "ESC.B (free buffer space)", 3000, &s->space))
-		return -1;
-	return (long)want;
+	/* ESC.B before each chunk of at most half the buffer (link_escb.c) */
+	tr_escb_t e = { escb_put, escb_ask, s->bufsize, s->timeout_ms };
+	return tr_escb_write(t, &e, &s->space, buf, n);
 }
 
 long tr_serial_read(io_transport_t *t, void *buf, size_t n)

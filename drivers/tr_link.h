@@ -72,6 +72,20 @@ int tr_check_interrupt(io_transport_t *t);
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);
 /* Parse a whole decimal number in [lo, hi] into *out: 0, or -1. */
 int tr_parse_long(const char *s, long lo, long hi, long *out);
+/* flow=escb on a link that reads the plotter's replies (serial, HID): how it sends and asks. */
+typedef struct {
+	/* send all n bytes: 0, or -1 (message set) */
+	int (*put)(io_transport_t *t, const void *buf, size_t n);
+	/* send query q and read its number reply within ms: 0, or -1 (message set, naming what) */
+	int (*ask)(io_transport_t *t, const char *q, const char *what, long ms, long *out);
+	long bufsize;               /* the plotter's buffer (ESC.L) */
+	long timeout_ms;            /* a buffer full for this long: a temporary failure */
+} tr_escb_t;
+/* link_escb.c: send at most half the buffer of buf/n, after an ESC.B says there is room for it
+ * (*space: the last answer not yet used, or -1; waiting while there is none), then ESC.B again:
+ * its answer, read behind the chunk, confirms the chunk reached the plotter (the journal counts
+ * what this returns) and is left in *space for the next chunk. Bytes sent, or -1. */
+long tr_escb_write(io_transport_t *t, const tr_escb_t *e, long *space, const void *buf, size_t n);
 /* Milliseconds since an arbitrary start (CLOCK_MONOTONIC). */
 long long tr_now_ms(void);
 
