@@ -212,9 +212,9 @@ static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], dou
 	return (uint32_t)m->nv++;
 }
 
-static void triangle(ext_t *x, uint32_t a, uint32_t b, uint32_t c)
+/* Record a triangle append's result (mesh_triangle's -1 or -2). */
+static void triangle_rc(ext_t *x, int r)
 {
-	int r = mesh_triangle(x->m, a, b, c);
 	if (r == -2)
 		x->too_many = 1;
 	else if (r < 0)
@@ -259,9 +259,9 @@ static const int kuhn[6][4] = {
 
 static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* Emit the triangle on edges e0 e1 e2 (their midpoints m0 m1 m2) wound with its normal along
- * `out` (from the inside corners towards the outside ones). */
-static void oriented(ext_t *x, const uint32_t *v, const double (*mid)[3], int e0, int e1, int e2, const double *out)
+/* Append the triangle on edges e0 e1 e2 (their midpoints mid[]) wound with its normal along
+ * `out` (from the inside corners towards the outside ones). As mesh_triangle. */
+static int oriented(mesh_t *m, const uint32_t *v, const double (*mid)[3], int e0, int e1, int e2, const double *out)
 {
 	double u[3], w[3], n[3];
 	for (int i = 0; i < 3; i++) {
@@ -272,15 +272,49 @@ static void oriented(ext_t *x, const uint32_t *v, const double (*mid)[3], int e0
 	n[1] = u[2] * w[0] - u[0] * w[2];
 	n[2] = u[0] * w[1] - u[1] * w[0];
 	if (dot3(n, out) > 0)
-		triangle(x, v[e0], v[e1], v[e2]);
-	else
-		triangle(x, v[e0], v[e2], v[e1]);
+		return mesh_triangle(m, v[e0], v[e1], v[e2]);
+	return mesh_triangle(m, v[e0], v[e2], v[e1]);
 }
 
 static double dist2(const double *a, const double *b)
 {
 	double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 	return dot3(d, d);
+}
+
+/* The worse of two append results: -2 (too many) before -1 (memory) before 0. */
+static int worse(int a, int b) { return a == -2 || b == -2 ? -2 : a < 0 ? a : b; }
+
+int mesh_tet_surface(mesh_t *m, const double (*cp)[3], const int *ins, int ni, const int *outs, int no,
+                     const uint32_t *v)
+{
+	/* from the inside corners' centroid to the outside ones' */
+	double dir[3] = {0, 0, 0};
+	for (int i = 0; i < 3; i++) {
+		for (int j = 0; j < ni; j++)
+			dir[i] -= cp[ins[j]][i] / ni;
+		for (int j = 0; j < no; j++)
+			dir[i] += cp[outs[j]][i] / no;
+	}
+	double mid[4][3];
+	int ne = 0;
+	for (int i = 0; i < ni; i++)
+		for (int j = 0; j < no; j++, ne++)
+			for (int c = 0; c < 3; c++)
+				mid[ne][c] = (cp[ins[i]][c] + cp[outs[j]][c]) / 2;
+	const double (*md)[3] = (const double (*)[3])mid;
+	if (ne == 3)
+		return oriented(m, v, md, 0, 1, 2, dir);
+	/* edges 0 = a0b0, 1 = a0b1, 2 = a1b0, 3 = a1b1: the quad 0 1 3 2; split along the shorter
+	 * of its diagonals 0-3 and 1-2 (by the refined vertices) */
+	const double *P = m->v;
+	int r;   /* two statements: the first triangle is appended first */
+	if (dist2(P + 3 * v[0], P + 3 * v[3]) <= dist2(P + 3 * v[1], P + 3 * v[2])) {
+		r = oriented(m, v, md, 0, 1, 3, dir);
+		return worse(r, oriented(m, v, md, 0, 3, 2, dir));
+	}
+	r = oriented(m, v, md, 1, 3, 2, dir);
+	return worse(r, oriented(m, v, md, 1, 2, 0, dir));
 }
 
 /* Record a failed tetrahedron append (mesh_tet's -1 or -2). */
@@ -383,27 +417,15 @@ static void leaf(ext_t *x, const uint64_t g[3])
 		}
 		if (nin == 0 || nin == 4)
 			continue;
-		/* from the inside corners' centroid to the outside ones' */
-		double dir[3] = {0, 0, 0};
-		for (int i = 0; i < 3; i++) {
-			for (int j = 0; j < ni; j++)
-				dir[i] -= cp[ins[j]][i] / ni;
-			for (int j = 0; j < no; j++)
-				dir[i] += cp[outs[j]][i] / no;
-		}
 		/* the crossed edges: inside corner a to outside corner b (lower grid corner first) */
 		uint32_t v[4];
-		double mid[4][3];
 		int ne = 0;
 		for (int i = 0; i < ni; i++)
 			for (int j = 0; j < no; j++) {
 				int a = ins[i], b = outs[j], lo = a < b ? a : b, hi = a < b ? b : a;
 				if (cache[lo * 8 + hi] == UINT32_MAX)
 					cache[lo * 8 + hi] = vertex(x, cg[lo], cg[hi], cf[lo], cf[hi]);
-				v[ne] = cache[lo * 8 + hi];
-				for (int c = 0; c < 3; c++)
-					mid[ne][c] = (cp[a][c] + cp[b][c]) / 2;
-				ne++;
+				v[ne++] = cache[lo * 8 + hi];
 			}
 		if (x->oom)
 			return;
@@ -413,20 +435,7 @@ static void leaf(ext_t *x, const uint64_t g[3])
 			if (rc < 0)
 				tet_failed(x, rc);
 		}
-		if (ne == 3) {
-			oriented(x, v, (const double (*)[3])mid, 0, 1, 2, dir);
-		} else {
-			/* edges 0 = a0b0, 1 = a0b1, 2 = a1b0, 3 = a1b1: the quad 0 1 3 2; split along the
-			 * shorter of its diagonals 0-3 and 1-2 (by the refined vertices) */
-			const double *P = x->m->v;
-			if (dist2(P + 3 * v[0], P + 3 * v[3]) <= dist2(P + 3 * v[1], P + 3 * v[2])) {
-				oriented(x, v, (const double (*)[3])mid, 0, 1, 3, dir);
-				oriented(x, v, (const double (*)[3])mid, 0, 3, 2, dir);
-			} else {
-				oriented(x, v, (const double (*)[3])mid, 1, 3, 2, dir);
-				oriented(x, v, (const double (*)[3])mid, 1, 2, 0, dir);
-			}
-		}
+		triangle_rc(x, mesh_tet_surface(x->m, (const double (*)[3])cp, ins, ni, outs, no, v));
 	}
 }
 

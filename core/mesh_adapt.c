@@ -174,9 +174,9 @@ static void build(ad_t *x, const uint64_t g[3], int level)
 
 /* ---- the tetrahedra and their surface ---- */
 
-static void triangle(ad_t *x, uint32_t a, uint32_t b, uint32_t c)
+/* Record a triangle append's result (mesh_triangle's -1 or -2). */
+static void triangle_rc(ad_t *x, int r)
 {
-	int r = mesh_triangle(x->m, a, b, c);
 	if (r == -2)
 		x->too_many = 1;
 	else if (r < 0)
@@ -209,25 +209,6 @@ static uint32_t vertex(ad_t *x, const uint64_t a[3], const uint64_t b[3], double
 	return (uint32_t)m->nv++;
 }
 
-static double dot3(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-/* The triangle on the crossed edges e0 e1 e2 (midpoints mid[]) wound with its normal along out. */
-static void oriented(ad_t *x, const uint32_t *v, const double (*mid)[3], int e0, int e1, int e2, const double *out)
-{
-	double u[3], w[3], n[3];
-	for (int i = 0; i < 3; i++) {
-		u[i] = mid[e1][i] - mid[e0][i];
-		w[i] = mid[e2][i] - mid[e0][i];
-	}
-	n[0] = u[1] * w[2] - u[2] * w[1];
-	n[1] = u[2] * w[0] - u[0] * w[2];
-	n[2] = u[0] * w[1] - u[1] * w[0];
-	if (dot3(n, out) > 0)
-		triangle(x, v[e0], v[e1], v[e2]);
-	else
-		triangle(x, v[e0], v[e2], v[e1]);
-}
-
 /* Marching tetrahedra on the tetrahedron of half-unit points t[4]: one triangle or two. */
 static void tet(ad_t *x, uint64_t t[4][3])
 {
@@ -243,43 +224,14 @@ static void tet(ad_t *x, uint64_t t[4][3])
 	}
 	if (ni == 0 || no == 0 || x->oom)
 		return;
-	double dir[3] = {0, 0, 0};
-	for (int c = 0; c < 3; c++) {
-		for (int j = 0; j < ni; j++)
-			dir[c] -= p[ins[j]][c] / ni;
-		for (int j = 0; j < no; j++)
-			dir[c] += p[outs[j]][c] / no;
-	}
 	uint32_t v[4];
-	double mid[4][3];
 	int ne = 0;
 	for (int i = 0; i < ni; i++)
-		for (int j = 0; j < no; j++) {
-			int a = ins[i], b = outs[j];
-			v[ne] = vertex(x, t[a], t[b], f[a], f[b]);
-			for (int c = 0; c < 3; c++)
-				mid[ne][c] = (p[a][c] + p[b][c]) / 2;
-			ne++;
-		}
+		for (int j = 0; j < no; j++)
+			v[ne++] = vertex(x, t[ins[i]], t[outs[j]], f[ins[i]], f[outs[j]]);
 	if (x->oom)
 		return;
-	if (ne == 3) {
-		oriented(x, v, (const double (*)[3])mid, 0, 1, 2, dir);
-		return;
-	}
-	const double *P = x->m->v;
-	double d03[3], d12[3];
-	for (int c = 0; c < 3; c++) {
-		d03[c] = P[3 * v[0] + c] - P[3 * v[3] + c];
-		d12[c] = P[3 * v[1] + c] - P[3 * v[2] + c];
-	}
-	if (dot3(d03, d03) <= dot3(d12, d12)) {
-		oriented(x, v, (const double (*)[3])mid, 0, 1, 3, dir);
-		oriented(x, v, (const double (*)[3])mid, 0, 3, 2, dir);
-	} else {
-		oriented(x, v, (const double (*)[3])mid, 1, 3, 2, dir);
-		oriented(x, v, (const double (*)[3])mid, 1, 2, 0, dir);
-	}
+	triangle_rc(x, mesh_tet_surface(x->m, (const double (*)[3])p, ins, ni, outs, no, v));
 }
 
 /* A square piece of a leaf's face: axis a, the face plane at half-unit coordinate w, lower

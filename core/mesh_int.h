@@ -1,4 +1,4 @@
-/* mesh_int.h: internals shared by mesh.c and mesh_simplify.c (not part of the public API). */
+/* mesh_int.h: internals shared by the mesh extractions (mesh.c, mesh_adapt.c, mesh_solid.c) and mesh_simplify.c (not part of the public API). */
 #ifndef LOCUS_MESH_INT_H
 #define LOCUS_MESH_INT_H
 
@@ -15,6 +15,14 @@ void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3]);
 long mesh_vertex_slot(mesh_t *m);
 /* Append the triangle a b c of m's vertices. 0, -1 out of memory, -2 over MESH_MAX_TRIANGLES. */
 int mesh_triangle(mesh_t *m, uint32_t a, uint32_t b, uint32_t c);
+
+/* Marching tetrahedra: append the surface triangle (ni or no is 1) or the two (ni = no = 2) of
+ * a tetrahedron whose corners at positions cp[] are inside (ins[0..ni-1]) or outside
+ * (outs[0..no-1]); v[] are the vertices of its crossed edges, inside corner i to outside corner
+ * j in that order. Wound with the normal from the inside corners towards the outside ones; a quad
+ * is split along its shorter diagonal. As mesh_triangle (the worse result of the two). */
+int mesh_tet_surface(mesh_t *m, const double (*cp)[3], const int *ins, int ni, const int *outs, int no,
+                     const uint32_t *v);
 
 /* Append the tetrahedron a b c d of m's vertices, positively oriented (two corners swapped when
  * its volume is negative). 0, -1 out of memory, -2 over MESH_MAX_TETS. */
