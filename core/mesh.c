@@ -489,10 +489,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 		snprintf(err, errlen, "expected a mesh depth from 1 to %d", MESH_MAX_DEPTH);
 		return -1;
 	}
-	if (!s->has_lip && !s->de) {
-		snprintf(err, errlen, "the mesh needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (draw it with raytrace, which brackets)");
+	if (mesh_can_extract(s, err, errlen) < 0)
 		return -1;
-	}
 	ext_t x;
 	memset(&x, 0, sizeof x);
 	x.s = s;
@@ -501,26 +499,45 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	x.depth = depth;
 	x.n1 = ((uint64_t)1 << depth) + 1;
 	x.lip = s->de ? 1 : s->lip;   /* the estimate bounds the distance itself */
-	const double *r = s->root;
-	double side = fmax(r[3] - r[0], fmax(r[4] - r[1], r[5] - r[2]));
-	for (int i = 0; i < 3; i++)
-		x.lo[i] = (r[i] + r[3 + i]) / 2 - side / 2;
-	x.cell = side / (double)((uint64_t)1 << depth);
+	x.cell = mesh_root_cube(s, x.lo) / (double)((uint64_t)1 << depth);
 	size_t nv0 = m->nv;
 	uint64_t g0[3] = {0, 0, 0};
 	x.solid = m->want_solid;
 	visit(&x, g0, 0);
 	mesh_table_free(&x.verts);
 	mesh_table_free(&x.corners);
-	if (x.oom) {
-		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
-		return -1;
-	}
-	if (x.too_many_tets) {
+	if (x.too_many_tets && !x.oom) {
 		snprintf(err, errlen, "the solid has more than %zu tetrahedra: lower its depth", MESH_MAX_TETS);
 		return -1;
 	}
-	if (x.too_many) {
+	return mesh_extract_end(m, nv0, x.oom, x.too_many, err, errlen);
+}
+
+int mesh_can_extract(const model_shape_t *s, char *err, size_t errlen)
+{
+	if (!s->has_lip && !s->de) {
+		snprintf(err, errlen, "the mesh needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (draw it with raytrace, which brackets)");
+		return -1;
+	}
+	return 0;
+}
+
+double mesh_root_cube(const model_shape_t *s, double lo[3])
+{
+	const double *r = s->root;
+	double side = fmax(r[3] - r[0], fmax(r[4] - r[1], r[5] - r[2]));
+	for (int i = 0; i < 3; i++)
+		lo[i] = (r[i] + r[3 + i]) / 2 - side / 2;
+	return side;
+}
+
+int mesh_extract_end(const mesh_t *m, size_t nv0, int oom, int too_many, char *err, size_t errlen)
+{
+	if (oom) {
+		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
+		return -1;
+	}
+	if (too_many) {
 		snprintf(err, errlen, "the mesh has more than %zu triangles: lower its depth", MESH_MAX_TRIANGLES);
 		return -1;
 	}

@@ -422,10 +422,8 @@ int mesh_extract_adaptive(const model_shape_t *s, int depth, double tol, mesh_t 
 		snprintf(err, errlen, "expected a positive adaptive tolerance");
 		return -1;
 	}
-	if (!s->has_lip && !s->de) {
-		snprintf(err, errlen, "the mesh needs a Lipschitz bound or a distance estimate, and this shape's defining parameter has neither (draw it with raytrace, which brackets)");
+	if (mesh_can_extract(s, err, errlen) < 0)
 		return -1;
-	}
 	if (m->want_solid) {
 		snprintf(err, errlen, "expected no solid (.msh) from an adaptive mesh: its tetrahedra follow the uniform grid");
 		return -1;
@@ -440,11 +438,7 @@ int mesh_extract_adaptive(const model_shape_t *s, int depth, double tol, mesh_t 
 	x.tol = tol;
 	x.lip = s->de ? 1 : s->lip;
 	x.n1 = ((uint64_t)1 << (depth + 1)) + 1;
-	const double *r = s->root;
-	double side = fmax(r[3] - r[0], fmax(r[4] - r[1], r[5] - r[2]));
-	for (int i = 0; i < 3; i++)
-		x.lo[i] = (r[i] + r[3 + i]) / 2 - side / 2;
-	x.half = side / (double)((uint64_t)1 << (depth + 1));
+	x.half = mesh_root_cube(s, x.lo) / (double)((uint64_t)1 << (depth + 1));
 	size_t nv0 = m->nv;
 	uint64_t g0[3] = {0, 0, 0};
 	build(&x, g0, 0);
@@ -464,17 +458,5 @@ int mesh_extract_adaptive(const model_shape_t *s, int depth, double tol, mesh_t 
 	mesh_table_free(&x.corners);
 	mesh_table_free(&x.verts);
 	free(x.leaves);
-	if (x.oom) {
-		snprintf(err, errlen, "out of memory for the mesh (%zu triangles so far)", m->nt);
-		return -1;
-	}
-	if (x.too_many) {
-		snprintf(err, errlen, "the mesh has more than %zu triangles: lower its depth", MESH_MAX_TRIANGLES);
-		return -1;
-	}
-	if (m->nv > UINT32_MAX || m->nv < nv0) {
-		snprintf(err, errlen, "the mesh has too many vertices for 32-bit indices: lower its depth");
-		return -1;
-	}
-	return 0;
+	return mesh_extract_end(m, nv0, x.oom, x.too_many, err, errlen);
 }

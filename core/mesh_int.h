@@ -48,6 +48,16 @@ void mesh_table_free(mesh_table_t *t);
 int mesh_table_get(mesh_table_t *t, uint64_t k, uint64_t *val, size_t *at);
 void mesh_table_put(mesh_table_t *t, size_t at, uint64_t k, uint64_t val);
 
+/* 0 when shape s can be meshed (it has a Lipschitz bound or a distance estimate), else -1 with
+ * the message in err. */
+int mesh_can_extract(const model_shape_t *s, char *err, size_t errlen);
+/* The cube the extractions grid: centred on s's root box, its side the box's largest (returned);
+ * lo gets its lower corner. */
+double mesh_root_cube(const model_shape_t *s, double lo[3]);
+/* An extraction's result: -1 with the message when it ran out of memory (oom), made too many
+ * triangles or too many vertices for 32-bit indices since it started at nv0 vertices; else 0. */
+int mesh_extract_end(const mesh_t *m, size_t nv0, int oom, int too_many, char *err, size_t errlen);
+
 /* Refine the surface vertex on the segment a (F = fa < 0) to b (F = fb >= 0) into p, as the
  * extraction does (bracketed with the bound lip; evaluations and max_bracket into *st). */
 void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
