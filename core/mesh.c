@@ -187,29 +187,23 @@ void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, cons
 static uint32_t vertex(ext_t *x, const uint64_t ga[3], const uint64_t gb[3], double fa, double fb)
 {
 	unsigned dir = (unsigned)((gb[0] - ga[0]) | (gb[1] - ga[1]) << 1 | (gb[2] - ga[2]) << 2);
-	uint64_t k = ((ga[2] * x->n1 + ga[1]) * x->n1 + ga[0]) * 8 + dir, v;
-	size_t at;
-	int r = mesh_table_get(&x->verts, k, &v, &at);
-	if (r < 0) {
+	uint64_t k = ((ga[2] * x->n1 + ga[1]) * x->n1 + ga[0]) * 8 + dir;
+	double *p;
+	long i = mesh_vertex_at(x->m, &x->verts, k, &p);
+	if (i < 0) {
 		x->oom = 1;
 		return 0;
 	}
-	if (r)
-		return (uint32_t)v;
-	mesh_t *m = x->m;
-	if (mesh_vertex_slot(m) < 0) {
-		x->oom = 1;
-		return 0;
+	if (p) {
+		double a[3], b[3];
+		grid_point(x, ga, a);
+		grid_point(x, gb, b);
+		if (fa < 0)
+			refine(x, a, b, fa, fb, p);
+		else
+			refine(x, b, a, fb, fa, p);
 	}
-	double a[3], b[3], *p = m->v + 3 * m->nv;
-	grid_point(x, ga, a);
-	grid_point(x, gb, b);
-	if (fa < 0)
-		refine(x, a, b, fa, fb, p);
-	else
-		refine(x, b, a, fb, fa, p);
-	mesh_table_put(&x->verts, at, k, m->nv);
-	return (uint32_t)m->nv++;
+	return (uint32_t)i;
 }
 
 /* Record a triangle append's result (mesh_triangle's -1 or -2). */
@@ -221,7 +215,8 @@ static void triangle_rc(ext_t *x, int r)
 		x->oom = 1;
 }
 
-long mesh_vertex_slot(mesh_t *m)
+/* Room for one more vertex of m: its index (m->nv), or -1 out of memory. */
+static long vertex_slot(mesh_t *m)
 {
 	if (m->nv == m->vcap) {
 		size_t cap = m->vcap ? 2 * m->vcap : 4096;
@@ -232,6 +227,23 @@ long mesh_vertex_slot(mesh_t *m)
 		m->vcap = cap;
 	}
 	return (long)m->nv;
+}
+
+long mesh_vertex_at(mesh_t *m, mesh_table_t *t, uint64_t k, double **p)
+{
+	uint64_t v;
+	size_t at;
+	*p = NULL;
+	int r = mesh_table_get(t, k, &v, &at);
+	if (r < 0)
+		return -1;
+	if (r)
+		return (long)v;
+	if (vertex_slot(m) < 0)
+		return -1;
+	*p = m->v + 3 * m->nv;
+	mesh_table_put(t, at, k, m->nv);
+	return (long)m->nv++;
 }
 
 int mesh_triangle(mesh_t *m, uint32_t a, uint32_t b, uint32_t c)
@@ -329,23 +341,15 @@ static void tet_failed(ext_t *x, int rc)
 /* The solid's vertex at grid point g (an inside corner), made once. */
 static uint32_t corner_vertex(ext_t *x, const uint64_t g[3])
 {
-	uint64_t k = (g[2] * x->n1 + g[1]) * x->n1 + g[0], v;
-	size_t at;
-	int r = mesh_table_get(&x->corners, k, &v, &at);
-	if (r < 0) {
+	double *p;
+	long i = mesh_vertex_at(x->m, &x->corners, (g[2] * x->n1 + g[1]) * x->n1 + g[0], &p);
+	if (i < 0) {
 		x->oom = 1;
 		return 0;
 	}
-	if (r)
-		return (uint32_t)v;
-	mesh_t *m = x->m;
-	if (mesh_vertex_slot(m) < 0) {
-		x->oom = 1;
-		return 0;
-	}
-	grid_point(x, g, m->v + 3 * m->nv);
-	mesh_table_put(&x->corners, at, k, m->nv);
-	return (uint32_t)m->nv++;
+	if (p)
+		grid_point(x, g, p);
+	return (uint32_t)i;
 }
 
 /* The solid: the 6 Kuhn tetrahedra of the finest cell at g, all inside. */

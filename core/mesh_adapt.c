@@ -187,26 +187,20 @@ static void triangle_rc(ad_t *x, int r)
 static uint32_t vertex(ad_t *x, const uint64_t a[3], const uint64_t b[3], double fa, double fb)
 {
 	uint64_t ka = pkey(x, a), kb = pkey(x, b), lo = ka < kb ? ka : kb, hi = ka < kb ? kb : ka;
-	uint64_t k = lo * x->n1 * x->n1 * x->n1 + hi, v;   /* depth <= 9: below 2^62 */
-	size_t at;
-	int r = mesh_table_get(&x->verts, k, &v, &at);
-	if (r < 0) {
+	uint64_t k = lo * x->n1 * x->n1 * x->n1 + hi;   /* depth <= 9: below 2^62 */
+	double *p;
+	long i = mesh_vertex_at(x->m, &x->verts, k, &p);
+	if (i < 0) {
 		x->oom = 1;
 		return 0;
 	}
-	if (r)
-		return (uint32_t)v;
-	mesh_t *m = x->m;
-	if (mesh_vertex_slot(m) < 0) {
-		x->oom = 1;
-		return 0;
+	if (p) {
+		double pa[3], pb[3];
+		ppos(x, a, pa);
+		ppos(x, b, pb);
+		mesh_refine_edge(x->s, x->lip, x->st, pa, pb, fa, fb, p);
 	}
-	double pa[3], pb[3];
-	ppos(x, a, pa);
-	ppos(x, b, pb);
-	mesh_refine_edge(x->s, x->lip, x->st, pa, pb, fa, fb, m->v + 3 * m->nv);
-	mesh_table_put(&x->verts, at, k, m->nv);
-	return (uint32_t)m->nv++;
+	return (uint32_t)i;
 }
 
 /* Marching tetrahedra on the tetrahedron of half-unit points t[4]: one triangle or two. */

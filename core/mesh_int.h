@@ -10,9 +10,6 @@ double mesh_field(const model_shape_t *s, const double p[3]);
 /* The gradient of F at p: the shape's where f is the larger term, else the box's. */
 void mesh_field_grad(const model_shape_t *s, const double p[3], double g[3]);
 
-/* Room for one more vertex of m: its index (m->nv; the caller writes m->v[3 * index ...] and
- * then increments m->nv), or -1 out of memory. */
-long mesh_vertex_slot(mesh_t *m);
 /* Append the triangle a b c of m's vertices. 0, -1 out of memory, -2 over MESH_MAX_TRIANGLES. */
 int mesh_triangle(mesh_t *m, uint32_t a, uint32_t b, uint32_t c);
 
@@ -47,6 +44,10 @@ void mesh_table_free(mesh_table_t *t);
 /* Find key k: 1 with *val, or 0 and *at (the slot to fill with mesh_table_put). -1: out of memory. */
 int mesh_table_get(mesh_table_t *t, uint64_t k, uint64_t *val, size_t *at);
 void mesh_table_put(mesh_table_t *t, size_t at, uint64_t k, uint64_t val);
+
+/* The vertex of m stored under key k in t, made once: its index, or -1 out of memory. When it
+ * is made now, *p points at its three coordinates for the caller to write; else *p is NULL. */
+long mesh_vertex_at(mesh_t *m, mesh_table_t *t, uint64_t k, double **p);
 
 /* 0 when shape s can be meshed (it has a Lipschitz bound or a distance estimate), else -1 with
  * the message in err. */
