@@ -243,31 +243,11 @@ static int add_elem(scene_lex_t *lx, model_shape_t *m, int kind, const double *p
 /* A list of points: numbers in threes up to 'weight' or the end of the line. */
 static int point_list(scene_lex_t *lx, double **pts, size_t *np)
 {
-	size_t cap = 0, n = 0;
-	double *p = NULL;
-	for (;;) {
-		size_t save = lx->pos;
-		tok_t t;
-		if (!scene_lex_tok(lx, &t) || scene_tok_is(&t, "weight")) {
-			lx->pos = save;
-			break;
-		}
-		lx->pos = save;
-		if (n == cap) {
-			cap = cap ? 2 * cap : 24;
-			double *q = realloc(p, cap * sizeof *q);
-			if (!q) {
-				free(p);
-				return scene_lex_error(lx, t.line, t.col, "out of memory");
-			}
-			p = q;
-		}
-		if (scene_lex_number(lx, &p[n], "a coordinate") < 0) {
-			free(p);
-			return -1;
-		}
-		n++;
-	}
+	static const char *const stop[] = {"weight", NULL};
+	size_t n;
+	double *p;
+	if (scene_lex_points(lx, 3, stop, 0, NULL, &p, &n) < 0)
+		return -1;
 	if (n == 0 || n % 3) {
 		free(p);
 		return scene_lex_error(lx, lx->line, 1, "expected coordinates in groups of three (x y z)");

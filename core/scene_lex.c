@@ -244,6 +244,50 @@ int scene_lex_numbers(scene_lex_t *lx, double *v, int n, const char *what)
 	return 0;
 }
 
+int scene_lex_points(scene_lex_t *lx, int dims, const char *const *stop, size_t max, const char *maxmsg,
+                     double **pts, size_t *nnum)
+{
+	size_t cap = 0, k = 0;
+	double *p = NULL;
+	*pts = NULL;
+	*nnum = 0;
+	for (;;) {
+		size_t save = lx->pos;
+		scene_tok_t t;
+		int more = scene_lex_tok(lx, &t);
+		for (int i = 0; more && stop[i]; i++)
+			more = !scene_tok_is(&t, stop[i]);
+		lx->pos = save;
+		if (!more)
+			break;
+		size_t at = 3 * (k / dims);
+		if (max && k / dims >= max) {
+			free(p);
+			return scene_lex_error(lx, t.line, t.col, maxmsg);
+		}
+		if (at + 3 > cap) {
+			cap = cap ? 2 * cap : 24;
+			double *q = realloc(p, cap * sizeof *q);
+			if (!q) {
+				free(p);
+				return scene_lex_error(lx, t.line, t.col, "out of memory");
+			}
+			p = q;
+		}
+		const char *what = dims == 3 ? "a coordinate" : k % 2 ? "a y coordinate" : "an x coordinate";
+		if (scene_lex_number(lx, &p[at + k % dims], what) < 0) {
+			free(p);
+			return -1;
+		}
+		if (dims == 2)
+			p[at + 2] = 0;
+		k++;
+	}
+	*pts = p;
+	*nnum = k;
+	return 0;
+}
+
 int scene_lex_eol(scene_lex_t *lx)
 {
 	scene_tok_t t;

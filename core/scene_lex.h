@@ -50,6 +50,13 @@ int scene_subst_t(const char *s, size_t n, double t, char *dst, size_t dstlen);
 int scene_lex_number(scene_lex_t *lx, double *v, const char *what);
 /* Read n finite numbers. */
 int scene_lex_numbers(scene_lex_t *lx, double *v, int n, const char *what);
+/* Read numbers up to a token spelling one of the words stop[] (NULL-terminated; not consumed)
+ * or the end of the line, as points of dims (2 or 3) coordinates into a new array *pts of x y z
+ * triples (z = 0 when dims is 2); *nnum counts the numbers read (a last point may be partial:
+ * the caller checks). More than max points (0: no limit) is an error with message maxmsg at the
+ * token. Returns 0, or -1 with nothing allocated. */
+int scene_lex_points(scene_lex_t *lx, int dims, const char *const *stop, size_t max, const char *maxmsg,
+                     double **pts, size_t *nnum);
 /* Require the end of the line. */
 int scene_lex_eol(scene_lex_t *lx);
 

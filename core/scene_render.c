@@ -85,36 +85,12 @@ static int nucleus(scene_lex_t *lx, scene_render_t *r, const tok_t *kw)
  * (at least 2 points), into n->pts as x y 0 triples. */
 static int polyline_points(scene_lex_t *lx, const tok_t *kw, voronoi_nucleus_t *n)
 {
-	size_t cap = 0, k = 0;
-	double *p = NULL;
-	for (;;) {
-		size_t save = lx->pos;
-		tok_t t;
-		int more = scene_lex_tok(lx, &t) && !scene_tok_is(&t, "weight") && !scene_tok_is(&t, "z")
-		           && !scene_tok_is(&t, "colour") && !scene_tok_is(&t, "color");
-		lx->pos = save;
-		if (!more)
-			break;
-		if (k / 2 >= SCENE_MAX_POLY_POINTS) {
-			free(p);
-			return scene_lex_error(lx, t.line, t.col, "expected at most " SCENE_MAX_POLY_POINTS_S " points in a polyline");
-		}
-		if (3 * (k / 2) + 3 > cap) {
-			cap = cap ? 2 * cap : 24;
-			double *q = realloc(p, cap * sizeof *q);
-			if (!q) {
-				free(p);
-				return scene_lex_error(lx, t.line, t.col, "out of memory");
-			}
-			p = q;
-		}
-		if (scene_lex_number(lx, &p[3 * (k / 2) + k % 2], k % 2 ? "a y coordinate" : "an x coordinate") < 0) {
-			free(p);
-			return -1;
-		}
-		p[3 * (k / 2) + 2] = 0;
-		k++;
-	}
+	static const char *const stop[] = {"weight", "z", "colour", "color", NULL};
+	size_t k;
+	double *p;
+	if (scene_lex_points(lx, 2, stop, SCENE_MAX_POLY_POINTS,
+	                     "expected at most " SCENE_MAX_POLY_POINTS_S " points in a polyline", &p, &k) < 0)
+		return -1;
 	if (k % 2 || k < 4) {
 		free(p);
 		return scene_lex_error(lx, kw->line, kw->col, k % 2 ? "expected x y pairs: a y coordinate is missing"
