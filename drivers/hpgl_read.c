@@ -369,7 +369,11 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			r->p1y = v[1];
 			r->p2x = nv >= 4 ? v[2] : v[0] + dx;
 			r->p2y = nv >= 4 ? v[3] : v[1] + dy;
+		} else if (nv == 0) {   /* IP;: P1 and P2 back where IN puts them */
+			hpgl_rd_default_p1p2(r);
 		}
+		if (r->sc && nv != 1)   /* as a plotter: the user units follow P1 and P2 */
+			hpgl_rd_set_scaling(r, r->sc_v, r->sc_nv);
 	} else if (!strcmp(mn, "SC")) {
 		hpgl_rd_set_scaling(r, v, nv);
 	} else if (!strcmp(mn, "CI")) {

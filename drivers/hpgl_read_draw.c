@@ -213,6 +213,9 @@ void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv)
 	}
 	int type = nv >= 5 ? hpgl_rd_int(v[4]) : 0;
 	r->sc = 1;
+	r->sc_nv = nv > 5 ? 5 : nv;
+	if (v != r->sc_v)
+		memcpy(r->sc_v, v, (size_t)r->sc_nv * sizeof *v);
 	r->sc_xmin = v[0];
 	r->sc_ymin = v[2];
 	r->ox = r->p1x;
@@ -234,6 +237,14 @@ void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv)
 	}
 }
 
+void hpgl_rd_default_p1p2(hpgl_rd_t *r)
+{
+	r->p1x = 603;   /* 7475A A4 defaults for P1 and P2 (a file that uses SC without IP) */
+	r->p1y = 521;
+	r->p2x = 10603;
+	r->p2y = 7721;
+}
+
 void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 {
 	hpgl_rd_end_stroke(r);
@@ -243,10 +254,7 @@ void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 	r->term = 3;
 	if (in) {
 		r->down = 0;
-		r->p1x = 603;   /* 7475A A4 defaults for P1 and P2 (a file that uses SC without IP) */
-		r->p1y = 521;
-		r->p2x = 10603;
-		r->p2y = 7721;
+		hpgl_rd_default_p1p2(r);
 	}
 	hpgl_rd_attr_defaults(r, in);
 }

@@ -21,6 +21,8 @@ typedef struct {
 	int sc;                     /* 0 none, 1 scaling on */
 	double p1x, p1y, p2x, p2y;  /* IP */
 	double sc_xmin, sc_xmax, sc_ymin, sc_ymax, sx, sy, ox, oy;
+	double sc_v[5];             /* the SC in force, to map again when IP moves P1 and P2 */
+	int sc_nv;
 	unsigned char term;         /* label terminator */
 	int open;                   /* 1 while a stroke is being drawn */
 	size_t cmd, cmd_off;
@@ -92,6 +94,8 @@ int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0
 int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind);
 /* SC with nv parameters (none: scaling off). */
 void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv);
+/* P1 and P2 where IN (and IP without parameters) put them: the 7475A's A4 defaults. */
+void hpgl_rd_default_p1p2(hpgl_rd_t *r);
 /* IN (in = 1) or DF defaults. */
 void hpgl_rd_defaults(hpgl_rd_t *r, int in);
 /* Attribute and label state to its defaults: IN (in = 1, also PW PC WU) or DF. */

@@ -69,6 +69,14 @@ static void hand(void)
 	CHECK(rc == 0 && d.nstrokes == 1 && near(d.pts[1].x, 1000) && near(d.pts[1].y, 1000), "SC scales user units by P1/P2");
 	hpgl_doc_free(&d);
 
+	/* a plotter keeps the user units on P1 and P2 when IP moves them: (10,10) lands on the new
+	 * P2 (2000,3000), and after IP; on the default P2 (10603,7721) */
+	rc = rd("IN;IP0,0,1000,1000;SC0,10,0,10;IP500,1000,2000,3000;SP1;PA0,0;PD10,10;IP;PU0,0;PD10,10;", &d, err);
+	CHECK(rc == 0 && d.nstrokes == 2 && near(d.pts[0].x, 500) && near(d.pts[0].y, 1000) && near(d.pts[1].x, 2000)
+		&& near(d.pts[1].y, 3000) && near(d.pts[2].x, 603) && near(d.pts[2].y, 521) && near(d.pts[3].x, 10603)
+		&& near(d.pts[3].y, 7721), "IP after SC: the user units follow P1 and P2, IP; restores the defaults");
+	hpgl_doc_free(&d);
+
 	rc = rd("IN;SP1;PA10,10;RA20,30;EA20,30;", &d, err);
 	CHECK(rc == 0 && d.nstrokes == 2 && d.strokes[0].kind == HPGL_RS_FILL && d.strokes[1].n == 5 && near(d.pts[2].y, 30),
 		"RA and EA rectangles");
