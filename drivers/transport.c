@@ -458,16 +458,13 @@ static int finish_fd(io_transport_t *t, int how)
 	return rc;
 }
 
-int io_close_err(io_transport_t *t, int how, char *err, size_t errlen)
+/* The end of a job whose link is closed (rc its result so far): a temporary file is renamed
+ * over the target when commit and rc == 0, else removed; the message into err; t freed. */
+static int settle(io_transport_t *t, int commit, const char *target, int rc, char *err, size_t errlen)
 {
-	if (!t)
-		return 0;
-	int rc = finish_fd(t, how);
-	if (how == IO_KEEP)
-		return rc;
-	if (t->writing && t->tmp) {
-		if (how == IO_COMMIT && rc == 0)
-			rc = io_file_commit(t, NULL);
+	if (t->tmp) {   /* only writing makes a temporary */
+		if (commit && rc == 0)
+			rc = io_file_commit(t, target);
 		else
 			io_file_discard(t);
 	}
@@ -475,6 +472,16 @@ int io_close_err(io_transport_t *t, int how, char *err, size_t errlen)
 		snprintf(err, errlen, "%s", t->err);
 	destroy(t);
 	return rc;
+}
+
+int io_close_err(io_transport_t *t, int how, char *err, size_t errlen)
+{
+	if (!t)
+		return 0;
+	int rc = finish_fd(t, how);
+	if (how == IO_KEEP)
+		return rc;
+	return settle(t, how == IO_COMMIT, NULL, rc, err, errlen);
 }
 
 int io_close(io_transport_t *t, int how)
@@ -484,19 +491,9 @@ int io_close(io_transport_t *t, int how)
 
 int io_finish(io_transport_t *t, int commit, const char *target, char *err, size_t errlen)
 {
-	int rc = 0;
 	if (!t)
 		return 0;
-	if (t->tmp) {
-		if (commit && !t->failed)
-			rc = io_file_commit(t, target);
-		else
-			io_file_discard(t);
-	}
-	if (rc && err)
-		snprintf(err, errlen, "%s", t->err);
-	destroy(t);
-	return rc;
+	return settle(t, commit && !t->failed, target, 0, err, errlen);
 }
 
 const char *io_error(const io_transport_t *t)
