@@ -226,6 +226,8 @@ double model_eval(const model_shape_t *s, const double p[3]);
 void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out);
 /* Distance from the setup-frame point q to a (non-shape) element. */
 double model_elem_distance(const model_elem_t *e, const double q[3]);
+/* The point q of element e nearest to p (the setup frame); returns the distance |p - q|. */
+double model_elem_nearest(const model_elem_t *e, const double *p, double *q);
 /* Gradient of f at p (analytic for elements, central differences for c). */
 void model_grad(const model_shape_t *s, const double p[3], double g[3]);
 
