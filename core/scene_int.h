@@ -1,4 +1,4 @@
-/* scene_int.h: internals shared by scene.c, scene_render.c and scene_2d.c (not part of the public API). */
+/* scene_int.h: internals shared by scene.c, scene_shape.c, scene_render.c and scene_2d.c (not part of the public API). */
 #ifndef LOCUS_SCENE_INT_H
 #define LOCUS_SCENE_INT_H
 
@@ -10,6 +10,14 @@
 
 /* Colour of a voronoi nucleus not given one (cell_colour() picks it at render time). */
 #define SCENE_NO_COLOUR 0xff000000u
+
+/* Parse a `shape NAME` or `object NAME` block (kw its keyword; drawn for an object) into a new
+ * sc->objs entry, up to its `end`. */
+int scene_parse_shape(scene_lex_t *lx, scene_t *sc, int drawn, const scene_tok_t *kw);
+/* Read three colour components 0..1 into c. */
+int scene_parse_colour(scene_lex_t *lx, double *c);
+/* Add "NAME:LINE:COL: warning: MSG" to the scene's warnings (dropped beyond SCENE_MAX_WARNINGS). */
+void scene_warn(scene_t *sc, unsigned line, unsigned col, const char *msg);
 
 /* Parse a `render KIND` block (kw is the `render` token) into a new sc->renders entry. */
 int scene_parse_render(scene_lex_t *lx, scene_t *sc, const scene_tok_t *kw);
