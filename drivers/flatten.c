@@ -1,5 +1,6 @@
 /* flatten.c: growable paths and the flattening of arcs and circles into chords (spec §5.4). */
 #include <stdlib.h>
+#include "grow.h"
 #include "scan_int.h"
 
 /* p->open: 0 = no current point, 1 = last subpath open, 2 = last subpath closed (the current
@@ -24,14 +25,8 @@ void scan_path_free(scan_path_t *p)
 
 static int push_pt(scan_path_t *p, int64_t x, int64_t y)
 {
-	if (p->npts == p->cappts) {
-		size_t n = p->cappts ? p->cappts * 2 : 256;
-		scan_pt_t *q = realloc(p->pts, n * sizeof(*q));
-		if (!q)
-			return META_ENOMEM;
-		p->pts = q;
-		p->cappts = n;
-	}
+	if (dev_grow((void **)&p->pts, &p->cappts, p->npts + 1, sizeof *p->pts, 256))
+		return META_ENOMEM;
 	p->pts[p->npts].x = x;
 	p->pts[p->npts].y = y;
 	p->npts++;
@@ -40,14 +35,8 @@ static int push_pt(scan_path_t *p, int64_t x, int64_t y)
 
 int scan_path_move(scan_path_t *p, int64_t x, int64_t y)
 {
-	if (p->nsubs == p->capsubs) {
-		size_t n = p->capsubs ? p->capsubs * 2 : 32;
-		scan_subpath_t *q = realloc(p->subs, n * sizeof(*q));
-		if (!q)
-			return META_ENOMEM;
-		p->subs = q;
-		p->capsubs = n;
-	}
+	if (dev_grow((void **)&p->subs, &p->capsubs, p->nsubs + 1, sizeof *p->subs, 32))
+		return META_ENOMEM;
 	if (push_pt(p, x, y))
 		return META_ENOMEM;
 	scan_subpath_t *s = &p->subs[p->nsubs++];

@@ -1,5 +1,6 @@
 /* hatch.c: a filled polygon as horizontal hatch lines, covered exactly by the §5.1 rule. */
 #include <stdlib.h>
+#include "grow.h"
 #include "scan_int.h"
 
 /* One crossing of a row: abscissa (thousandths, exact as a double) and winding step. */
@@ -39,15 +40,9 @@ int scan_hatch(const scan_path_t *p, int rule, int64_t y0, int64_t step, scan_pa
 				}
 				if (!(a.y <= y && y < b.y))
 					continue;
-				if (n == cap) {
-					size_t nc = cap ? 2 * cap : 64;
-					cross_t *g = realloc(cx, nc * sizeof *g);
-					if (!g) {
-						rc = META_ENOMEM;
-						break;
-					}
-					cx = g;
-					cap = nc;
+				if (dev_grow((void **)&cx, &cap, n + 1, sizeof *cx, 64)) {
+					rc = META_ENOMEM;
+					break;
 				}
 				cx[n].x = (double)a.x + (double)(y - a.y) * (double)(b.x - a.x) / (double)(b.y - a.y);
 				cx[n].dir = dir;

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "grow.h"
 #include "hpgl.h"
 
 /* A growing point buffer. */
@@ -15,14 +16,8 @@ static int put(buf_t *b, double x, double y)
 {
 	if (b->n && b->p[b->n - 1].x == x && b->p[b->n - 1].y == y)
 		return 0;
-	if (b->n == b->cap) {
-		size_t n = b->cap ? 2 * b->cap : 64;
-		hpgl_dpt_t *q = realloc(b->p, n * sizeof *q);
-		if (!q)
-			return -1;
-		b->p = q;
-		b->cap = n;
-	}
+	if (dev_grow((void **)&b->p, &b->cap, b->n + 1, sizeof *b->p, 64))
+		return -1;
 	b->p[b->n++] = (hpgl_dpt_t){ x, y };
 	return 0;
 }

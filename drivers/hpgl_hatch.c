@@ -1,6 +1,7 @@
 /* hpgl_hatch.c: polygon hatching by either fill rule, and the brightness line halftone of rows. */
 #include <math.h>
 #include <stdlib.h>
+#include "grow.h"
 #include "hpgl_hatch.h"
 
 typedef struct {
@@ -44,15 +45,9 @@ int hatch_polygon(const double *pts, const size_t *starts, size_t ncont, int eve
 				double v = phase + m * spacing;
 				if (v < lo || v >= hi)
 					continue;
-				if (nc == cap) {
-					size_t nn = cap ? 2 * cap : 256;
-					cross_t *t = realloc(cr, nn * sizeof *t);
-					if (!t) {
-						free(cr);
-						return -1;
-					}
-					cr = t;
-					cap = nn;
+				if (dev_grow((void **)&cr, &cap, nc + 1, sizeof *cr, 256)) {
+					free(cr);
+					return -1;
 				}
 				cr[nc++] = (cross_t){ m, u0 + (v - v0) * (u1 - u0) / (v1 - v0), dir };
 			}
