@@ -344,7 +344,12 @@ static double on_grid(double v, unsigned bits)
  * bounds skip most searches: u[i] bounds from above the distance from colour i to its entry
  * was[i], l[i] from below its distance to every other entry (both kept through the entries'
  * moves by the triangle inequality); when u[i] < max(l[i], half the distance from the entry
- * to its nearest other), the entry is strictly the nearest: the same answer as a search. */
+ * to its nearest other), the entry is strictly the nearest: the same answer as a search.
+ * One entry that jumps (an empty one moved to the worst colour) would lower every l[i] by its
+ * jump: the QJUMP entries that moved most are measured instead (their exact distances), and
+ * the bound of the others falls only by the largest move among the rest. */
+#define QJUMP 16
+
 typedef struct {
 	const qcol_t *col;
 	const int (*c4)[3];         /* the colours in search units (times 4, rounded) */
@@ -356,6 +361,10 @@ typedef struct {
 	const double *delta;        /* how far each entry moved since the pass before */
 	double dmax1, dmax2;        /* the largest move, and the largest of the others */
 	unsigned dmaxi;             /* the entry that moved most */
+	unsigned nj;                /* the entries that moved most (jump[0..nj)), measured ... */
+	const uint8_t *jump;
+	double drest1, drest2;      /* ... and the largest move of the others, and the next */
+	unsigned dresti;            /* the other entry that moved most */
 	const double (*means)[3];
 	uint8_t *was;
 	double *u, *l;
@@ -375,9 +384,26 @@ static void *assign(void *arg)
 		unsigned e = a->was[i];
 		int search = a->pass == 0;
 		if (!search) {
+			double lold = a->l[i];
 			a->u[i] += a->delta[e];
-			a->l[i] -= e == a->dmaxi ? a->dmax2 : a->dmax1;
+			a->l[i] = lold - (e == a->dmaxi ? a->dmax2 : a->dmax1);
 			double m = a->l[i] > a->half[e] ? a->l[i] : a->half[e];
+			if (!(a->u[i] < m) && a->nj) {
+				/* the entries that jumped at their exact distances, the rest by their moves */
+				long dj = -1;
+				for (unsigned j = 0; j < a->nj; j++) {
+					const int *c = a->ic[a->jump[j]];
+					long dr = c[0] - r, dg = c[1] - g, db = c[2] - b, d = dr * dr + dg * dg + db * db;
+					if (a->jump[j] != e && (dj < 0 || d < dj))
+						dj = d;
+				}
+				double lj = lold - (e == a->dresti ? a->drest2 : a->drest1);
+				if (dj >= 0 && sqrt((double)dj) < lj)
+					lj = sqrt((double)dj);
+				if (lj > a->l[i])    /* both bound every other entry: the larger holds */
+					a->l[i] = lj;
+				m = a->l[i] > a->half[e] ? a->l[i] : a->half[e];
+			}
 			if (!(a->u[i] < m)) {
 				const int *c = a->ic[e];
 				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
@@ -453,6 +479,28 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				dmax2 = delta[e];
 		}
 		memcpy(prev, ic, sizeof prev);
+		/* the QJUMP entries that moved most (more than nothing), largest first */
+		uint8_t jump[QJUMP], injump[QUANT_MAX] = { 0 };
+		unsigned nj = 0, dresti = 0;
+		for (size_t e = 0; e < k; e++) {
+			if (!(delta[e] > 0) || (nj == QJUMP && !(delta[e] > delta[jump[nj - 1]])))
+				continue;
+			unsigned j = nj < QJUMP ? nj++ : nj - 1;
+			while (j > 0 && delta[jump[j - 1]] < delta[e])
+				jump[j] = jump[j - 1], j--;
+			jump[j] = (uint8_t)e;
+		}
+		for (unsigned j = 0; j < nj; j++)
+			injump[jump[j]] = 1;
+		double drest1 = 0, drest2 = 0;
+		for (size_t e = 0; e < k; e++) {
+			if (injump[e])
+				continue;
+			if (delta[e] > drest1)
+				drest2 = drest1, drest1 = delta[e], dresti = (unsigned)e;
+			else if (delta[e] > drest2)
+				drest2 = delta[e];
+		}
 		quant_near_init(q, (const int (*)[3])ic, (unsigned)k);
 		for (size_t e = 0; e < k; e++) {
 			long m = -1;
@@ -468,9 +516,12 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 		}
 		qassign_t part[2];
 		for (unsigned t = 0; t < nparts; t++)
-			part[t] = (qassign_t){ col, (const int (*)[3])c4, n * t / nparts, n * (t + 1) / nparts, k, pass, q,
-				(const int (*)[3])ic, half, delta, dmax1, dmax2, dmaxi, (const double (*)[3])means, was, u, l,
-				acc + t * k, -1, 0 };
+			part[t] = (qassign_t){ .col = col, .c4 = (const int (*)[3])c4, .lo = n * t / nparts,
+				.hi = n * (t + 1) / nparts, .k = k, .pass = pass, .q = q, .ic = (const int (*)[3])ic,
+				.half = half, .delta = delta, .dmax1 = dmax1, .dmax2 = dmax2, .dmaxi = dmaxi, .nj = nj,
+				.jump = jump, .drest1 = drest1, .drest2 = drest2, .dresti = dresti,
+				.means = (const double (*)[3])means, .was = was, .u = u, .l = l, .acc = acc + t * k,
+				.worst = -1, .wi = 0 };
 		pthread_t th;
 		int threaded = spare && pthread_create(&th, NULL, assign, &part[1]) == 0;
 		assign(&part[0]);

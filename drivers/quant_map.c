@@ -204,6 +204,8 @@ typedef struct {
 	const uint8_t *mixed;       /* QBINS bits: the bin holds more than one 24-bit colour (a
 	                             * copy of the histogram's flags small enough for the caches) */
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
+	int32_t cnear[3][16][QUANT_MAX];   /* per channel and grid level: each entry's squared ... */
+	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
 	uint16_t cellcount[4096];
 	uint8_t *pool;
 	long *pooldist;             /* each candidate's squared distance to its cell */
@@ -272,19 +274,16 @@ static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
  * use. Same answers as quant_near_find (ties to the lowest index). */
 static int cell_candidates(qmap_t *m, unsigned cell)
 {
-	int lo[3] = { (int)(cell >> 8) * 64, (int)(cell >> 4 & 15) * 64, (int)(cell & 15) * 64 };
-	unsigned n = m->pal->n;
-	long dmin[QUANT_MAX], least = -1;
+	unsigned n = m->pal->n, l0 = cell >> 8, l1 = cell >> 4 & 15, l2 = cell & 15;
+	/* the distances per channel come from the tables of qmap_new: sums only, a loop the
+	 * compiler vectorises (every cell of a dithered picture is built: 4,096 x 256 entries) */
+	const int32_t *n0 = m->cnear[0][l0], *n1 = m->cnear[1][l1], *n2 = m->cnear[2][l2];
+	const int32_t *f0 = m->cfar[0][l0], *f1 = m->cfar[1][l1], *f2 = m->cfar[2][l2];
+	int32_t dmin[QUANT_MAX], least = INT32_MAX;
 	for (unsigned e = 0; e < n; e++) {
-		long a = 0, b = 0;
-		for (int c = 0; c < 3; c++) {
-			long v = m->show[e][c] * 4, l = lo[c], h = lo[c] + 63;
-			long in = v < l ? l - v : v > h ? v - h : 0, out = v - l > h - v ? v - l : h - v;
-			a += in * in, b += out * out;
-		}
-		dmin[e] = a;
-		if (least < 0 || b < least)
-			least = b;
+		int32_t b = f0[e] + f1[e] + f2[e];
+		dmin[e] = n0[e] + n1[e] + n2[e];
+		least = b < least ? b : least;
 	}
 	if (m->npool + n > m->cappool) {
 		size_t c = m->cappool ? m->cappool * 2 : 65536;
@@ -363,18 +362,51 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 	return holds(m, h, key);
 }
 
-/* The largest difference (sum over channels) between a pixel and its four neighbours. */
-static int contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, unsigned x, unsigned y)
+/* The differences (sum over channels) between rows a and b, pixel by pixel. */
+static void row_diff(const uint8_t *a, const uint8_t *b, unsigned w, uint16_t *d)
 {
-	const uint8_t *p = rgb + y * stride + 3 * x;
-	int best = 0;
-	const uint8_t *nb[4] = { x > 0 ? p - 3 : p, x + 1 < w ? p + 3 : p, y > 0 ? p - stride : p, y + 1 < h ? p + stride : p };
-	for (int k = 0; k < 4; k++) {
-		int d = abs(nb[k][0] - p[0]) + abs(nb[k][1] - p[1]) + abs(nb[k][2] - p[2]);
-		if (d > best)
-			best = d;
+	for (unsigned x = 0; x < w; x++)
+		d[x] = (uint16_t)(abs(a[3 * x] - b[3 * x]) + abs(a[3 * x + 1] - b[3 * x + 1]) + abs(a[3 * x + 2] - b[3 * x + 2]));
+}
+
+/* The contrast of each pixel of row y: the largest difference (sum over channels) between it
+ * and its four neighbours (a neighbour outside the picture being the pixel itself), into ct.
+ * up holds on entry the differences of row y to row y - 1 (zeros on the first row); on return
+ * it holds those to row y + 1, for the next row. dn is scratch of w values. */
+static void row_contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, unsigned y,
+		uint16_t *up, uint16_t *dn, uint16_t *ct)
+{
+	const uint8_t *row = rgb + y * stride;
+	if (y + 1 < h)
+		row_diff(row, row + stride, w, dn);
+	else
+		memset(dn, 0, w * sizeof *dn);
+	int left = 0;                /* the difference to the pixel on the left */
+	for (unsigned x = 0; x < w; x++) {
+		const uint8_t *p = row + 3 * x;
+		int right = x + 1 < w ? abs(p[3] - p[0]) + abs(p[4] - p[1]) + abs(p[5] - p[2]) : 0;
+		int best = up[x] > dn[x] ? up[x] : dn[x];
+		best = left > best ? left : best;
+		best = right > best ? right : best;
+		ct[x] = (uint16_t)best;
+		left = right;
 	}
-	return best;
+	memcpy(up, dn, w * sizeof *up);
+}
+
+/* The entry within the DAC's rounding of an 8-bit colour (squared distance at most near), or -1. */
+static int near_entry(qmap_t *m, const uint8_t *p, int near)
+{
+	int sh[3], t[3] = { p[0], p[1], p[2] };
+	unsigned e;
+	if (m->pal->bits == 8) {
+		e = nearest_cached(m, t);
+		memcpy(sh, m->show[e], sizeof sh);
+	} else {
+		e = pick(m, p[0], p[1], p[2], sh);
+	}
+	int dr = sh[0] - p[0], dg = sh[1] - p[1], db = sh[2] - p[2];
+	return dr * dr + dg * dg + db * db <= near ? (int)e : -1;
 }
 
 /* Undithered: the entry nearest to the pixel's own colour; searched once per bin when one
@@ -409,15 +441,24 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	 * ceiling, instead of 41.5; 59.9 instead of 59.2 with 8-bit entries) */
 	const int fs_near = 12;
 	int *err0 = NULL, *err1 = NULL;
+	uint16_t *cup = NULL, *cdn = NULL, *ct = NULL;
+	uint8_t damp[16];            /* the share of the error passed on, by contrast (capped) */
 	int spread = 0;
 	if (dither == QUANT_DITHER_FS) {
 		err0 = calloc((size_t)(w + 2) * 3, sizeof *err0);
 		err1 = calloc((size_t)(w + 2) * 3, sizeof *err1);
-		if (!err0 || !err1) {
+		cup = calloc((size_t)w * 3, sizeof *cup);
+		if (!err0 || !err1 || !cup) {
 			free(err0);
 			free(err1);
+			free(cup);
 			return -1;
 		}
+		cdn = cup + w, ct = cdn + w;
+		if (y0 > 0 && y0 < hgt)
+			row_diff(rgb + y0 * stride, rgb + (y0 - 1) * stride, w, cup);
+		for (int c = 0; c < 16; c++)
+			damp[c] = (uint8_t)(c >= fs_edge ? fs_damp / 4 : fs_damp - (fs_damp * 3 / 4) * c / fs_edge);
 	} else if (dither == QUANT_DITHER_ORDERED) {
 		/* the threshold spread: the median distance from an entry to its nearest other */
 		if (!m->pal) {
@@ -450,31 +491,23 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	for (unsigned y = y0; y < y1; y++) {
 		const uint8_t *row = rgb + y * stride;
 		int rtl = dither == QUANT_DITHER_FS && (y & 1);   /* serpentine */
-		if (err1)
+		if (err1) {
 			memset(err1, 0, (size_t)(w + 2) * 3 * sizeof *err1);
+			row_contrast(rgb, stride, w, hgt, y, cup, cdn, ct);
+		}
 		for (unsigned i = 0; i < w; i++) {
 			unsigned x = rtl ? w - 1 - i : i;
 			const uint8_t *p = row + 3 * x;
 			int shown[3];
 			unsigned v;
 			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-			if (c24 != last_c24)     /* runs of one colour: ask once */
+			if (c24 != last_c24) {   /* runs of one colour: ask once */
 				last_fe = flat_entry(m, h, thr, p), last_c24 = c24;
-			int fe = last_fe;
-			if (fe < 0 && err0 && m->pal && fs_near > 0) {
 				/* an entry within the DAC's rounding of the pixel: drawn as is, undithered */
-				int sh[3], t[3] = { p[0], p[1], p[2] };
-				unsigned e;
-				if (m->pal->bits == 8) {
-					e = nearest_cached(m, t);
-					memcpy(sh, m->show[e], sizeof sh);
-				} else {
-					e = pick(m, p[0], p[1], p[2], sh);
-				}
-				int dr = sh[0] - p[0], dg = sh[1] - p[1], db = sh[2] - p[2];
-				if (dr * dr + dg * dg + db * db <= fs_near)
-					fe = (int)e;
+				if (last_fe < 0 && err0 && m->pal && fs_near > 0)
+					last_fe = near_entry(m, p, fs_near);
 			}
+			int fe = last_fe;
 			if (fe >= 0) {
 				v = (unsigned)fe;    /* flat: no error taken, none given */
 			} else if (err0) {
@@ -491,8 +524,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				} else {
 					v = pick(m, t[0], t[1], t[2], shown);
 				}
-				int ct = contrast(rgb, stride, w, hgt, x, y);
-				int dmp = ct >= fs_edge ? fs_damp / 4 : fs_damp - (fs_damp * 3 / 4) * ct / fs_edge;
+				int dmp = damp[ct[x] < 15 ? ct[x] : 15];
 				for (int c = 0; c < 3; c++)
 					e[c] = (t[c] - shown[c]) * dmp;
 				int fwd = rtl ? -3 : 3;
@@ -520,6 +552,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	}
 	free(err0);
 	free(err1);
+	free(cup);
 	return 0;
 }
 
@@ -560,6 +593,15 @@ static qmap_t *qmap_new(const quant_palette_t *pal, qbins_t *shared)
 	for (unsigned k = 0; k < pal->n; k++)
 		for (int c = 0; c < 3; c++)
 			m->show[k][c] = (int)quant_show(pal, pal->dac[k][c]);
+	/* a grid level L of a channel spans [64 L, 64 L + 63] in search units */
+	for (int c = 0; c < 3; c++)
+		for (int L = 0; L < 16; L++)
+			for (unsigned k = 0; k < pal->n; k++) {
+				int32_t v = m->show[k][c] * 4, lo = L * 64, hi = lo + 63;
+				int32_t in = v < lo ? lo - v : v > hi ? v - hi : 0, out = v - lo > hi - v ? v - lo : hi - v;
+				m->cnear[c][L][k] = in * in;
+				m->cfar[c][L][k] = out * out;
+			}
 	return m;
 }
 
