@@ -203,6 +203,8 @@ typedef struct {
 	int own_bc;                 /* 1: this part made bc (and frees it) */
 	const uint8_t *mixed;       /* QBINS bits: the bin holds more than one 24-bit colour (a
 	                             * copy of the histogram's flags small enough for the caches) */
+	const uint8_t *undith;      /* QBINS bits: a one-colour bin whose pixels are drawn ... */
+	const uint8_t *runent;      /* ... undithered, with the entry runent[bin] (NULL: not known) */
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
 	int32_t cnear[3][16][QUANT_MAX];   /* per channel and grid level: each entry's squared ... */
 	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
@@ -397,6 +399,8 @@ static void row_contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned
 /* The entry within the DAC's rounding of an 8-bit colour (squared distance at most near), or -1. */
 static int near_entry(qmap_t *m, const uint8_t *p, int near)
 {
+	if (near <= 0)
+		return -1;
 	int sh[3], t[3] = { p[0], p[1], p[2] };
 	unsigned e;
 	if (m->pal->bits == 8) {
@@ -423,6 +427,21 @@ static unsigned nearest_of_pixel(qmap_t *m, const uint8_t *p)
 	return (unsigned)e;
 }
 
+/* The entry a pixel of colour p gets without dithering: its flat or held entry, else (near >
+ * 0) the entry within the DAC's rounding of it; -1 when it is to be dithered. A function of
+ * the colour only. */
+static int run_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p, int near)
+{
+	int e = flat_entry(m, h, thr, p);
+	return e >= 0 ? e : near_entry(m, p, near);
+}
+
+/* A pixel with an entry within the 6-bit DAC's rounding (2 levels a channel: 3 * 2^2) is drawn
+ * with it by Floyd-Steinberg, undithered, taking no error and giving none: a difference the
+ * DAC could not even show is not worth the noise of dithering (the plate: 44.29 dB, at the
+ * 6-bit ceiling, instead of 41.5; 59.9 instead of 59.2 with 8-bit entries) */
+#define QFS_NEAR 12
+
 /* Rows [y0, y1) of the picture; the error diffusion state is one row of (w + 2) pixels x 3
  * channels, in 1/256 steps, starting at zero on row y0. */
 static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsigned w,
@@ -435,11 +454,6 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	 * so dithering there only adds noise. Measured on the benchmark pictures: +4.7 dB PSNR
 	 * against plain FS on the photograph; smooth gradients still dither fully. */
 	const int fs_damp = 14, fs_clamp = 16, fs_edge = 12;
-	/* A pixel with an entry within the 6-bit DAC's rounding (2 levels a channel: 3 * 2^2) is
-	 * drawn with it, undithered, taking no error and giving none: a difference the DAC could
-	 * not even show is not worth the noise of dithering (the plate: 44.29 dB, at the 6-bit
-	 * ceiling, instead of 41.5; 59.9 instead of 59.2 with 8-bit entries) */
-	const int fs_near = 12;
 	int *err0 = NULL, *err1 = NULL;
 	uint16_t *cup = NULL, *cdn = NULL, *ct = NULL;
 	uint8_t damp[16];            /* the share of the error passed on, by contrast (capped) */
@@ -502,10 +516,12 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			unsigned v;
 			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
 			if (c24 != last_c24) {   /* runs of one colour: ask once */
-				last_fe = flat_entry(m, h, thr, p), last_c24 = c24;
-				/* an entry within the DAC's rounding of the pixel: drawn as is, undithered */
-				if (last_fe < 0 && err0 && m->pal && fs_near > 0)
-					last_fe = near_entry(m, p, fs_near);
+				uint32_t key = quant_key(p[0], p[1], p[2]);
+				last_c24 = c24;
+				if (m->undith && !(m->mixed[key >> 3] >> (key & 7) & 1))
+					last_fe = m->undith[key >> 3] >> (key & 7) & 1 ? m->runent[key] : -1;
+				else     /* the bin's one colour was asked before the mapping (map_split) */
+					last_fe = run_entry(m, h, thr, p, err0 && m->pal ? QFS_NEAR : 0);
 			}
 			int fe = last_fe;
 			if (fe >= 0) {
@@ -665,6 +681,28 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 	if (rc == 0 && pal && h && dither != QUANT_DITHER_NONE && exact_palette(part[0].m, h))
 		for (unsigned k = 0; k < nparts; k++)   /* every colour of the picture is in the palette */
 			part[k].dither = QUANT_DITHER_NONE;
+	/* the pixels of each one-colour bin (most of vector content's) before dithering: asked
+	 * once here, a bit and a byte per bin for the parts (a 32 KiB bitmap the caches keep) */
+	uint8_t *undith = NULL, *runent = NULL;
+	if (rc == 0 && pal && h) {
+		undith = calloc(QBINS / 8, 1);
+		runent = malloc(QBINS);
+		if (!undith || !runent)
+			rc = -1;
+		unsigned long thr = quant_flat_threshold(h);
+		int near = part[0].dither == QUANT_DITHER_FS ? QFS_NEAR : 0;
+		for (size_t k = 0; rc == 0 && k < h->nused; k++) {
+			uint32_t key = h->used[k], c = h->bin[key].first;
+			if (c & QMIXED)
+				continue;
+			uint8_t p[3] = { (uint8_t)(c >> 16), (uint8_t)(c >> 8), (uint8_t)c };
+			int e = run_entry(part[0].m, h, thr, p, near);
+			if (e >= 0)
+				undith[key >> 3] |= (uint8_t)(1u << (key & 7)), runent[key] = (uint8_t)e;
+		}
+		for (unsigned k = 0; rc == 0 && k < nparts; k++)
+			part[k].m->undith = undith, part[k].m->runent = runent;
+	}
 	if (rc == 0) {
 		pthread_t th;
 		int threaded = nparts == 2 && quant_spare_core() && pthread_create(&th, NULL, map_part, &part[1]) == 0;
@@ -684,6 +722,8 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 	for (unsigned k = nparts; k-- > 0;)   /* part 0 owns the shared answers: freed last */
 		qmap_free(part[k].m);
 	free(mixed);
+	free(undith);
+	free(runent);
 	return rc;
 }
 
