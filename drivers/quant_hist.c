@@ -1,4 +1,5 @@
 /* quant_hist.c: the histogram of DAC colours and the nearest palette entry search. */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -118,11 +119,32 @@ unsigned long quant_flat_threshold(const quant_hist_t *h)
 	return t < 32 ? 32 : t;
 }
 
+/* The threads runnable at this moment, the caller included (Linux: the fourth field of
+ * /proc/loadavg, "runnable/existing"), or -1 when that is not known. */
+static long runnable_now(void)
+{
+	FILE *f = fopen("/proc/loadavg", "r");
+	long run = -1;
+	if (f) {
+		if (fscanf(f, "%*f %*f %*f %ld/", &run) != 1)
+			run = -1;
+		fclose(f);
+	}
+	return run;
+}
+
 int quant_spare_core(void)
 {
-	long n = sysconf(_SC_NPROCESSORS_ONLN);
+	long n = sysconf(_SC_NPROCESSORS_ONLN), run = n >= 2 ? runnable_now() : -1;
 	double load;
-	return n >= 2 && getloadavg(&load, 1) == 1 && load < (double)n - 0.5;
+	if (n < 2 || getloadavg(&load, 1) != 1)
+		return 0;
+	/* a core idle now (the 1-minute average lags: a benchmark's own runs before this one
+	 * keep it near the number of cores while the cores are free), on a machine not busy for
+	 * long; without the count of runnable threads, the average alone */
+	if (run >= 1)
+		return run < n && load < (double)n + 0.5;
+	return load < (double)n - 0.5;
 }
 
 /* ---- nearest entry ------------------------------------------------------------------ */
