@@ -356,6 +356,7 @@ typedef struct {
 	size_t lo, hi, k;
 	int pass;
 	const qnear_t *q;
+	qcells_t *cells;            /* the same entries by cells (this part's own when threaded) */
 	const int (*ic)[3];
 	const double *half;         /* half the distance from each entry to its nearest other */
 	const double *delta;        /* how far each entry moved since the pass before */
@@ -413,7 +414,7 @@ static void *assign(void *arg)
 		}
 		if (search) {
 			long d1, d2;
-			e = quant_near_find2(a->q, r, g, b, &d1, &d2);
+			e = quant_cells_find2(a->cells, a->q, r, g, b, &d1, &d2);
 			a->u[i] = sqrt((double)d1);
 			a->l[i] = d2 < 0 ? 1e30 : sqrt((double)d2);
 		}
@@ -448,8 +449,10 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 	qnear_t *q = malloc(sizeof *q);
 	int (*c4)[3] = malloc((n ? n : 1) * sizeof *c4);
 	double *u = malloc((n ? n : 1) * sizeof *u), *l = malloc((n ? n : 1) * sizeof *l);
-	if (!acc || !was || !q || !c4 || !u || !l) {
+	qcells_t *cells[2] = { quant_cells_new(), NULL };
+	if (!acc || !was || !q || !c4 || !u || !l || !cells[0]) {
 		free(acc), free(was), free(q), free(c4), free(u), free(l);
+		quant_cells_free(cells[0]);
 		return -1;
 	}
 	for (size_t i = 0; i < n; i++)
@@ -460,7 +463,7 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			for (int c = 0; c < 3; c++)
 				means[e][c] = on_grid(means[e][c], grid);
 	unsigned nparts = n >= QKSPLIT ? 2 : 1;
-	int spare = nparts == 2 && quant_spare_core();
+	int spare = nparts == 2 && quant_spare_core() && (cells[1] = quant_cells_new()) != NULL;
 	int ic[QUANT_MAX][3], prev[QUANT_MAX][3];
 	for (int pass = 0; pass < passes; pass++) {
 		double half[QUANT_MAX], delta[QUANT_MAX], dmax1 = 0, dmax2 = 0;
@@ -502,6 +505,9 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				drest2 = delta[e];
 		}
 		quant_near_init(q, (const int (*)[3])ic, (unsigned)k);
+		for (int t = 0; t < 2; t++)
+			if (cells[t])
+				quant_cells_reset(cells[t], (const int (*)[3])ic, (unsigned)k);
 		for (size_t e = 0; e < k; e++) {
 			long m = -1;
 			for (size_t f = 0; f < k; f++) {
@@ -517,7 +523,8 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 		qassign_t part[2];
 		for (unsigned t = 0; t < nparts; t++)
 			part[t] = (qassign_t){ .col = col, .c4 = (const int (*)[3])c4, .lo = n * t / nparts,
-				.hi = n * (t + 1) / nparts, .k = k, .pass = pass, .q = q, .ic = (const int (*)[3])ic,
+				.hi = n * (t + 1) / nparts, .k = k, .pass = pass, .q = q, .cells = cells[t && spare],
+				.ic = (const int (*)[3])ic,
 				.half = half, .delta = delta, .dmax1 = dmax1, .dmax2 = dmax2, .dmaxi = dmaxi, .nj = nj,
 				.jump = jump, .drest1 = drest1, .drest2 = drest2, .dresti = dresti,
 				.means = (const double (*)[3])means, .was = was, .u = u, .l = l, .acc = acc + t * k,
@@ -561,6 +568,8 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			break;
 	}
 	free(acc), free(was), free(q), free(c4), free(u), free(l);
+	quant_cells_free(cells[0]);
+	quant_cells_free(cells[1]);
 	return 0;
 }
 

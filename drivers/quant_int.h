@@ -61,6 +61,20 @@ unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
 /* The nearest entry (as quant_near_find: ties to the lowest index) and the squared distances
  * to it (*d1) and to the nearest of all the other entries (*d2; -1 when there is no other). */
 unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2);
+/* Exact nearest and second-nearest entries through the cells of a 16-level grid (k-means:
+ * every pass asks thousands of colours, most in a few hundred cells): a cell's candidates
+ * are the entries no farther from it than the second least farthest-corner distance of any
+ * entry, sorted by their distance to the cell, built on first use. */
+typedef struct qcells qcells_t;
+/* A new set of cells (about 100 KiB); NULL when out of memory. */
+qcells_t *quant_cells_new(void);
+/* Free it (NULL is fine). */
+void quant_cells_free(qcells_t *c);
+/* Forget every cell: the entries are now col[0..n) (search units, 0..1020 a channel). */
+void quant_cells_reset(qcells_t *c, const int (*col)[3], unsigned n);
+/* As quant_near_find2 for the entries of the last reset (q holding the same entries serves
+ * when a cell cannot be built: out of memory). */
+unsigned quant_cells_find2(qcells_t *c, const qnear_t *q, int r, int g, int b, long *d1, long *d2);
 /* 1 when a second thread can be expected to run beside this one: at least two processors
  * online and a load average below their number less a half. The parts of a mapping or of a
  * k-means pass run on two threads only then (on a busy machine a second thread only adds
