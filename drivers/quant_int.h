@@ -75,11 +75,6 @@ void quant_cells_reset(qcells_t *c, const int (*col)[3], unsigned n);
 /* As quant_near_find2 for the entries of the last reset (q holding the same entries serves
  * when a cell cannot be built: out of memory). */
 unsigned quant_cells_find2(qcells_t *c, const qnear_t *q, int r, int g, int b, long *d1, long *d2);
-/* 1 when a second thread can be expected to run beside this one: at least two processors
- * online and a load average below their number less a half. The parts of a mapping or of a
- * k-means pass run on two threads only then (on a busy machine a second thread only adds
- * work); the answer never depends on it. */
-int quant_spare_core(void);
 /* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
 void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
 

@@ -205,6 +205,8 @@ typedef struct {
 	                             * copy of the histogram's flags small enough for the caches) */
 	const uint8_t *undith;      /* QBINS bits: a one-colour bin whose pixels are drawn ... */
 	const uint8_t *runent;      /* ... undithered, with the entry runent[bin] (NULL: not known) */
+	void (*done)(void *, unsigned);   /* told each row that is final (quant_map_rows), or NULL */
+	void *done_ctx;
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
 	int32_t cnear[3][16][QUANT_MAX];   /* per channel and grid level: each entry's squared ... */
 	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
@@ -565,6 +567,8 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				out16[(size_t)y * w + x] = (uint16_t)v;
 		}
 		int *t = err0; err0 = err1; err1 = t;
+		if (m->done)
+			m->done(m->done_ctx, y);
 	}
 	free(err0);
 	free(err1);
@@ -659,7 +663,8 @@ static void *map_part(void *arg)
 #define QSPLIT_PIXELS (1u << 18)
 
 static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
-		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out8, uint16_t *out16)
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out8, uint16_t *out16,
+		void (*done)(void *, unsigned), void *ctx)
 {
 	qpart_t part[2];
 	unsigned nparts = (size_t)w * hgt >= QSPLIT_PIXELS && hgt >= 2 ? 2 : 1;
@@ -676,7 +681,7 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 		if (!part[k].m)
 			rc = -1;
 		else
-			part[k].m->mixed = mixed;
+			part[k].m->mixed = mixed, part[k].m->done = done, part[k].m->done_ctx = ctx;
 	}
 	if (rc == 0 && pal && h && dither != QUANT_DITHER_NONE && exact_palette(part[0].m, h))
 		for (unsigned k = 0; k < nparts; k++)   /* every colour of the picture is in the palette */
@@ -730,15 +735,22 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
 		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out)
 {
+	return quant_map_rows(pal, h, rgb, w, hgt, stride, dither, out, NULL, NULL);
+}
+
+int quant_map_rows(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out,
+		void (*done)(void *ctx, unsigned y), void *ctx)
+{
 	if (pal->n == 0)
 		return -1;
-	return map_split(pal, h, rgb, w, hgt, stride, dither, out, NULL);
+	return map_split(pal, h, rgb, w, hgt, stride, dither, out, NULL, done, ctx);
 }
 
 int quant_map565(const quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt,
 		size_t stride, int dither, uint16_t *out)
 {
-	return map_split(NULL, h, rgb, w, hgt, stride, dither, NULL, out);
+	return map_split(NULL, h, rgb, w, hgt, stride, dither, NULL, out, NULL, NULL);
 }
 
 double quant_psnr(const quant_palette_t *pal, const uint8_t *rgb, unsigned w, unsigned hgt,
