@@ -2,17 +2,38 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 #include "quant_int.h"
 
 /* ---- histogram ---------------------------------------------------------------------- */
+
+#define QHUGE ((size_t)2 << 20)   /* a transparent huge page */
+
+/* The zeroed bins (8 MiB): in 2 MiB pages where Linux offers them (madvise MADV_HUGEPAGE),
+ * else calloc. A picture's colours fall all over the table: on workload a (9,777 bins) the
+ * faults of its 2,048 pages of 4 KiB cost more than the counting itself. */
+static qbin_t *bins_new(quant_hist_t *h)
+{
+	size_t len = QBINS * sizeof(qbin_t);
+#ifdef MADV_HUGEPAGE
+	void *base = mmap(NULL, len + QHUGE, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+	if (base != MAP_FAILED) {
+		uintptr_t a = ((uintptr_t)base + QHUGE - 1) & ~(uintptr_t)(QHUGE - 1);
+		madvise((void *)a, len, MADV_HUGEPAGE);   /* only advice: 4 KiB pages if refused */
+		h->map_base = base, h->map_len = len + QHUGE;
+		return (qbin_t *)a;
+	}
+#endif
+	return calloc(QBINS, sizeof(qbin_t));
+}
 
 quant_hist_t *quant_hist_new(void)
 {
 	quant_hist_t *h = calloc(1, sizeof *h);
 	if (!h)
 		return NULL;
-	h->bin = calloc(QBINS, sizeof *h->bin);
+	h->bin = bins_new(h);
 	h->used = malloc(QBINS * sizeof *h->used);
 	if (!h->bin || !h->used) {
 		quant_hist_free(h);
@@ -25,7 +46,10 @@ void quant_hist_free(quant_hist_t *h)
 {
 	if (!h)
 		return;
-	free(h->bin);
+	if (h->map_base)
+		munmap(h->map_base, h->map_len);
+	else
+		free(h->bin);
 	free(h->used);
 	free(h->xkey);
 	free(h->xcount);

@@ -19,6 +19,8 @@ typedef struct {
 
 struct quant_hist {
 	qbin_t *bin;                /* QBINS */
+	void *map_base;             /* the mapping holding bin (bins_new), or NULL: bin is calloc's */
+	size_t map_len;
 	uint32_t *used;             /* keys of the bins in use, in the order first seen */
 	size_t nused;
 	unsigned long npix;
