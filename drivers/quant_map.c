@@ -212,7 +212,7 @@ typedef struct {
 	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
 	uint16_t cellcount[4096];
 	uint8_t *pool;
-	long *pooldist;             /* each candidate's squared distance to its cell */
+	int32_t *pooldist;          /* each candidate's squared distance to its cell */
 	size_t npool, cappool;
 	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
 } qmap_t;
@@ -294,7 +294,7 @@ static int cell_candidates(qmap_t *m, unsigned cell)
 		while (c < m->npool + n)
 			c *= 2;
 		uint8_t *p = realloc(m->pool, c);
-		long *d = realloc(m->pooldist, c * sizeof *d);
+		int32_t *d = realloc(m->pooldist, c * sizeof *d);
 		if (p)
 			m->pool = p;
 		if (d)
@@ -323,22 +323,32 @@ static int cell_candidates(qmap_t *m, unsigned cell)
 }
 
 /* The entry nearest to an 8-bit colour (exact, through the cell candidates). */
-static unsigned nearest_cached(qmap_t *m, const int *t)
+static inline unsigned nearest_cached(qmap_t *m, const int *t)
 {
 	unsigned cell = (unsigned)(t[0] >> 4) << 8 | (unsigned)(t[1] >> 4) << 4 | (unsigned)(t[2] >> 4);
 	if (m->cellcount[cell] == 0 && cell_candidates(m, cell) < 0)
 		return quant_near_find(&m->near, t[0] * 4, t[1] * 4, t[2] * 4);
 	const uint8_t *cand = m->pool + m->cellstart[cell];
-	const long *cd = m->pooldist + m->cellstart[cell];
-	long best = -1;
-	unsigned bi = 0;
-	for (unsigned k = 0; k < m->cellcount[cell]; k++) {
-		if (best >= 0 && cd[k] > best)
-			break;
-		const int *s = m->show[cand[k]];
-		long dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
-		long d = dr * dr + dg * dg + db * db;
-		if (best < 0 || d < best || (d == best && cand[k] < bi))
+	const int32_t *cd = m->pooldist + m->cellstart[cell];
+	unsigned n = m->cellcount[cell], bi = cand[0];
+	const int *s = m->show[bi];
+	int32_t dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+	int32_t best = dr * dr + dg * dg + db * db;   /* the first candidate, then the others */
+	if (n > 1) {                 /* the second one always (no branch to mispredict: a farther
+	                              * candidate only loses), the rest while they can be nearer */
+		unsigned c1 = cand[1];
+		s = m->show[c1];
+		dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+		int32_t d = dr * dr + dg * dg + db * db;
+		int take = d < best || (d == best && c1 < bi);
+		best = take ? d : best;
+		bi = take ? c1 : bi;
+	}
+	for (unsigned k = 2; k < n && cd[k] <= best; k++) {
+		s = m->show[cand[k]];
+		dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+		int32_t d = dr * dr + dg * dg + db * db;
+		if (d < best || (d == best && cand[k] < bi))
 			best = d, bi = cand[k];
 	}
 	return bi;
