@@ -123,7 +123,17 @@ static int sort_depth(size_t n)
 typedef struct {
 	size_t lo, hi;              /* colours [lo, hi) */
 	double w;
+	int sorted;                 /* the axis the colours are in order of (by_axis), -1 none */
 } qbox_t;
+
+/* Put a box's colours in order of axis, unless they are already (a box cut across the same
+ * axis as its parent: the sort would give the same order). */
+static void sort_box(qcol_t *col, qbox_t *bx, int axis)
+{
+	if (bx->sorted != axis)
+		sort_axis(col + bx->lo, bx->hi - bx->lo, axis, sort_depth(bx->hi - bx->lo));
+	bx->sorted = axis;
+}
 
 /* Split colours into at most k boxes; each box's weighted mean goes into means (returns the
  * number of boxes). The box split next is the one with the most pixels among those holding
@@ -134,7 +144,7 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 	size_t nb = 0;
 	if (n == 0 || k == 0)
 		return 0;
-	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0, box[0].sorted = -1;
 	for (size_t i = 0; i < n; i++)
 		box[0].w += col[i].w;
 	nb = 1;
@@ -156,14 +166,14 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		for (int c = 1; c < 3; c++)
 			if (hi[c] - lo[c] > hi[axis] - lo[axis])
 				axis = c;
-		sort_axis(col + bx->lo, bx->hi - bx->lo, axis, sort_depth(bx->hi - bx->lo));
+		sort_box(col, bx, axis);
 		double acc = 0;
 		size_t m = bx->lo;
 		while (m < bx->hi - 1 && (acc + col[m].w) * 2 <= bx->w)
 			acc += col[m++].w;
 		if (m == bx->lo)     /* the first colour alone holds half: it goes below the cut */
 			acc += col[m++].w;
-		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc;
+		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc, box[nb].sorted = axis;
 		bx->hi = m, bx->w = acc;
 		nb++;
 	}
@@ -203,7 +213,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 	if (n == 0 || k == 0)
 		return 0;
 	size_t nb = 1;
-	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0, box[0].sorted = -1;
 	for (size_t i = 0; i < n; i++)
 		box[0].w += col[i].w;
 	sse[0] = box_sse(col, 0, n);
@@ -226,7 +236,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		int axis = var[1] > var[0] ? 1 : 0;
 		if (var[2] > var[axis])
 			axis = 2;
-		sort_axis(col + lo, hi - lo, axis, sort_depth(hi - lo));
+		sort_box(col, bx, axis);
 		/* the squared error along the axis only, for each cut (the other axes' share of the
 		 * error changes less and is left out, as in Wu's and pngquant's cuts) */
 		double W = 0, S = 0;
@@ -245,7 +255,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		double wsum = 0;
 		for (size_t i = lo; i < m; i++)
 			wsum += col[i].w;
-		box[nb].lo = m, box[nb].hi = hi, box[nb].w = bx->w - wsum;
+		box[nb].lo = m, box[nb].hi = hi, box[nb].w = bx->w - wsum, box[nb].sorted = axis;
 		bx->hi = m, bx->w = wsum;
 		sse[pick] = box_sse(col, lo, m);
 		sse[nb] = box_sse(col, m, hi);
@@ -583,15 +593,9 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 			if (cells[t])
 				quant_cells_reset(cells[t], (const int (*)[3])ic, (unsigned)k);
 		for (size_t e = 0; e < k; e++) {
-			long m = -1;
-			for (size_t f = 0; f < k; f++) {
-				if (f == e)
-					continue;
-				long dr = ic[e][0] - ic[f][0], dg = ic[e][1] - ic[f][1], db = ic[e][2] - ic[f][2];
-				long d = dr * dr + dg * dg + db * db;
-				if (m < 0 || d < m)
-					m = d;
-			}
+			/* the second nearest to the entry's own place: its nearest other (0 for a twin) */
+			long d1, m;
+			quant_cells_find2(cells[0], q, ic[e][0], ic[e][1], ic[e][2], &d1, &m);
 			half[e] = m < 0 ? 1e30 : sqrt((double)m) / 2;
 		}
 		qassign_t part[2];
