@@ -521,6 +521,8 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			memset(err1, 0, (size_t)(w + 2) * 3 * sizeof *err1);
 			row_contrast(rgb, stride, w, hgt, y, cup, cdn, ct);
 		}
+		int carry[3] = { 0, 0, 0 };  /* 7/16 of the last pixel's error, for this one (kept here,
+		                              * not in err0: no store and reload on the way) */
 		for (unsigned i = 0; i < w; i++) {
 			unsigned x = rtl ? w - 1 - i : i;
 			const uint8_t *p = row + 3 * x;
@@ -538,11 +540,13 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			int fe = last_fe;
 			if (fe >= 0) {
 				v = (unsigned)fe;    /* flat: no error taken, none given */
+				carry[0] = carry[1] = carry[2] = 0;
 			} else if (err0) {
 				int t[3], e[3];
-				int *ec = err0 + 3 * (x + 1);
+				const int *ec = err0 + 3 * (x + 1);
 				for (int c = 0; c < 3; c++) {
-					int in = (ec[c] + (ec[c] >= 0 ? 128 : -128)) / 256;
+					int a = ec[c] + carry[c];
+					int in = (a + (a >= 0 ? 128 : -128)) / 256;
 					in = in > fs_clamp ? fs_clamp : in < -fs_clamp ? -fs_clamp : in;
 					t[c] = clamp8(p[c] + in);
 				}
@@ -557,7 +561,7 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 					e[c] = (t[c] - shown[c]) * dmp;
 				int fwd = rtl ? -3 : 3;
 				for (int c = 0; c < 3; c++) {
-					ec[fwd + c] += e[c] * 7;
+					carry[c] = e[c] * 7;
 					int *nx = err1 + 3 * (x + 1) + c;
 					nx[-fwd] += e[c] * 3;
 					nx[0] += e[c] * 5;
