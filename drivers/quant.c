@@ -446,8 +446,9 @@ typedef struct {
 	const double *delta;        /* how far each entry moved since the pass before */
 	double dmax1, dmax2;        /* the largest move, and the largest of the others */
 	unsigned dmaxi;             /* the entry that moved most */
-	unsigned nj;                /* the entries that moved most (jump[0..nj)), measured ... */
-	const uint8_t *jump;
+	unsigned nj;                /* how many entries moved most, measured: ... */
+	const int32_t (*jc)[QJUMP]; /* ... their places by channel (the unused ones far away) ... */
+	const int32_t *jidx;        /* ... and indices (-1 unused) ... */
 	double drest1, drest2;      /* ... and the largest move of the others, and the next */
 	unsigned dresti;            /* the other entry that moved most */
 	const double (*means)[3];
@@ -475,13 +476,13 @@ static void *assign(void *arg)
 			double m = a->l[i] > a->half[e] ? a->l[i] : a->half[e];
 			if (!(a->u[i] < m) && a->nj) {
 				/* the entries that jumped at their exact distances, the rest by their moves */
-				long dj = -1;
-				for (unsigned j = 0; j < a->nj; j++) {
-					const int *c = a->ic[a->jump[j]];
-					long dr = c[0] - r, dg = c[1] - g, db = c[2] - b, d = dr * dr + dg * dg + db * db;
-					if (a->jump[j] != e && (dj < 0 || d < dj))
-						dj = d;
+				int32_t dmin = INT32_MAX;   /* all QJUMP at once (vectorised), own entry left out */
+				for (unsigned j = 0; j < QJUMP; j++) {
+					int32_t dr = a->jc[0][j] - r, dg = a->jc[1][j] - g, db = a->jc[2][j] - b;
+					int32_t d = a->jidx[j] == (int32_t)e ? INT32_MAX : dr * dr + dg * dg + db * db;
+					dmin = d < dmin ? d : dmin;
 				}
+				long dj = dmin == INT32_MAX ? -1 : dmin;
 				double lj = lold - (e == a->dresti ? a->drest2 : a->drest1);
 				if (dj >= 0 && sqrt((double)dj) < lj)
 					lj = sqrt((double)dj);
@@ -579,6 +580,12 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 		}
 		for (unsigned j = 0; j < nj; j++)
 			injump[jump[j]] = 1;
+		int32_t jc[3][QJUMP], jidx[QJUMP];
+		for (unsigned j = 0; j < QJUMP; j++) {
+			jidx[j] = j < nj ? jump[j] : -1;
+			for (int c = 0; c < 3; c++)   /* an unused one 8,192 units away: never the nearest */
+				jc[c][j] = j < nj ? ic[jump[j]][c] : 8192;
+		}
 		double drest1 = 0, drest2 = 0;
 		for (size_t e = 0; e < k; e++) {
 			if (injump[e])
@@ -604,7 +611,8 @@ static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed,
 				.hi = n * (t + 1) / nparts, .k = k, .pass = pass, .q = q, .cells = cells[t && spare],
 				.ic = (const int (*)[3])ic,
 				.half = half, .delta = delta, .dmax1 = dmax1, .dmax2 = dmax2, .dmaxi = dmaxi, .nj = nj,
-				.jump = jump, .drest1 = drest1, .drest2 = drest2, .dresti = dresti,
+				.jc = (const int32_t (*)[QJUMP])jc, .jidx = jidx, .drest1 = drest1, .drest2 = drest2,
+				.dresti = dresti,
 				.means = (const double (*)[3])means, .was = was, .u = u, .l = l, .acc = acc + t * k,
 				.worst = -1, .wi = 0 };
 		pthread_t th;
