@@ -514,6 +514,9 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	}
 	uint32_t last_c24 = ~0u;
 	int last_fe = -1;
+	uint8_t dac6[256];           /* quant_dac6, looked up */
+	for (unsigned v = 0; v < 256; v++)
+		dac6[v] = (uint8_t)quant_dac6(v);
 	for (unsigned y = y0; y < y1; y++) {
 		const uint8_t *row = rgb + y * stride;
 		int rtl = dither == QUANT_DITHER_FS && (y & 1);   /* serpentine */
@@ -529,15 +532,16 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 			int shown[3];
 			unsigned v;
 			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-			if (c24 != last_c24) {   /* runs of one colour: ask once */
-				uint32_t key = quant_key(p[0], p[1], p[2]);
-				last_c24 = c24;
-				if (m->undith && !(m->mixed[key >> 3] >> (key & 7) & 1))
-					last_fe = m->undith[key >> 3] >> (key & 7) & 1 ? m->runent[key] : -1;
-				else     /* the bin's one colour was asked before the mapping (map_split) */
-					last_fe = run_entry(m, h, thr, p, err0 && m->pal ? QFS_NEAR : 0);
+			uint32_t key = (uint32_t)dac6[p[0]] << 12 | (uint32_t)dac6[p[1]] << 6 | dac6[p[2]];
+			int fe;
+			if (m->undith && !(m->mixed[key >> 3] >> (key & 7) & 1)) {
+				/* the bin's one colour, asked before the mapping (map_split) */
+				fe = m->undith[key >> 3] >> (key & 7) & 1 ? m->runent[key] : -1;
+			} else {
+				if (c24 != last_c24)     /* runs of one colour: ask once */
+					last_fe = run_entry(m, h, thr, p, err0 && m->pal ? QFS_NEAR : 0), last_c24 = c24;
+				fe = last_fe;
 			}
-			int fe = last_fe;
 			if (fe >= 0) {
 				v = (unsigned)fe;    /* flat: no error taken, none given */
 				carry[0] = carry[1] = carry[2] = 0;
