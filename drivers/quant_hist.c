@@ -106,6 +106,9 @@ void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hg
 {
 	uint32_t last = ~0u;
 	qbin_t *q = NULL;
+	uint32_t k0[256], k1[256], k2[256];   /* quant_key by channel, looked up */
+	for (unsigned v = 0; v < 256; v++)
+		k0[v] = quant_dac6(v) << 12, k1[v] = quant_dac6(v) << 6, k2[v] = quant_dac6(v);
 	for (unsigned y = 0; y < hgt; y++) {
 		const uint8_t *p = rgb + y * stride;
 		for (unsigned x = 0; x < w; x++, p += 3) {
@@ -116,7 +119,7 @@ void quant_hist_add(quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hg
 				continue;
 			}
 			last = c24;
-			uint32_t key = quant_key(p[0], p[1], p[2]);
+			uint32_t key = k0[p[0]] | k1[p[1]] | k2[p[2]];
 			q = &h->bin[key];
 			if (q->count++ == 0) {
 				h->used[h->nused++] = key;
