@@ -253,6 +253,10 @@ static int show_on_fb(dev_device_t *d, fbm_t *f, unsigned ncol)
 
 /* ---- writing the file while the page is mapped ---------------------------------------- */
 
+/* Pages of at least this many pixels have their PNG written while they are mapped (smaller
+ * ones: a thread costs more than it saves; the mapping splits at the same size). */
+#define FBM_PIPE_PIXELS (1u << 18)
+
 /* The rows of a page being mapped on this thread, written on another as they come. */
 typedef struct {
 	pthread_mutex_t mu;
@@ -371,8 +375,9 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 		}
 		if (fmt == FBOUT_DUMP && f->pal.bits == 8)
 			return dev_fail(d, DEV_EUSAGE, "dac=8 is beyond the hardware: no dump (png, pcx or bmp)");
-		/* a PNG written while the page is mapped, when a core is spare for it */
-		int rc = fmt == FBOUT_PNG && quant_spare_core() ? map_writing(d, f, fmt, &p) : 1;
+		/* a big page's PNG written while the page is mapped, when a core is spare for it */
+		int big = (size_t)f->w * f->h >= FBM_PIPE_PIXELS;
+		int rc = fmt == FBOUT_PNG && big && quant_spare_core() ? map_writing(d, f, fmt, &p) : 1;
 		if (rc != 1)
 			return rc;
 		if (quant_map(&f->pal, f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3, f->dither, f->idx))
