@@ -468,7 +468,8 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	const int fs_damp = 14, fs_clamp = 16, fs_edge = 12;
 	int *err0 = NULL, *err1 = NULL;
 	uint16_t *cup = NULL, *cdn = NULL, *ct = NULL;
-	uint8_t damp[16];            /* the share of the error passed on, by contrast (capped) */
+	uint8_t damp[16];            /* the share of the error passed on, by contrast: fs_edge is
+	                              * below 16, so every contrast from 15 on is damped as 15 */
 	int spread = 0;
 	if (dither == QUANT_DITHER_FS) {
 		err0 = calloc((size_t)(w + 2) * 3, sizeof *err0);
