@@ -30,6 +30,20 @@ struct quant_hist {
 	int xstate;                 /* 0 none counted, 1 valid, -1 too many colours */
 };
 
+/* A colour to quantise: a bin's (or an exact colour's) mean and its pixels. */
+typedef struct {
+	double c[3];                /* mean 8-bit colour of the bin */
+	double w;                   /* pixels */
+} qcol_t;
+
+/* Lloyd passes (at most passes) over the n weighted colours: entries [fixed, k) of means move to
+ * the mean of the colours nearest to them, those below fixed stay; an entry left with no colour
+ * moves to the colour of the largest weighted error; with grid (6 or 8), every entry is held at
+ * the nearest colour a DAC of that many bits shows. Stops when the entries move less than 0.01
+ * levels on average (grid: less than half a level in all). 0, or <0 when out of memory. */
+int quant_kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
+		unsigned grid);
+
 /* The bin of an 8-bit colour. */
 static inline uint32_t quant_key(unsigned r, unsigned g, unsigned b)
 {
