@@ -1,4 +1,5 @@
 /* fbmode.c: the framebuffer device shared by VGA and XGA: options, page buffer, palette, output. */
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -250,6 +251,102 @@ static int show_on_fb(dev_device_t *d, fbm_t *f, unsigned ncol)
 	return 0;
 }
 
+/* ---- writing the file while the page is mapped ---------------------------------------- */
+
+/* Pages of at least this many pixels have their PNG written while they are mapped (smaller
+ * ones: a thread costs more than it saves; the mapping splits at the same size). */
+#define FBM_PIPE_PIXELS (1u << 18)
+
+/* The rows of a page being mapped on this thread, written on another as they come. */
+typedef struct {
+	pthread_mutex_t mu;
+	pthread_cond_t cv;
+	uint8_t *done;              /* per row: final */
+	int failed;                 /* the mapping gave up: no more rows will come */
+	io_transport_t *out;
+	int fmt, rc;
+	fbout_picture_t p;
+	char err[400];
+} fbm_pipe_t;
+
+static void pipe_done(void *ctx, unsigned y)
+{
+	fbm_pipe_t *pp = ctx;
+	pthread_mutex_lock(&pp->mu);
+	pp->done[y] = 1;
+	pthread_cond_broadcast(&pp->cv);
+	pthread_mutex_unlock(&pp->mu);
+}
+
+static int pipe_wait(void *ctx, unsigned y)
+{
+	fbm_pipe_t *pp = ctx;
+	pthread_mutex_lock(&pp->mu);
+	while (!pp->done[y] && !pp->failed)
+		pthread_cond_wait(&pp->cv, &pp->mu);
+	int rc = pp->done[y] ? 0 : -1;
+	pthread_mutex_unlock(&pp->mu);
+	return rc;
+}
+
+static void *pipe_write(void *arg)
+{
+	fbm_pipe_t *pp = arg;
+	pp->rc = fbout_write(pp->out, pp->fmt, &pp->p, pp->err, sizeof pp->err);
+	return NULL;
+}
+
+/* Map the page and write it as format fmt, the writer on a thread of its own taking each row
+ * as soon as the mapping has made it (the same bytes as mapping, then writing: the PNG's
+ * deflate, a quarter of a big page's colour work, runs beside the mapping). 1 when it could
+ * not start (then nothing was done), else 0 or the failure. */
+static int map_writing(dev_device_t *d, fbm_t *f, int fmt, const fbout_picture_t *pic)
+{
+	fbm_pipe_t pp;
+	memset(&pp, 0, sizeof pp);
+	pp.done = calloc(f->h ? f->h : 1, 1);
+	if (!pp.done)
+		return 1;
+	if (pthread_mutex_init(&pp.mu, NULL)) {
+		free(pp.done);
+		return 1;
+	}
+	if (pthread_cond_init(&pp.cv, NULL)) {
+		pthread_mutex_destroy(&pp.mu);
+		free(pp.done);
+		return 1;
+	}
+	pp.out = d->out, pp.fmt = fmt, pp.p = *pic;
+	pp.p.wait_row = pipe_wait, pp.p.wait_ctx = &pp;
+	pthread_t th;
+	int rc = 1;
+	if (pthread_create(&th, NULL, pipe_write, &pp) == 0) {
+		int mrc = quant_map_rows(&f->pal, f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3, f->dither, f->idx,
+			pipe_done, &pp);
+		if (mrc) {               /* no more rows: the writer gives up */
+			pthread_mutex_lock(&pp.mu);
+			pp.failed = 1;
+			pthread_cond_broadcast(&pp.cv);
+			pthread_mutex_unlock(&pp.mu);
+		}
+		pthread_join(th, NULL);
+		rc = mrc ? dev_fail(d, META_ENOMEM, "out of memory") : pp.rc ? dev_fail(d, META_EIO, "%s", pp.err) : 0;
+	}
+	pthread_cond_destroy(&pp.cv);
+	pthread_mutex_destroy(&pp.mu);
+	free(pp.done);
+	return rc;
+}
+
+/* The output format of the pages: -f, else the output's suffix, else PNG. */
+static int out_format(dev_device_t *d, const fbm_t *f)
+{
+	int fmt = f->format;
+	if (fmt == FBOUT_UNKNOWN && !io_is_std(d->out))
+		fmt = fbout_format_by_suffix(io_name(d->out));
+	return fmt == FBOUT_UNKNOWN ? FBOUT_PNG : fmt;
+}
+
 int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 {
 	fbm_t *f = d->priv;
@@ -263,6 +360,10 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 		return dev_fail(d, META_ENOMEM, "out of memory");
 	if (f->collect[0])
 		return 0;
+	int fmt = f->fb ? FBOUT_UNKNOWN : out_format(d, f);
+	fbout_picture_t p = { f->w, f->h, f->mode->layout, f->idx, f->pix, &f->pal, d->pixel_aspect, NULL, NULL };
+	if (ncol && p.layout == FBOUT_DIRECT565)
+		p.layout = FBOUT_LINEAR8;
 	if (ncol == 0) {
 		if (quant_map565(f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3, f->dither, f->pix))
 			return dev_fail(d, META_ENOMEM, "out of memory");
@@ -272,21 +373,18 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 				return dev_fail(d, META_ENOMEM, "%s", err);
 			f->have_pal = f->palkind == PAL_SHARED;
 		}
+		if (fmt == FBOUT_DUMP && f->pal.bits == 8)
+			return dev_fail(d, DEV_EUSAGE, "dac=8 is beyond the hardware: no dump (png, pcx or bmp)");
+		/* a big page's PNG written while the page is mapped, when a core is spare for it */
+		int big = (size_t)f->w * f->h >= FBM_PIPE_PIXELS;
+		int rc = fmt == FBOUT_PNG && big && quant_spare_core() ? map_writing(d, f, fmt, &p) : 1;
+		if (rc != 1)
+			return rc;
 		if (quant_map(&f->pal, f->hist, f->rgb, f->w, f->h, (size_t)f->w * 3, f->dither, f->idx))
 			return dev_fail(d, META_ENOMEM, "out of memory");
 	}
 	if (f->fb)
 		return show_on_fb(d, f, ncol);
-	int fmt = f->format;
-	if (fmt == FBOUT_UNKNOWN && !io_is_std(d->out))
-		fmt = fbout_format_by_suffix(io_name(d->out));
-	if (fmt == FBOUT_UNKNOWN)
-		fmt = FBOUT_PNG;
-	if (fmt == FBOUT_DUMP && f->pal.bits == 8 && ncol)
-		return dev_fail(d, DEV_EUSAGE, "dac=8 is beyond the hardware: no dump (png, pcx or bmp)");
-	fbout_picture_t p = { f->w, f->h, f->mode->layout, f->idx, f->pix, &f->pal, d->pixel_aspect };
-	if (ncol && p.layout == FBOUT_DIRECT565)
-		p.layout = FBOUT_LINEAR8;
 	if (fbout_write(d->out, fmt, &p, err, sizeof err))
 		return dev_fail(d, META_EIO, "%s", err);
 	return 0;

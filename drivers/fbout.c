@@ -205,6 +205,10 @@ static int write_png(wbuf_t *w, const fbout_picture_t *p)
 			memcpy(row, p->idx + base, p->width);
 		}
 		png_write_row(png, row);
+		if (y + 1 < p->height && p->wait_row && p->wait_row(p->wait_ctx, y + 1)) {
+			snprintf(w->err, w->errlen, "png: the picture was not finished");
+			goto done;
+		}
 	}
 	png_write_end(png, info);
 	rc = 0;
@@ -347,6 +351,13 @@ int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *e
 	}
 	w->t = t, w->err = err, w->errlen = errlen;
 	int rc;
+	/* rows still being mapped: a PNG waits row by row, the other formats for the whole */
+	for (unsigned y = 0; p->wait_row && y < (format == FBOUT_PNG ? 1 : p->height); y++)
+		if (p->wait_row(p->wait_ctx, y)) {
+			snprintf(err, errlen, "the picture was not finished");
+			free(w);
+			return -1;
+		}
 	switch (format) {
 	case FBOUT_DUMP: write_dump(w, p); rc = 0; break;
 	case FBOUT_PNG: drain(w); rc = write_png(w, p); break;

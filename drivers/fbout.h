@@ -28,6 +28,10 @@ typedef struct {
 	const uint16_t *pix;         /* DIRECT565: width x height pixels */
 	const quant_palette_t *pal;  /* LINEAR8, PLANAR4 */
 	double pixel_aspect;         /* width / height of one pixel; 0 or 1 = square */
+	/* NULL, or: wait until row y of the pixels is final (the picture still being mapped on
+	 * another thread); nonzero when it never will be (the writer gives up) */
+	int (*wait_row)(void *ctx, unsigned y);
+	void *wait_ctx;
 } fbout_picture_t;
 
 /* Format by name ("dump", "png", "pcx", "bmp") or by a path's suffix (".dump", ".png", ...);

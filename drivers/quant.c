@@ -1,17 +1,10 @@
 /* quant.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
-#include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "quant_int.h"
 
 /* ---- colours to quantise ------------------------------------------------------------ */
-
-typedef struct {
-	double c[3];                /* mean 8-bit colour of the bin */
-	double w;                   /* pixels */
-} qcol_t;
 
 static double mean_of(const qbin_t *q, int c)
 {
@@ -46,10 +39,94 @@ static int by_green(const void *a, const void *b) { return by_channels(a, b, 1);
 static int by_blue(const void *a, const void *b) { return by_channels(a, b, 2); }
 static int (*const by_axis[3])(const void *, const void *) = { by_red, by_green, by_blue };
 
+/* p before q in the order of by_channels (inlined: the cuts sort most of the colours ~8 times) */
+static inline int before(const qcol_t *p, const qcol_t *q, int axis)
+{
+	if (p->c[axis] != q->c[axis])
+		return p->c[axis] < q->c[axis];
+	for (int k = 0; k < 3; k++)
+		if (p->c[k] != q->c[k])
+			return p->c[k] < q->c[k];
+	return 0;
+}
+
+static inline void swap_col(qcol_t *a, qcol_t *b)
+{
+	qcol_t t = *a;
+	*a = *b, *b = t;
+}
+
+/* Sort n colours by by_axis[axis]: quicksort (median of three) down to insertion sort of short
+ * runs; qsort past a depth of 2 log2 n. Colours are distinct, so the order is total and the
+ * result is the one qsort gives. */
+static void sort_axis(qcol_t *a, size_t n, int axis, int depth)
+{
+	while (n > 16) {
+		if (depth-- <= 0) {
+			qsort(a, n, sizeof *a, by_axis[axis]);
+			return;
+		}
+		size_t mid = n / 2;
+		if (before(&a[mid], &a[0], axis))
+			swap_col(&a[mid], &a[0]);
+		if (before(&a[n - 1], &a[mid], axis)) {
+			swap_col(&a[n - 1], &a[mid]);
+			if (before(&a[mid], &a[0], axis))
+				swap_col(&a[mid], &a[0]);
+		}
+		qcol_t pivot = a[mid];
+		size_t i = 0, j = n - 1;
+		for (;;) {               /* Hoare's partition: a[0..j] <= pivot <= a[j+1..n) */
+			while (before(&a[i], &pivot, axis))
+				i++;
+			while (before(&pivot, &a[j], axis))
+				j--;
+			if (i >= j)
+				break;
+			swap_col(&a[i], &a[j]);
+			i++, j--;
+		}
+		size_t left = j + 1;
+		if (left < n - left) {   /* the smaller side by recursion, the larger by the loop */
+			sort_axis(a, left, axis, depth);
+			a += left, n -= left;
+		} else {
+			sort_axis(a + left, n - left, axis, depth);
+			n = left;
+		}
+	}
+	for (size_t i = 1; i < n; i++) {
+		qcol_t t = a[i];
+		size_t j = i;
+		while (j > 0 && before(&t, &a[j - 1], axis))
+			a[j] = a[j - 1], j--;
+		a[j] = t;
+	}
+}
+
+/* The depth sort_axis allows for n colours. */
+static int sort_depth(size_t n)
+{
+	int d = 0;
+	while (n > 1)
+		n >>= 1, d += 2;
+	return d + 2;
+}
+
 typedef struct {
 	size_t lo, hi;              /* colours [lo, hi) */
 	double w;
+	int sorted;                 /* the axis the colours are in order of (by_axis), -1 none */
 } qbox_t;
+
+/* Put a box's colours in order of axis, unless they are already (a box cut across the same
+ * axis as its parent: the sort would give the same order). */
+static void sort_box(qcol_t *col, qbox_t *bx, int axis)
+{
+	if (bx->sorted != axis)
+		sort_axis(col + bx->lo, bx->hi - bx->lo, axis, sort_depth(bx->hi - bx->lo));
+	bx->sorted = axis;
+}
 
 /* Split colours into at most k boxes; each box's weighted mean goes into means (returns the
  * number of boxes). The box split next is the one with the most pixels among those holding
@@ -60,7 +137,7 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 	size_t nb = 0;
 	if (n == 0 || k == 0)
 		return 0;
-	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0, box[0].sorted = -1;
 	for (size_t i = 0; i < n; i++)
 		box[0].w += col[i].w;
 	nb = 1;
@@ -82,14 +159,14 @@ static size_t median_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		for (int c = 1; c < 3; c++)
 			if (hi[c] - lo[c] > hi[axis] - lo[axis])
 				axis = c;
-		qsort(col + bx->lo, bx->hi - bx->lo, sizeof *col, by_axis[axis]);
+		sort_box(col, bx, axis);
 		double acc = 0;
 		size_t m = bx->lo;
 		while (m < bx->hi - 1 && (acc + col[m].w) * 2 <= bx->w)
 			acc += col[m++].w;
 		if (m == bx->lo)     /* the first colour alone holds half: it goes below the cut */
 			acc += col[m++].w;
-		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc;
+		box[nb].lo = m, box[nb].hi = bx->hi, box[nb].w = bx->w - acc, box[nb].sorted = axis;
 		bx->hi = m, bx->w = acc;
 		nb++;
 	}
@@ -129,7 +206,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 	if (n == 0 || k == 0)
 		return 0;
 	size_t nb = 1;
-	box[0].lo = 0, box[0].hi = n, box[0].w = 0;
+	box[0].lo = 0, box[0].hi = n, box[0].w = 0, box[0].sorted = -1;
 	for (size_t i = 0; i < n; i++)
 		box[0].w += col[i].w;
 	sse[0] = box_sse(col, 0, n);
@@ -152,7 +229,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		int axis = var[1] > var[0] ? 1 : 0;
 		if (var[2] > var[axis])
 			axis = 2;
-		qsort(col + lo, hi - lo, sizeof *col, by_axis[axis]);
+		sort_box(col, bx, axis);
 		/* the squared error along the axis only, for each cut (the other axes' share of the
 		 * error changes less and is left out, as in Wu's and pngquant's cuts) */
 		double W = 0, S = 0;
@@ -171,7 +248,7 @@ static size_t variance_cut(qcol_t *col, size_t n, size_t k, double (*means)[3])
 		double wsum = 0;
 		for (size_t i = lo; i < m; i++)
 			wsum += col[i].w;
-		box[nb].lo = m, box[nb].hi = hi, box[nb].w = bx->w - wsum;
+		box[nb].lo = m, box[nb].hi = hi, box[nb].w = bx->w - wsum, box[nb].sorted = axis;
 		bx->hi = m, bx->w = wsum;
 		sse[pick] = box_sse(col, lo, m);
 		sse[nb] = box_sse(col, m, hi);
@@ -328,191 +405,6 @@ static long octree(const qcol_t *col, size_t n, size_t k, double (*means)[3])
 	return t.fail ? -1 : (long)nm;
 }
 
-/* ---- k-means refinement ------------------------------------------------------------- */
-
-/* The 8-bit value the DAC of bits (6 or 8) shows nearest to v. */
-static double on_grid(double v, unsigned bits)
-{
-	if (bits == 8)
-		return v < 0 ? 0 : v > 255 ? 255 : floor(v + 0.5);
-	double x = v * 63.0 / 255.0 + 0.5;
-	return quant_dac8((unsigned)(x < 0 ? 0 : x > 63 ? 63 : x));
-}
-
-/* One pass's assignment of colours [lo, hi) to their nearest entries: sums into acc (k x
- * (r, g, b, weight)), the colour of the largest weighted error into worst / wi. Hamerly's
- * bounds skip most searches: u[i] bounds from above the distance from colour i to its entry
- * was[i], l[i] from below its distance to every other entry (both kept through the entries'
- * moves by the triangle inequality); when u[i] < max(l[i], half the distance from the entry
- * to its nearest other), the entry is strictly the nearest: the same answer as a search. */
-typedef struct {
-	const qcol_t *col;
-	const int (*c4)[3];         /* the colours in search units (times 4, rounded) */
-	size_t lo, hi, k;
-	int pass;
-	const qnear_t *q;
-	const int (*ic)[3];
-	const double *half;         /* half the distance from each entry to its nearest other */
-	const double *delta;        /* how far each entry moved since the pass before */
-	double dmax1, dmax2;        /* the largest move, and the largest of the others */
-	unsigned dmaxi;             /* the entry that moved most */
-	const double (*means)[3];
-	uint8_t *was;
-	double *u, *l;
-	double (*acc)[4];
-	double worst;
-	size_t wi;
-} qassign_t;
-
-static void *assign(void *arg)
-{
-	qassign_t *a = arg;
-	const qcol_t *col = a->col;
-	memset(a->acc, 0, a->k * sizeof *a->acc);
-	a->worst = -1, a->wi = a->lo;
-	for (size_t i = a->lo; i < a->hi; i++) {
-		int r = a->c4[i][0], g = a->c4[i][1], b = a->c4[i][2];
-		unsigned e = a->was[i];
-		int search = a->pass == 0;
-		if (!search) {
-			a->u[i] += a->delta[e];
-			a->l[i] -= e == a->dmaxi ? a->dmax2 : a->dmax1;
-			double m = a->l[i] > a->half[e] ? a->l[i] : a->half[e];
-			if (!(a->u[i] < m)) {
-				const int *c = a->ic[e];
-				long dr = c[0] - r, dg = c[1] - g, db = c[2] - b;
-				a->u[i] = sqrt((double)(dr * dr + dg * dg + db * db));
-				search = !(a->u[i] < m);
-			}
-		}
-		if (search) {
-			long d1, d2;
-			e = quant_near_find2(a->q, r, g, b, &d1, &d2);
-			a->u[i] = sqrt((double)d1);
-			a->l[i] = d2 < 0 ? 1e30 : sqrt((double)d2);
-		}
-		a->was[i] = (uint8_t)e;
-		double d = 0;
-		for (int c = 0; c < 3; c++) {
-			a->acc[e][c] += col[i].c[c] * col[i].w;
-			d += (col[i].c[c] - a->means[e][c]) * (col[i].c[c] - a->means[e][c]);
-		}
-		a->acc[e][3] += col[i].w;
-		if (d * col[i].w > a->worst)
-			a->worst = d * col[i].w, a->wi = i;
-	}
-	return NULL;
-}
-
-/* Colours of at least this many are assigned in two halves, the second on a thread of its
- * own when a core is spare (quant_spare_core); the halves' sums are added in one order, so the
- * palette depends only on the input (the same when the halves run one after the other). */
-#define QKSPLIT 4096
-
-/* Lloyd passes over the weighted colours: entries [fixed, k) move to the mean of the colours
- * nearest to them; entries below fixed (the flat colours) stay. An entry left with no colour
- * is moved to the colour of the largest weighted error. With grid, every entry is held at
- * the nearest colour the DAC shows (the last passes: assignments then match the palette
- * that will be used). */
-static int kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
-		unsigned grid)
-{
-	double (*acc)[4] = malloc(2 * k * sizeof *acc);
-	uint8_t *was = calloc(n ? n : 1, 1);   /* each colour's entry in the pass before */
-	qnear_t *q = malloc(sizeof *q);
-	int (*c4)[3] = malloc((n ? n : 1) * sizeof *c4);
-	double *u = malloc((n ? n : 1) * sizeof *u), *l = malloc((n ? n : 1) * sizeof *l);
-	if (!acc || !was || !q || !c4 || !u || !l) {
-		free(acc), free(was), free(q), free(c4), free(u), free(l);
-		return -1;
-	}
-	for (size_t i = 0; i < n; i++)
-		for (int c = 0; c < 3; c++)
-			c4[i][c] = (int)lround(col[i].c[c] * 4);
-	if (grid)
-		for (size_t e = 0; e < k; e++)
-			for (int c = 0; c < 3; c++)
-				means[e][c] = on_grid(means[e][c], grid);
-	unsigned nparts = n >= QKSPLIT ? 2 : 1;
-	int spare = nparts == 2 && quant_spare_core();
-	int ic[QUANT_MAX][3], prev[QUANT_MAX][3];
-	for (int pass = 0; pass < passes; pass++) {
-		double half[QUANT_MAX], delta[QUANT_MAX], dmax1 = 0, dmax2 = 0;
-		unsigned dmaxi = 0;
-		for (size_t e = 0; e < k; e++) {
-			for (int c = 0; c < 3; c++)
-				ic[e][c] = (int)lround(means[e][c] * 4);
-			delta[e] = 0;
-			if (pass) {
-				long dr = ic[e][0] - prev[e][0], dg = ic[e][1] - prev[e][1], db = ic[e][2] - prev[e][2];
-				delta[e] = sqrt((double)(dr * dr + dg * dg + db * db));
-			}
-			if (delta[e] > dmax1)
-				dmax2 = dmax1, dmax1 = delta[e], dmaxi = (unsigned)e;
-			else if (delta[e] > dmax2)
-				dmax2 = delta[e];
-		}
-		memcpy(prev, ic, sizeof prev);
-		quant_near_init(q, (const int (*)[3])ic, (unsigned)k);
-		for (size_t e = 0; e < k; e++) {
-			long m = -1;
-			for (size_t f = 0; f < k; f++) {
-				if (f == e)
-					continue;
-				long dr = ic[e][0] - ic[f][0], dg = ic[e][1] - ic[f][1], db = ic[e][2] - ic[f][2];
-				long d = dr * dr + dg * dg + db * db;
-				if (m < 0 || d < m)
-					m = d;
-			}
-			half[e] = m < 0 ? 1e30 : sqrt((double)m) / 2;
-		}
-		qassign_t part[2];
-		for (unsigned t = 0; t < nparts; t++)
-			part[t] = (qassign_t){ col, (const int (*)[3])c4, n * t / nparts, n * (t + 1) / nparts, k, pass, q,
-				(const int (*)[3])ic, half, delta, dmax1, dmax2, dmaxi, (const double (*)[3])means, was, u, l,
-				acc + t * k, -1, 0 };
-		pthread_t th;
-		int threaded = spare && pthread_create(&th, NULL, assign, &part[1]) == 0;
-		assign(&part[0]);
-		if (threaded)
-			pthread_join(th, NULL);
-		else if (nparts == 2)
-			assign(&part[1]);
-		double worst = part[0].worst;
-		size_t wi = part[0].wi;
-		if (nparts == 2) {
-			for (size_t e = 0; e < k; e++)
-				for (int c = 0; c < 4; c++)
-					acc[e][c] += acc[k + e][c];
-			if (part[1].worst > worst)
-				worst = part[1].worst, wi = part[1].wi;
-		}
-		double moved = 0;
-		for (size_t e = fixed; e < k; e++) {
-			double nc[3];
-			if (acc[e][3] > 0) {
-				for (int c = 0; c < 3; c++)
-					nc[c] = acc[e][c] / acc[e][3];
-			} else if (worst > 0) {
-				memcpy(nc, col[wi].c, sizeof nc);
-				worst = 0;
-			} else {
-				continue;
-			}
-			for (int c = 0; c < 3; c++) {
-				if (grid)
-					nc[c] = on_grid(nc[c], grid);
-				moved += fabs(nc[c] - means[e][c]);
-				means[e][c] = nc[c];
-			}
-		}
-		if (moved < (grid ? 0.5 : 0.01 * (double)(k - fixed)))
-			break;
-	}
-	free(acc), free(was), free(q), free(c4), free(u), free(l);
-	return 0;
-}
-
 /* ---- palettes ----------------------------------------------------------------------- */
 
 static int by_weight_desc(const void *a, const void *b)
@@ -639,9 +531,9 @@ int quant_build_bits(const quant_hist_t *h, int method, unsigned ncolours, unsig
 		got = (long)variance_cut(rest, nrest, kfree, means + keep);
 	int rc = got < 0 ? -1 : 0;
 	if (rc == 0 && method == QUANT_BEST)
-		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 30, 0);
+		rc = quant_kmeans(rest, nrest, means, keep, keep + (size_t)got, 30, 0);
 	if (rc == 0 && method == QUANT_BEST)
-		rc = kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, pal->bits);
+		rc = quant_kmeans(rest, nrest, means, keep, keep + (size_t)got, 4, pal->bits);
 	if (rc == 0)
 		for (size_t k = 0; k < keep + (size_t)got; k++)
 			put_entry(pal, means[k]);

@@ -99,9 +99,24 @@ int quant_parse_palette_bits(const unsigned char *buf, size_t n, const char *nam
  * otherwise it must be the histogram of this very picture. 0 or <0 (out of memory). */
 int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
 		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out);
+/* quant_map, calling done(ctx, y) as soon as row y of out is final, for a consumer of the
+ * rows on another thread (a file written while the picture is mapped). The rows of each half
+ * of a big picture come top to bottom, the two halves possibly from two threads at once:
+ * done must be thread-safe. */
+int quant_map_rows(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out,
+		void (*done)(void *ctx, unsigned y), void *ctx);
 /* Map to 16-bit direct colour 5-6-5 (red in the top bits), same dithering and flat rule. */
 int quant_map565(const quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt,
 		size_t stride, int dither, uint16_t *out);
+
+/* 1 when a second thread can be expected to run beside this one: at least two processors
+ * online, fewer threads runnable now than processors and a 1-minute load average below their
+ * number plus a half (without the count of runnable threads: the load below their number less
+ * a half). The parts of a mapping or of a k-means pass, and a file written while its page is
+ * mapped, run on two threads only then (on a busy machine a second thread only adds work);
+ * the answer never depends on it. */
+int quant_spare_core(void);
 
 /* Peak signal-to-noise ratio (dB) of the indexed picture against the 24-bit one (as shown by
  * the DAC); 99 when identical. */

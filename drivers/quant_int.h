@@ -19,6 +19,8 @@ typedef struct {
 
 struct quant_hist {
 	qbin_t *bin;                /* QBINS */
+	void *map_base;             /* the mapping holding bin (bins_new), or NULL: bin is calloc's */
+	size_t map_len;
 	uint32_t *used;             /* keys of the bins in use, in the order first seen */
 	size_t nused;
 	unsigned long npix;
@@ -27,6 +29,20 @@ struct quant_hist {
 	size_t nx;
 	int xstate;                 /* 0 none counted, 1 valid, -1 too many colours */
 };
+
+/* A colour to quantise: a bin's (or an exact colour's) mean and its pixels. */
+typedef struct {
+	double c[3];                /* mean 8-bit colour of the bin */
+	double w;                   /* pixels */
+} qcol_t;
+
+/* Lloyd passes (at most passes) over the n weighted colours: entries [fixed, k) of means move to
+ * the mean of the colours nearest to them, those below fixed stay; an entry left with no colour
+ * moves to the colour of the largest weighted error; with grid (6 or 8), every entry is held at
+ * the nearest colour a DAC of that many bits shows. Stops when the entries move less than 0.01
+ * levels on average (grid: less than half a level in all). 0, or <0 when out of memory. */
+int quant_kmeans(const qcol_t *col, size_t n, double (*means)[3], size_t fixed, size_t k, int passes,
+		unsigned grid);
 
 /* The bin of an 8-bit colour. */
 static inline uint32_t quant_key(unsigned r, unsigned g, unsigned b)
@@ -61,11 +77,20 @@ unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
 /* The nearest entry (as quant_near_find: ties to the lowest index) and the squared distances
  * to it (*d1) and to the nearest of all the other entries (*d2; -1 when there is no other). */
 unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2);
-/* 1 when a second thread can be expected to run beside this one: at least two processors
- * online and a load average below their number less a half. The parts of a mapping or of a
- * k-means pass run on two threads only then (on a busy machine a second thread only adds
- * work); the answer never depends on it. */
-int quant_spare_core(void);
+/* Exact nearest and second-nearest entries through the cells of a 16-level grid (k-means:
+ * every pass asks thousands of colours, most in a few hundred cells): a cell's candidates
+ * are the entries no farther from it than the second least farthest-corner distance of any
+ * entry, sorted by their distance to the cell, built on first use. */
+typedef struct qcells qcells_t;
+/* A new set of cells (about 100 KiB); NULL when out of memory. */
+qcells_t *quant_cells_new(void);
+/* Free it (NULL is fine). */
+void quant_cells_free(qcells_t *c);
+/* Forget every cell: the entries are now col[0..n) (search units, 0..1020 a channel). */
+void quant_cells_reset(qcells_t *c, const int (*col)[3], unsigned n);
+/* As quant_near_find2 for the entries of the last reset (q holding the same entries serves
+ * when a cell cannot be built: out of memory). */
+unsigned quant_cells_find2(qcells_t *c, const qnear_t *q, int r, int g, int b, long *d1, long *d2);
 /* The palette's entries in search units (8-bit values shown by the DAC, times 4). */
 void quant_near_palette(qnear_t *q, const quant_palette_t *pal);
 

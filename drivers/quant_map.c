@@ -1,4 +1,4 @@
-/* quant_map.c: fixed and file palettes, and mapping pixels to a palette or 5-6-5 with dithering. */
+/* quant_map.c: mapping pixels to a palette or 5-6-5, undithered, ordered or Floyd-Steinberg. */
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -6,172 +6,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include "quant_int.h"
-
-/* ---- fixed palettes ----------------------------------------------------------------- */
-
-/* The 16 colours of the EGA/VGA text and 16-colour modes, as 6-bit DAC values. */
-static const uint8_t ega16[16][3] = {
-	{ 0, 0, 0 }, { 0, 0, 42 }, { 0, 42, 0 }, { 0, 42, 42 }, { 42, 0, 0 }, { 42, 0, 42 },
-	{ 42, 21, 0 }, { 42, 42, 42 }, { 21, 21, 21 }, { 21, 21, 63 }, { 21, 63, 21 },
-	{ 21, 63, 63 }, { 63, 21, 21 }, { 63, 21, 63 }, { 63, 63, 21 }, { 63, 63, 63 },
-};
-
-/* The grey ramp of the VGA BIOS palette, entries 16..31. */
-static const uint8_t vga_grey[16] = { 0, 5, 8, 11, 14, 17, 20, 24, 28, 32, 36, 40, 45, 50, 56, 63 };
-
-/* The five levels of each block of 24 hues (intensity high/medium/low x saturation). */
-static const uint8_t vga_levels[9][5] = {
-	{ 0, 16, 31, 47, 63 }, { 31, 39, 47, 55, 63 }, { 45, 49, 54, 58, 63 },
-	{ 0, 7, 14, 21, 28 }, { 14, 17, 21, 24, 28 }, { 20, 22, 24, 26, 28 },
-	{ 0, 4, 8, 12, 16 }, { 8, 10, 12, 14, 16 }, { 11, 12, 13, 15, 16 },
-};
-
-/* One hue of the 24-step cycle blue, magenta, red, yellow, green, cyan, back to blue. */
-static void vga_hue(const uint8_t *L, int i, uint8_t *rgb)
-{
-	int r, g, b;
-	if (i <= 4)       r = i, g = 0, b = 4;
-	else if (i <= 8)  r = 4, g = 0, b = 8 - i;
-	else if (i <= 12) r = 4, g = i - 8, b = 0;
-	else if (i <= 16) r = 16 - i, g = 4, b = 0;
-	else if (i <= 20) r = 0, g = 4, b = i - 16;
-	else              r = 0, g = 24 - i, b = 4;
-	rgb[0] = L[r], rgb[1] = L[g], rgb[2] = L[b];
-}
-
-int quant_fixed_by_name(const char *name)
-{
-	static const char *const names[] = { "vga", "ega", "cube", "grey" };
-	for (int k = 0; k < 4; k++)
-		if (strcmp(name, names[k]) == 0)
-			return k;
-	if (strcmp(name, "gray") == 0)
-		return QUANT_FIXED_GREY;
-	return -1;
-}
-
-int quant_fixed(int which, unsigned ncolours, quant_palette_t *pal, char *err, size_t errlen)
-{
-	memset(pal, 0, sizeof *pal);
-	switch (which) {
-	case QUANT_FIXED_VGA:
-		if (ncolours != 256)
-			break;
-		memcpy(pal->dac, ega16, sizeof ega16);
-		for (int k = 0; k < 16; k++)
-			memset(pal->dac[16 + k], vga_grey[k], 3);
-		for (int blk = 0; blk < 9; blk++)
-			for (int i = 0; i < 24; i++)
-				vga_hue(vga_levels[blk], i, pal->dac[32 + blk * 24 + i]);
-		pal->n = 256;            /* 248..255 stay black */
-		return 0;
-	case QUANT_FIXED_EGA:
-		if (ncolours != 16)
-			break;
-		memcpy(pal->dac, ega16, sizeof ega16);
-		pal->n = 16;
-		return 0;
-	case QUANT_FIXED_CUBE:
-		if (ncolours != 256)
-			break;
-		for (int k = 0; k < 216; k++) {
-			pal->dac[k][0] = (uint8_t)(k / 36 * 63 / 5);
-			pal->dac[k][1] = (uint8_t)(k / 6 % 6 * 63 / 5);
-			pal->dac[k][2] = (uint8_t)(k % 6 * 63 / 5);
-		}
-		pal->n = 256;            /* 216..255 black */
-		return 0;
-	case QUANT_FIXED_GREY: {
-		unsigned n = ncolours < 64 ? ncolours : 64;
-		for (unsigned k = 0; k < n; k++)
-			memset(pal->dac[k], (int)((k * 63 + (n - 1) / 2) / (n - 1)), 3);
-		pal->n = ncolours;       /* any rest black */
-		return 0;
-	}
-	}
-	snprintf(err, errlen, "the %s palette does not fit a mode of %u colours",
-		which == QUANT_FIXED_VGA ? "vga" : which == QUANT_FIXED_EGA ? "ega" :
-		which == QUANT_FIXED_CUBE ? "cube" : "grey", ncolours);
-	return -1;
-}
-
-/* ---- palette files ------------------------------------------------------------------ */
-
-static int hexval(int c)
-{
-	return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 :
-		c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
-}
-
-int quant_parse_palette(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
-		quant_palette_t *pal, char *err, size_t errlen)
-{
-	return quant_parse_palette_bits(buf, n, name, ncolours, 6, pal, err, errlen);
-}
-
-int quant_parse_palette_bits(const unsigned char *buf, size_t n, const char *name, unsigned ncolours,
-		unsigned bits, quant_palette_t *pal, char *err, size_t errlen)
-{
-	memset(pal, 0, sizeof *pal);
-	if (n > 0 && buf[0] != '#' && buf[0] != ';' && buf[0] != '/' && buf[0] != '\n' && buf[0] != ' ') {
-		/* a raw DAC dump */
-		if (n != 768) {
-			snprintf(err, errlen, "%s: byte 0: expected 768 bytes of a raw DAC dump or lines of #rrggbb, got %zu bytes", name, n);
-			return -1;
-		}
-		for (size_t k = 0; k < 768; k++)
-			if (buf[k] > 63) {
-				snprintf(err, errlen, "%s: byte %zu: DAC value %u above 63", name, k, buf[k]);
-				return -1;
-			}
-		if (ncolours < 256) {
-			snprintf(err, errlen, "%s: a 256-entry DAC dump does not fit a mode of %u colours", name, ncolours);
-			return -1;
-		}
-		memcpy(pal->dac, buf, 768);
-		pal->n = 256;
-		return 0;
-	}
-	size_t pos = 0;
-	unsigned line = 1;
-	while (pos < n) {
-		size_t end = pos;
-		while (end < n && buf[end] != '\n')
-			end++;
-		size_t a = pos, b = end;
-		while (a < b && (buf[a] == ' ' || buf[a] == '\t'))
-			a++;
-		while (b > a && (buf[b - 1] == ' ' || buf[b - 1] == '\t' || buf[b - 1] == '\r'))
-			b--;
-		int comment = a < b && (buf[a] == ';' || (buf[a] == '/' && a + 1 < b && buf[a + 1] == '/'));
-		if (a < b && !comment) {
-			int v[6] = { -1 };
-			int good = b - a == 7 && buf[a] == '#';
-			for (int k = 0; good && k < 6; k++)
-				good = (v[k] = hexval(buf[a + 1 + k])) >= 0;
-			if (!good) {
-				snprintf(err, errlen, "%s:%u:%zu: expected #rrggbb", name, line, a - pos + 1);
-				return -1;
-			}
-			if (pal->n == ncolours) {
-				snprintf(err, errlen, "%s:%u:1: more than %u colours for this mode", name, line, ncolours);
-				return -1;
-			}
-			for (int c = 0; c < 3; c++)
-				pal->dac[pal->n][c] = (uint8_t)(bits == 8 ? (unsigned)(v[2 * c] * 16 + v[2 * c + 1]) :
-					quant_dac6((unsigned)(v[2 * c] * 16 + v[2 * c + 1])));
-			pal->n++;
-		}
-		pos = end + 1;
-		line++;
-	}
-	if (pal->n == 0) {
-		snprintf(err, errlen, "%s:1:1: expected #rrggbb lines, found no colour", name);
-		return -1;
-	}
-	pal->bits = bits == 8 ? 8 : 6;
-	return 0;
-}
 
 /* ---- mapping ------------------------------------------------------------------------ */
 
@@ -203,10 +37,16 @@ typedef struct {
 	int own_bc;                 /* 1: this part made bc (and frees it) */
 	const uint8_t *mixed;       /* QBINS bits: the bin holds more than one 24-bit colour (a
 	                             * copy of the histogram's flags small enough for the caches) */
+	const uint8_t *undith;      /* QBINS bits: a one-colour bin whose pixels are drawn ... */
+	const uint8_t *runent;      /* ... undithered, with the entry runent[bin] (NULL: not known) */
+	void (*done)(void *, unsigned);   /* told each row that is final (quant_map_rows), or NULL */
+	void *done_ctx;
 	uint32_t cellstart[4096];   /* per grid cell: its candidates in pool (count 0: not built) */
+	int32_t cnear[3][16][QUANT_MAX];   /* per channel and grid level: each entry's squared ... */
+	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
 	uint16_t cellcount[4096];
 	uint8_t *pool;
-	long *pooldist;             /* each candidate's squared distance to its cell */
+	int32_t *pooldist;          /* each candidate's squared distance to its cell */
 	size_t npool, cappool;
 	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
 } qmap_t;
@@ -272,26 +112,23 @@ static int holds(qmap_t *m, const quant_hist_t *h, uint32_t key)
  * use. Same answers as quant_near_find (ties to the lowest index). */
 static int cell_candidates(qmap_t *m, unsigned cell)
 {
-	int lo[3] = { (int)(cell >> 8) * 64, (int)(cell >> 4 & 15) * 64, (int)(cell & 15) * 64 };
-	unsigned n = m->pal->n;
-	long dmin[QUANT_MAX], least = -1;
+	unsigned n = m->pal->n, l0 = cell >> 8, l1 = cell >> 4 & 15, l2 = cell & 15;
+	/* the distances per channel come from the tables of qmap_new: sums only, a loop the
+	 * compiler vectorises (every cell of a dithered picture is built: 4,096 x 256 entries) */
+	const int32_t *n0 = m->cnear[0][l0], *n1 = m->cnear[1][l1], *n2 = m->cnear[2][l2];
+	const int32_t *f0 = m->cfar[0][l0], *f1 = m->cfar[1][l1], *f2 = m->cfar[2][l2];
+	int32_t dmin[QUANT_MAX], least = INT32_MAX;
 	for (unsigned e = 0; e < n; e++) {
-		long a = 0, b = 0;
-		for (int c = 0; c < 3; c++) {
-			long v = m->show[e][c] * 4, l = lo[c], h = lo[c] + 63;
-			long in = v < l ? l - v : v > h ? v - h : 0, out = v - l > h - v ? v - l : h - v;
-			a += in * in, b += out * out;
-		}
-		dmin[e] = a;
-		if (least < 0 || b < least)
-			least = b;
+		int32_t b = f0[e] + f1[e] + f2[e];
+		dmin[e] = n0[e] + n1[e] + n2[e];
+		least = b < least ? b : least;
 	}
 	if (m->npool + n > m->cappool) {
 		size_t c = m->cappool ? m->cappool * 2 : 65536;
 		while (c < m->npool + n)
 			c *= 2;
 		uint8_t *p = realloc(m->pool, c);
-		long *d = realloc(m->pooldist, c * sizeof *d);
+		int32_t *d = realloc(m->pooldist, c * sizeof *d);
 		if (p)
 			m->pool = p;
 		if (d)
@@ -320,22 +157,32 @@ static int cell_candidates(qmap_t *m, unsigned cell)
 }
 
 /* The entry nearest to an 8-bit colour (exact, through the cell candidates). */
-static unsigned nearest_cached(qmap_t *m, const int *t)
+static inline unsigned nearest_cached(qmap_t *m, const int *t)
 {
 	unsigned cell = (unsigned)(t[0] >> 4) << 8 | (unsigned)(t[1] >> 4) << 4 | (unsigned)(t[2] >> 4);
 	if (m->cellcount[cell] == 0 && cell_candidates(m, cell) < 0)
 		return quant_near_find(&m->near, t[0] * 4, t[1] * 4, t[2] * 4);
 	const uint8_t *cand = m->pool + m->cellstart[cell];
-	const long *cd = m->pooldist + m->cellstart[cell];
-	long best = -1;
-	unsigned bi = 0;
-	for (unsigned k = 0; k < m->cellcount[cell]; k++) {
-		if (best >= 0 && cd[k] > best)
-			break;
-		const int *s = m->show[cand[k]];
-		long dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
-		long d = dr * dr + dg * dg + db * db;
-		if (best < 0 || d < best || (d == best && cand[k] < bi))
+	const int32_t *cd = m->pooldist + m->cellstart[cell];
+	unsigned n = m->cellcount[cell], bi = cand[0];
+	const int *s = m->show[bi];
+	int32_t dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+	int32_t best = dr * dr + dg * dg + db * db;   /* the first candidate, then the others */
+	if (n > 1) {                 /* the second one always (no branch to mispredict: a farther
+	                              * candidate only loses), the rest while they can be nearer */
+		unsigned c1 = cand[1];
+		s = m->show[c1];
+		dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+		int32_t d = dr * dr + dg * dg + db * db;
+		int take = d < best || (d == best && c1 < bi);
+		best = take ? d : best;
+		bi = take ? c1 : bi;
+	}
+	for (unsigned k = 2; k < n && cd[k] <= best; k++) {
+		s = m->show[cand[k]];
+		dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
+		int32_t d = dr * dr + dg * dg + db * db;
+		if (d < best || (d == best && cand[k] < bi))
 			best = d, bi = cand[k];
 	}
 	return bi;
@@ -363,18 +210,53 @@ static int flat_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const
 	return holds(m, h, key);
 }
 
-/* The largest difference (sum over channels) between a pixel and its four neighbours. */
-static int contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, unsigned x, unsigned y)
+/* The differences (sum over channels) between rows a and b, pixel by pixel. */
+static void row_diff(const uint8_t *a, const uint8_t *b, unsigned w, uint16_t *d)
 {
-	const uint8_t *p = rgb + y * stride + 3 * x;
-	int best = 0;
-	const uint8_t *nb[4] = { x > 0 ? p - 3 : p, x + 1 < w ? p + 3 : p, y > 0 ? p - stride : p, y + 1 < h ? p + stride : p };
-	for (int k = 0; k < 4; k++) {
-		int d = abs(nb[k][0] - p[0]) + abs(nb[k][1] - p[1]) + abs(nb[k][2] - p[2]);
-		if (d > best)
-			best = d;
+	for (unsigned x = 0; x < w; x++)
+		d[x] = (uint16_t)(abs(a[3 * x] - b[3 * x]) + abs(a[3 * x + 1] - b[3 * x + 1]) + abs(a[3 * x + 2] - b[3 * x + 2]));
+}
+
+/* The contrast of each pixel of row y: the largest difference (sum over channels) between it
+ * and its four neighbours (a neighbour outside the picture being the pixel itself), into ct.
+ * up holds on entry the differences of row y to row y - 1 (zeros on the first row); on return
+ * it holds those to row y + 1, for the next row. dn is scratch of w values. */
+static void row_contrast(const uint8_t *rgb, size_t stride, unsigned w, unsigned h, unsigned y,
+		uint16_t *up, uint16_t *dn, uint16_t *ct)
+{
+	const uint8_t *row = rgb + y * stride;
+	if (y + 1 < h)
+		row_diff(row, row + stride, w, dn);
+	else
+		memset(dn, 0, w * sizeof *dn);
+	int left = 0;                /* the difference to the pixel on the left */
+	for (unsigned x = 0; x < w; x++) {
+		const uint8_t *p = row + 3 * x;
+		int right = x + 1 < w ? abs(p[3] - p[0]) + abs(p[4] - p[1]) + abs(p[5] - p[2]) : 0;
+		int best = up[x] > dn[x] ? up[x] : dn[x];
+		best = left > best ? left : best;
+		best = right > best ? right : best;
+		ct[x] = (uint16_t)best;
+		left = right;
 	}
-	return best;
+	memcpy(up, dn, w * sizeof *up);
+}
+
+/* The entry within the DAC's rounding of an 8-bit colour (squared distance at most near), or -1. */
+static int near_entry(qmap_t *m, const uint8_t *p, int near)
+{
+	if (near <= 0)
+		return -1;
+	int sh[3], t[3] = { p[0], p[1], p[2] };
+	unsigned e;
+	if (m->pal->bits == 8) {
+		e = nearest_cached(m, t);
+		memcpy(sh, m->show[e], sizeof sh);
+	} else {
+		e = pick(m, p[0], p[1], p[2], sh);
+	}
+	int dr = sh[0] - p[0], dg = sh[1] - p[1], db = sh[2] - p[2];
+	return dr * dr + dg * dg + db * db <= near ? (int)e : -1;
 }
 
 /* Undithered: the entry nearest to the pixel's own colour; searched once per bin when one
@@ -391,6 +273,21 @@ static unsigned nearest_of_pixel(qmap_t *m, const uint8_t *p)
 	return (unsigned)e;
 }
 
+/* The entry a pixel of colour p gets without dithering: its flat or held entry, else (near >
+ * 0) the entry within the DAC's rounding of it; -1 when it is to be dithered. A function of
+ * the colour only. */
+static int run_entry(qmap_t *m, const quant_hist_t *h, unsigned long thr, const uint8_t *p, int near)
+{
+	int e = flat_entry(m, h, thr, p);
+	return e >= 0 ? e : near_entry(m, p, near);
+}
+
+/* A pixel with an entry within the 6-bit DAC's rounding (2 levels a channel: 3 * 2^2) is drawn
+ * with it by Floyd-Steinberg, undithered, taking no error and giving none: a difference the
+ * DAC could not even show is not worth the noise of dithering (the plate: 44.29 dB, at the
+ * 6-bit ceiling, instead of 41.5; 59.9 instead of 59.2 with 8-bit entries) */
+#define QFS_NEAR 12
+
 /* Rows [y0, y1) of the picture; the error diffusion state is one row of (w + 2) pixels x 3
  * channels, in 1/256 steps, starting at zero on row y0. */
 static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsigned w,
@@ -403,21 +300,26 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	 * so dithering there only adds noise. Measured on the benchmark pictures: +4.7 dB PSNR
 	 * against plain FS on the photograph; smooth gradients still dither fully. */
 	const int fs_damp = 14, fs_clamp = 16, fs_edge = 12;
-	/* A pixel with an entry within the 6-bit DAC's rounding (2 levels a channel: 3 * 2^2) is
-	 * drawn with it, undithered, taking no error and giving none: a difference the DAC could
-	 * not even show is not worth the noise of dithering (the plate: 44.29 dB, at the 6-bit
-	 * ceiling, instead of 41.5; 59.9 instead of 59.2 with 8-bit entries) */
-	const int fs_near = 12;
 	int *err0 = NULL, *err1 = NULL;
+	uint16_t *cup = NULL, *cdn = NULL, *ct = NULL;
+	uint8_t damp[16];            /* the share of the error passed on, by contrast: fs_edge is
+	                              * below 16, so every contrast from 15 on is damped as 15 */
 	int spread = 0;
 	if (dither == QUANT_DITHER_FS) {
 		err0 = calloc((size_t)(w + 2) * 3, sizeof *err0);
 		err1 = calloc((size_t)(w + 2) * 3, sizeof *err1);
-		if (!err0 || !err1) {
+		cup = calloc((size_t)w * 3, sizeof *cup);
+		if (!err0 || !err1 || !cup) {
 			free(err0);
 			free(err1);
+			free(cup);
 			return -1;
 		}
+		cdn = cup + w, ct = cdn + w;
+		if (y0 > 0 && y0 < hgt)
+			row_diff(rgb + y0 * stride, rgb + (y0 - 1) * stride, w, cup);
+		for (int c = 0; c < 16; c++)
+			damp[c] = (uint8_t)(c >= fs_edge ? fs_damp / 4 : fs_damp - (fs_damp * 3 / 4) * c / fs_edge);
 	} else if (dither == QUANT_DITHER_ORDERED) {
 		/* the threshold spread: the median distance from an entry to its nearest other */
 		if (!m->pal) {
@@ -447,41 +349,43 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 	}
 	uint32_t last_c24 = ~0u;
 	int last_fe = -1;
+	uint8_t dac6[256];           /* quant_dac6, looked up */
+	for (unsigned v = 0; v < 256; v++)
+		dac6[v] = (uint8_t)quant_dac6(v);
 	for (unsigned y = y0; y < y1; y++) {
 		const uint8_t *row = rgb + y * stride;
 		int rtl = dither == QUANT_DITHER_FS && (y & 1);   /* serpentine */
-		if (err1)
+		if (err1) {
 			memset(err1, 0, (size_t)(w + 2) * 3 * sizeof *err1);
+			row_contrast(rgb, stride, w, hgt, y, cup, cdn, ct);
+		}
+		int carry[3] = { 0, 0, 0 };  /* 7/16 of the last pixel's error, for this one (kept here,
+		                              * not in err0: no store and reload on the way) */
 		for (unsigned i = 0; i < w; i++) {
 			unsigned x = rtl ? w - 1 - i : i;
 			const uint8_t *p = row + 3 * x;
 			int shown[3];
 			unsigned v;
 			uint32_t c24 = (uint32_t)p[0] << 16 | (uint32_t)p[1] << 8 | p[2];
-			if (c24 != last_c24)     /* runs of one colour: ask once */
-				last_fe = flat_entry(m, h, thr, p), last_c24 = c24;
-			int fe = last_fe;
-			if (fe < 0 && err0 && m->pal && fs_near > 0) {
-				/* an entry within the DAC's rounding of the pixel: drawn as is, undithered */
-				int sh[3], t[3] = { p[0], p[1], p[2] };
-				unsigned e;
-				if (m->pal->bits == 8) {
-					e = nearest_cached(m, t);
-					memcpy(sh, m->show[e], sizeof sh);
-				} else {
-					e = pick(m, p[0], p[1], p[2], sh);
-				}
-				int dr = sh[0] - p[0], dg = sh[1] - p[1], db = sh[2] - p[2];
-				if (dr * dr + dg * dg + db * db <= fs_near)
-					fe = (int)e;
+			uint32_t key = (uint32_t)dac6[p[0]] << 12 | (uint32_t)dac6[p[1]] << 6 | dac6[p[2]];
+			int fe;
+			if (m->undith && !(m->mixed[key >> 3] >> (key & 7) & 1)) {
+				/* the bin's one colour, asked before the mapping (map_split) */
+				fe = m->undith[key >> 3] >> (key & 7) & 1 ? m->runent[key] : -1;
+			} else {
+				if (c24 != last_c24)     /* runs of one colour: ask once */
+					last_fe = run_entry(m, h, thr, p, err0 && m->pal ? QFS_NEAR : 0), last_c24 = c24;
+				fe = last_fe;
 			}
 			if (fe >= 0) {
 				v = (unsigned)fe;    /* flat: no error taken, none given */
+				carry[0] = carry[1] = carry[2] = 0;
 			} else if (err0) {
 				int t[3], e[3];
-				int *ec = err0 + 3 * (x + 1);
+				const int *ec = err0 + 3 * (x + 1);
 				for (int c = 0; c < 3; c++) {
-					int in = (ec[c] + (ec[c] >= 0 ? 128 : -128)) / 256;
+					int a = ec[c] + carry[c];
+					int in = (a + (a >= 0 ? 128 : -128)) / 256;
 					in = in > fs_clamp ? fs_clamp : in < -fs_clamp ? -fs_clamp : in;
 					t[c] = clamp8(p[c] + in);
 				}
@@ -491,13 +395,12 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				} else {
 					v = pick(m, t[0], t[1], t[2], shown);
 				}
-				int ct = contrast(rgb, stride, w, hgt, x, y);
-				int dmp = ct >= fs_edge ? fs_damp / 4 : fs_damp - (fs_damp * 3 / 4) * ct / fs_edge;
+				int dmp = damp[ct[x] < 15 ? ct[x] : 15];
 				for (int c = 0; c < 3; c++)
 					e[c] = (t[c] - shown[c]) * dmp;
 				int fwd = rtl ? -3 : 3;
 				for (int c = 0; c < 3; c++) {
-					ec[fwd + c] += e[c] * 7;
+					carry[c] = e[c] * 7;
 					int *nx = err1 + 3 * (x + 1) + c;
 					nx[-fwd] += e[c] * 3;
 					nx[0] += e[c] * 5;
@@ -517,9 +420,12 @@ static int map_image(qmap_t *m, const quant_hist_t *h, const uint8_t *rgb, unsig
 				out16[(size_t)y * w + x] = (uint16_t)v;
 		}
 		int *t = err0; err0 = err1; err1 = t;
+		if (m->done)
+			m->done(m->done_ctx, y);
 	}
 	free(err0);
 	free(err1);
+	free(cup);
 	return 0;
 }
 
@@ -560,6 +466,15 @@ static qmap_t *qmap_new(const quant_palette_t *pal, qbins_t *shared)
 	for (unsigned k = 0; k < pal->n; k++)
 		for (int c = 0; c < 3; c++)
 			m->show[k][c] = (int)quant_show(pal, pal->dac[k][c]);
+	/* a grid level L of a channel spans [64 L, 64 L + 63] in search units */
+	for (int c = 0; c < 3; c++)
+		for (int L = 0; L < 16; L++)
+			for (unsigned k = 0; k < pal->n; k++) {
+				int32_t v = m->show[k][c] * 4, lo = L * 64, hi = lo + 63;
+				int32_t in = v < lo ? lo - v : v > hi ? v - hi : 0, out = v - lo > hi - v ? v - lo : hi - v;
+				m->cnear[c][L][k] = in * in;
+				m->cfar[c][L][k] = out * out;
+			}
 	return m;
 }
 
@@ -601,7 +516,8 @@ static void *map_part(void *arg)
 #define QSPLIT_PIXELS (1u << 18)
 
 static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
-		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out8, uint16_t *out16)
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out8, uint16_t *out16,
+		void (*done)(void *, unsigned), void *ctx)
 {
 	qpart_t part[2];
 	unsigned nparts = (size_t)w * hgt >= QSPLIT_PIXELS && hgt >= 2 ? 2 : 1;
@@ -618,11 +534,33 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 		if (!part[k].m)
 			rc = -1;
 		else
-			part[k].m->mixed = mixed;
+			part[k].m->mixed = mixed, part[k].m->done = done, part[k].m->done_ctx = ctx;
 	}
 	if (rc == 0 && pal && h && dither != QUANT_DITHER_NONE && exact_palette(part[0].m, h))
 		for (unsigned k = 0; k < nparts; k++)   /* every colour of the picture is in the palette */
 			part[k].dither = QUANT_DITHER_NONE;
+	/* the pixels of each one-colour bin (most of vector content's) before dithering: asked
+	 * once here, a bit and a byte per bin for the parts (a 32 KiB bitmap the caches keep) */
+	uint8_t *undith = NULL, *runent = NULL;
+	if (rc == 0 && pal && h) {
+		undith = calloc(QBINS / 8, 1);
+		runent = malloc(QBINS);
+		if (!undith || !runent)
+			rc = -1;
+		unsigned long thr = quant_flat_threshold(h);
+		int near = part[0].dither == QUANT_DITHER_FS ? QFS_NEAR : 0;
+		for (size_t k = 0; rc == 0 && k < h->nused; k++) {
+			uint32_t key = h->used[k], c = h->bin[key].first;
+			if (c & QMIXED)
+				continue;
+			uint8_t p[3] = { (uint8_t)(c >> 16), (uint8_t)(c >> 8), (uint8_t)c };
+			int e = run_entry(part[0].m, h, thr, p, near);
+			if (e >= 0)
+				undith[key >> 3] |= (uint8_t)(1u << (key & 7)), runent[key] = (uint8_t)e;
+		}
+		for (unsigned k = 0; rc == 0 && k < nparts; k++)
+			part[k].m->undith = undith, part[k].m->runent = runent;
+	}
 	if (rc == 0) {
 		pthread_t th;
 		int threaded = nparts == 2 && quant_spare_core() && pthread_create(&th, NULL, map_part, &part[1]) == 0;
@@ -642,21 +580,30 @@ static int map_split(const quant_palette_t *pal, const quant_hist_t *h, const ui
 	for (unsigned k = nparts; k-- > 0;)   /* part 0 owns the shared answers: freed last */
 		qmap_free(part[k].m);
 	free(mixed);
+	free(undith);
+	free(runent);
 	return rc;
 }
 
 int quant_map(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
 		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out)
 {
+	return quant_map_rows(pal, h, rgb, w, hgt, stride, dither, out, NULL, NULL);
+}
+
+int quant_map_rows(const quant_palette_t *pal, const quant_hist_t *h, const uint8_t *rgb,
+		unsigned w, unsigned hgt, size_t stride, int dither, uint8_t *out,
+		void (*done)(void *ctx, unsigned y), void *ctx)
+{
 	if (pal->n == 0)
 		return -1;
-	return map_split(pal, h, rgb, w, hgt, stride, dither, out, NULL);
+	return map_split(pal, h, rgb, w, hgt, stride, dither, out, NULL, done, ctx);
 }
 
 int quant_map565(const quant_hist_t *h, const uint8_t *rgb, unsigned w, unsigned hgt,
 		size_t stride, int dither, uint16_t *out)
 {
-	return map_split(NULL, h, rgb, w, hgt, stride, dither, NULL, out);
+	return map_split(NULL, h, rgb, w, hgt, stride, dither, NULL, out, NULL, NULL);
 }
 
 double quant_psnr(const quant_palette_t *pal, const uint8_t *rgb, unsigned w, unsigned hgt,
