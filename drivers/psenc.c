@@ -197,20 +197,23 @@ int pse_deflate_begin(pse_out_t *o, int a85, int level)
 	if (o->err)
 		return o->err;
 	z_stream *z = calloc(1, sizeof *z);
-	int huff = level == PSE_HUFFMAN, text = level == PSE_TEXT;
+	int huff = level == PSE_HUFFMAN, text = level == PSE_TEXT || level == PSE_ROWS;
 	if (!z || deflateInit2(z, huff ? 1 : text ? 9 : level, Z_DEFLATED, 15, text ? 9 : 8,
 			huff ? Z_HUFFMAN_ONLY : text ? Z_FILTERED : Z_DEFAULT_STRATEGY) != Z_OK) {
 		free(z);
 		return o->err = META_ENOMEM;
 	}
-	if (text)
+	if (level == PSE_TEXT)
 		deflateTune(z, 8, 8, 24, 40);
+	else if (level == PSE_ROWS)
+		deflateTune(z, 8, 16, 128, 64);
 	o->z = z;
 	o->a85 = a85;
 	o->tuple = 0;
 	o->ntuple = 0;
 	o->col = 0;
 	o->zout = 0;
+	o->rows = 0;
 	return 0;
 }
 
@@ -246,6 +249,7 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 		o->z = NULL;
 	}
 	o->nzin = 0;
+	o->rows = 0;
 	deflateEnd(z);
 	free(z);
 	if (o->a85) {
@@ -260,19 +264,86 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 
 /* ---- the writer's formatting calls ---- */
 
+/* Bytes for the compressor, gathered in zin. */
+static int zput(pse_out_t *o, const void *p, size_t n)
+{
+	if (o->nzin + n > sizeof o->zin && zstage(o))
+		return o->err;
+	if (n > sizeof o->zin)
+		return zpump(o, p, n, Z_NO_FLUSH);
+	memcpy(o->zin + o->nzin, p, n);
+	o->nzin += n;
+	return 0;
+}
+
+/* Text into rows of filter None: a filter byte where each row begins. */
+static int rows_text(pse_out_t *o, const uint8_t *p, size_t n)
+{
+	static const uint8_t none = 0;
+	while (n && !o->err) {
+		if (o->rowpos == 0)
+			zput(o, &none, 1);
+		size_t k = o->rows - o->rowpos;
+		if (k > n)
+			k = n;
+		zput(o, p, k);
+		memcpy(o->cur + o->rowpos, p, k);
+		o->rowpos += (unsigned)k;
+		p += k;
+		n -= k;
+		if (o->rowpos == o->rows) {
+			memcpy(o->prev, o->cur, o->rows);
+			o->rowpos = 0;
+		}
+	}
+	return o->err;
+}
+
+int pse_rows_begin(pse_out_t *o, unsigned w)
+{
+	if (!o->z || w == 0 || w > PSE_ROW_MAX)
+		return o->err ? o->err : (o->err = META_EIO);
+	o->rows = w;
+	o->rowpos = 0;
+	memset(o->prev, 0, sizeof o->prev);
+	return o->err;
+}
+
+unsigned pse_rows_col(const pse_out_t *o)
+{
+	return o->rows ? o->rowpos : 0;
+}
+
+int pse_rows_pad(pse_out_t *o, char c)
+{
+	uint8_t b[PSE_ROW_MAX];
+	if (!o->rows || !o->rowpos)
+		return o->err;
+	memset(b, (unsigned char)c, sizeof b);
+	return rows_text(o, b, o->rows - o->rowpos);
+}
+
+int pse_row_up(pse_out_t *o, const void *row)
+{
+	const uint8_t *r = row;
+	uint8_t b[PSE_ROW_MAX + 1];
+	if (o->err)
+		return o->err;
+	if (!o->rows || o->rowpos)
+		return o->err = META_EIO;
+	b[0] = 2;
+	for (unsigned k = 0; k < o->rows; k++)
+		b[k + 1] = (uint8_t)(r[k] - o->prev[k]);
+	memcpy(o->prev, r, o->rows);
+	return zput(o, b, o->rows + 1);
+}
+
 int pse_write(pse_out_t *o, const void *p, size_t n)
 {
 	if (o->err)
 		return o->err;
-	if (o->z) {
-		if (o->nzin + n > sizeof o->zin && zstage(o))
-			return o->err;
-		if (n > sizeof o->zin)
-			return zpump(o, p, n, Z_NO_FLUSH);
-		memcpy(o->zin + o->nzin, p, n);
-		o->nzin += n;
-		return 0;
-	}
+	if (o->z)
+		return o->rows ? rows_text(o, p, n) : zput(o, p, n);
 	return raw(o, p, n);
 }
 
