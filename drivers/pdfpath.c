@@ -233,13 +233,27 @@ static size_t digits(long long v)
 	return n;
 }
 
+/* v (-999 ... 9999) right-aligned in the four columns at r */
+static void field(char *r, long long v)
+{
+	char *p = r + 4;
+	unsigned long long a = v < 0 ? 0ULL - (unsigned long long)v : (unsigned long long)v;
+	memset(r, ' ', 4);
+	do {
+		*--p = (char)('0' + a % 10);
+		a /= 10;
+	} while (a && p > r);
+	if (v < 0 && p > r)
+		*--p = '-';
+}
+
 /* the bytes of a four-column field of v that differ from those of u */
 static size_t moved(long long u, long long v)
 {
-	char a[8], b[8];
+	char a[4], b[4];
 	size_t n = 0;
-	snprintf(a, sizeof a, "%4lld", u);
-	snprintf(b, sizeof b, "%4lld", v);
+	field(a, u);
+	field(b, v);
 	for (int k = 0; k < 4; k++)
 		n += a[k] != b[k];
 	return n;
@@ -252,19 +266,35 @@ static int rows_pay(const pdf_t *s, size_t *n)
 	*n = 0;
 	for (size_t k = 0; k < s->npts; k++) {
 		const pdf_pt_t *q = &s->pts[k];
-		if (q->op == 'h') {
-			last = NULL;
+		if (q->op == 'h')
 			continue;
-		}
 		if (q->x < -999 || q->x > 9999 || q->y < -999 || q->y > 9999)
 			return 0;
 		++*n;
 		on += q->x % ORG_MOD == 0 || q->y % ORG_MOD == 0;
+	}
+	if (!*n || 2 * on < *n)
+		return 0;
+	for (size_t k = 0; k < s->npts; k++) {
+		const pdf_pt_t *q = &s->pts[k];
+		if (q->op == 'h') {
+			last = NULL;
+			continue;
+		}
 		text += digits(q->x) + digits(q->y) + 3;
 		up += last ? moved(last->x, q->x) + moved(last->y, q->y) + (last->op != q->op) : 12;
 		last = q;
 	}
-	return *n && 2 * on >= *n && 2 * up < text;
+	return 2 * up < text;
+}
+
+static void reverse(pdf_pt_t *p, size_t n)
+{
+	for (size_t i = 0, j = n; i + 1 < j; i++, j--) {
+		pdf_pt_t t = p[i];
+		p[i] = p[j - 1];
+		p[j - 1] = t;
+	}
 }
 
 /* A fill of one subpath (f closes it) is the same polygon from any of its vertices: start it at
@@ -284,17 +314,15 @@ static void lowest_first(pdf_t *s)
 			k = i;
 	}
 	long long dx = s->pts[k].x, dy = s->pts[k].y;
-	pdf_pt_t *r = malloc(s->npts * sizeof *r);
-	if (!r)
-		return;   /* keep the order it came in */
+	/* rotate left by k: reverse [0, k), [k, n), then the whole */
+	reverse(s->pts, k);
+	reverse(s->pts + k, s->npts - k);
+	reverse(s->pts, s->npts);
 	for (size_t i = 0; i < s->npts; i++) {
-		const pdf_pt_t *q = &s->pts[(k + i) % s->npts];
-		r[i].x = q->x - dx;
-		r[i].y = q->y - dy;
-		r[i].op = i ? 'l' : 'm';
+		s->pts[i].x -= dx;
+		s->pts[i].y -= dy;
+		s->pts[i].op = i ? 'l' : 'm';
 	}
-	memcpy(s->pts, r, s->npts * sizeof *r);
-	free(r);
 	s->org_x += dx;
 	s->org_y += dy;
 }
@@ -312,15 +340,6 @@ static void text_points(pdf_t *s)
 		tok_int(s, q->y);
 		tok(s, ops[q->op == 'l']);
 	}
-}
-
-/* v right-aligned in the four columns at r */
-static void field(char *r, long long v)
-{
-	char b[24];
-	int n = snprintf(b, sizeof b, "%lld", v);
-	memset(r, ' ', 4);
-	memcpy(r + 4 - n, b, (size_t)n);
 }
 
 /* The points as rows "xxxx yyyy l\n": the first after other text with filter None, each next
