@@ -50,7 +50,7 @@ int pdf_open_stream(pdf_t *s, int rows)
 	begin_obj(s, n);
 	pse_printf(&s->p.out, "<< /Length %u 0 R /Filter /FlateDecode", n + 1);
 	if (rows)
-		pse_printf(&s->p.out, " /DecodeParms << /Predictor 12 /Columns %d >>", PDF_ROW);
+		pse_printf(&s->p.out, " /DecodeParms << /Predictor 2 /Colors %d /Columns %d >>", PDF_ROW, PDF_COLUMNS);
 	pse_puts(&s->p.out, " >>\nstream\n");
 	s->stream_obj = n;
 	s->stream_start = s->p.out.pos;
@@ -58,7 +58,7 @@ int pdf_open_stream(pdf_t *s, int rows)
 	s->rows = rows;
 	s->packed_run = 0;
 	int rc = pse_deflate_begin(&s->p.out, 0, rows ? PSE_ROWS : PSE_TEXT);
-	return rc || !rows ? rc : pse_rows_begin(&s->p.out, PDF_ROW);
+	return rc || !rows ? rc : pse_rows_begin(&s->p.out, PDF_ROW, PDF_COLUMNS);
 }
 
 int pdf_close_stream(pdf_t *s)
@@ -67,7 +67,7 @@ int pdf_close_stream(pdf_t *s)
 		return 0;
 	pdf_end_group(s);
 	psd_newline(&s->p);
-	pse_rows_pad(&s->p.out, ' ');   /* rows end whole */
+	pse_rows_end(&s->p.out, ' ');   /* rows end whole */
 	pse_deflate_end(&s->p.out, NULL);
 	uint64_t len = s->p.out.pos - s->stream_start;
 	pse_puts(&s->p.out, "\nendstream\nendobj\n");

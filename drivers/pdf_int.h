@@ -5,7 +5,8 @@
 
 #include "psdev.h"
 
-#define PDF_ROW 12         /* bytes of a predictor row: one point "xxxx yyyy l\n" */
+#define PDF_ROW 12         /* bytes of a predictor sample: one point "xxxx yyyy l\n" */
+#define PDF_COLUMNS 1024   /* samples of a predictor row */
 #define PDF_GROUP 32       /* paths whose origins chain by relative cm inside one q ... Q */
 
 /* A growable list of numbers (object numbers, offsets). */
@@ -44,7 +45,7 @@ typedef struct {
 	unsigned group;              /* paths in the open q ... Q group (0: none open) */
 	long long gx, gy;            /* the translation in force inside the group */
 	int group_far;               /* the group's origin is far off the page: it ends at the next path */
-	int rows;                    /* the open stream is in predictor rows */
+	int rows;                    /* the open stream has the predictor */
 	size_t packed_run;           /* points written as text in rows since the last record path */
 	pdf_pt_t *pts;               /* the path being written */
 	size_t npts, cappts;
@@ -52,7 +53,8 @@ typedef struct {
 	uint64_t stream_start;
 } pdf_t;
 
-/* Open a content stream (rows = 1: Flate with PNG predictor rows of PDF_ROW bytes). 0 or <0. */
+/* Open a content stream (rows = 1: Flate with TIFF predictor rows of PDF_COLUMNS samples of
+ * PDF_ROW bytes). 0 or <0. */
 int pdf_open_stream(pdf_t *s, int rows);
 /* Close the open content stream (and its group), if any. 0 or <0 with a message. */
 int pdf_close_stream(pdf_t *s);

@@ -342,13 +342,12 @@ static void text_points(pdf_t *s)
 	}
 }
 
-/* The points as rows "xxxx yyyy l\n": the first after other text with filter None, each next
- * one with filter Up (its bytes less those of the point above); a closepath is a row "h". */
+/* The points as predictor samples "xxxx yyyy l\n", each less the one before it (the first of a
+ * path less the padded head before it); a closepath is a sample "h". */
 static void row_points(pdf_t *s)
 {
 	pse_out_t *o = &s->p.out;
-	int above = 0;   /* the row above is a point */
-	pse_write(o, "\n", 1);   /* ends the head even where it fills its row exactly */
+	pse_write(o, "\n", 1);   /* ends the head even where it fills its sample exactly */
 	pse_rows_pad(o, ' ');
 	for (size_t k = 0; k < s->npts; k++) {
 		const pdf_pt_t *q = &s->pts[k];
@@ -356,7 +355,6 @@ static void row_points(pdf_t *s)
 		if (q->op == 'h') {
 			pse_write(o, "h", 1);
 			pse_rows_pad(o, ' ');
-			above = 0;
 			continue;
 		}
 		field(r, q->x);
@@ -365,11 +363,7 @@ static void row_points(pdf_t *s)
 		r[9] = ' ';
 		r[10] = q->op;
 		r[11] = '\n';
-		if (above)
-			pse_row_up(o, r);
-		else
-			pse_write(o, r, PDF_ROW);
-		above = 1;
+		pse_write(o, r, PDF_ROW);
 	}
 	s->p.col = 0;
 }

@@ -276,66 +276,63 @@ static int zput(pse_out_t *o, const void *p, size_t n)
 	return 0;
 }
 
-/* Text into rows of filter None: a filter byte where each row begins. */
-static int rows_text(pse_out_t *o, const uint8_t *p, size_t n)
+/* Bytes into TIFF predictor 2 rows: each byte less the one a sample (rows bytes) before it in
+ * the same row; a row's first sample stays as it is. */
+static int rows_put(pse_out_t *o, const uint8_t *p, size_t n)
 {
-	static const uint8_t none = 0;
-	while (n && !o->err) {
-		if (o->rowpos == 0)
-			zput(o, &none, 1);
-		size_t k = o->rows - o->rowpos;
-		if (k > n)
-			k = n;
-		zput(o, p, k);
-		memcpy(o->cur + o->rowpos, p, k);
-		o->rowpos += (unsigned)k;
-		p += k;
-		n -= k;
-		if (o->rowpos == o->rows) {
-			memcpy(o->prev, o->cur, o->rows);
+	uint8_t b[4096];
+	size_t m = 0;
+	for (size_t k = 0; k < n; k++) {
+		unsigned j = o->rowpos % o->rows;
+		b[m++] = (uint8_t)(o->rowpos < o->rows ? p[k] : p[k] - o->prev[j]);
+		o->prev[j] = p[k];
+		if (++o->rowpos == o->rowlen)
 			o->rowpos = 0;
+		if (m == sizeof b) {
+			zput(o, b, m);
+			m = 0;
 		}
 	}
+	if (m)
+		zput(o, b, m);
 	return o->err;
 }
 
-int pse_rows_begin(pse_out_t *o, unsigned w)
+int pse_rows_begin(pse_out_t *o, unsigned w, unsigned columns)
 {
-	if (!o->z || w == 0 || w > PSE_ROW_MAX)
+	if (!o->z || w == 0 || w > PSE_ROW_MAX || columns == 0 || columns > (1u << 20))
 		return o->err ? o->err : (o->err = META_EIO);
 	o->rows = w;
+	o->rowlen = (size_t)w * columns;
 	o->rowpos = 0;
-	memset(o->prev, 0, sizeof o->prev);
 	return o->err;
 }
 
 unsigned pse_rows_col(const pse_out_t *o)
 {
-	return o->rows ? o->rowpos : 0;
+	return o->rows ? (unsigned)(o->rowpos % o->rows) : 0;
+}
+
+/* Write c until the position is a multiple of `unit` bytes into the row. */
+static int rows_fill(pse_out_t *o, char c, size_t unit)
+{
+	uint8_t b[256];
+	memset(b, (unsigned char)c, sizeof b);
+	while (!o->err && o->rowpos % unit) {
+		size_t k = unit - o->rowpos % unit;
+		rows_put(o, b, k < sizeof b ? k : sizeof b);
+	}
+	return o->err;
 }
 
 int pse_rows_pad(pse_out_t *o, char c)
 {
-	uint8_t b[PSE_ROW_MAX];
-	if (!o->rows || !o->rowpos)
-		return o->err;
-	memset(b, (unsigned char)c, sizeof b);
-	return rows_text(o, b, o->rows - o->rowpos);
+	return o->rows ? rows_fill(o, c, o->rows) : o->err;
 }
 
-int pse_row_up(pse_out_t *o, const void *row)
+int pse_rows_end(pse_out_t *o, char c)
 {
-	const uint8_t *r = row;
-	uint8_t b[PSE_ROW_MAX + 1];
-	if (o->err)
-		return o->err;
-	if (!o->rows || o->rowpos)
-		return o->err = META_EIO;
-	b[0] = 2;
-	for (unsigned k = 0; k < o->rows; k++)
-		b[k + 1] = (uint8_t)(r[k] - o->prev[k]);
-	memcpy(o->prev, r, o->rows);
-	return zput(o, b, o->rows + 1);
+	return o->rows ? rows_fill(o, c, o->rowlen) : o->err;
 }
 
 int pse_write(pse_out_t *o, const void *p, size_t n)
@@ -343,7 +340,7 @@ int pse_write(pse_out_t *o, const void *p, size_t n)
 	if (o->err)
 		return o->err;
 	if (o->z)
-		return o->rows ? rows_text(o, p, n) : zput(o, p, n);
+		return o->rows ? rows_put(o, p, n) : zput(o, p, n);
 	return raw(o, p, n);
 }
 

@@ -343,18 +343,19 @@ if command -v qpdf > /dev/null; then
 		ok "100 fills: 4 groups of q ... Q, 96 relative origins, the pixels of the PS, like locus-raster (PSNR $v)" ||
 		notok "origin chain: $q groups, $rel relative origins, $e pixels from the PS, PSNR $v (floor 24.5)"
 fi
-# ---- PDF contour plates: points as PNG-predicted rows of the Flate filter ------------------
+# ---- PDF contour plates: points as predicted samples of the Flate filter --------------------
 # A contour plate's long lattice paths go into a content stream with /DecodeParms << /Predictor
-# 12 /Columns 12 >>: Ghostscript and pdftoppm must render it pixel for pixel as the same PDF with
-# its streams decoded by qpdf (no filter at all), and like locus-raster within the floors.
+# 2 /Colors 12 /Columns 1024 >> (TIFF predictor, one point a 12-byte sample): Ghostscript and
+# pdftoppm must render it pixel for pixel as the same PDF with its streams decoded by qpdf (no
+# filter at all), and like locus-raster within the floors.
 if command -v qpdf > /dev/null && command -v pdftoppm > /dev/null; then
 	"$BIN/locus-render" --quiet fixtures/scenes/contour-sum.scene -o "$T/cs.meta" && "$P" "$T/cs.meta" -o "$T/cs.pdf" &&
 		"$P" --level 2 --media "$T/cs.meta" -o "$T/cs.ps"
 	check "contour plate PDF: qpdf --check" qpdf --check "$T/cs.pdf"
-	grep -aq '/DecodeParms << /Predictor 12 /Columns 12 >>' "$T/cs.pdf" && ok "contour plate PDF uses the PNG predictor" ||
+	grep -aq '/DecodeParms << /Predictor 2 /Colors 12 /Columns 1024 >>' "$T/cs.pdf" && ok "contour plate PDF uses the TIFF predictor" ||
 		notok "contour plate PDF without the predictor"
 	qpdf --stream-data=uncompress "$T/cs.pdf" "$T/cs.plain.pdf"
-	! grep -aq 'Predictor\|FlateDecode' "$T/cs.plain.pdf" && ok "qpdf decodes the predictor rows" || notok "qpdf left filters in place"
+	! grep -aq 'Predictor\|FlateDecode' "$T/cs.plain.pdf" && ok "qpdf decodes the predicted stream" || notok "qpdf left filters in place"
 	for v in cs cs.plain; do
 		$GS -sDEVICE=png16m -r96 -sOutputFile="$T/$v.gs.png" $CENTRE "$T/$v.pdf"
 		$GS -sDEVICE=png16m -r96 -sOutputFile="$T/$v.gsd.png" "$T/$v.pdf"
