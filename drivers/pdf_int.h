@@ -46,7 +46,7 @@ typedef struct {
 	long long gx, gy;            /* the translation in force inside the group */
 	int group_far;               /* the group's origin is far off the page: it ends at the next path */
 	int rows;                    /* the open stream has the predictor */
-	size_t packed_run;           /* points written as text in rows since the last record path */
+	size_t packed_run;           /* points of text paths in the predicted stream since the last predicted path */
 	pdf_pt_t *pts;               /* the path being written */
 	size_t npts, cappts;
 	unsigned stream_obj;         /* the open content stream (0: none) */
@@ -63,7 +63,7 @@ void pdf_end_group(pdf_t *s);
 /* Forget the graphics state (page start). */
 void pdf_reset_state(pdf_t *s);
 /* Stroke (fill = 0) or fill the path with the state st: colour, line state, origin, points,
- * paint operator, switching between plain and row streams where that pays. 0 or <0. */
+ * paint operator, switching between plain and predicted streams where that pays. 0 or <0. */
 int pdf_paint(pdf_t *s, const dev_path_t *dp, const dev_state_t *st, int fill);
 /* Set the fill colour (for rectangles of the image blocks) unless it is in force. */
 void pdf_fill_colour(pdf_t *s, meta_rgb_t c);

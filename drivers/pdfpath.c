@@ -1,13 +1,14 @@
-/* pdfpath.c: the PDF device's paths: graphics state, path origins chained by cm inside q ... Q
- * groups, and points as text or as fixed rows under the Flate filter's PNG predictor. */
+/* pdfpath.c: the PDF device's paths: graphics state, path origins (fills chained by cm inside
+ * q ... Q groups), and points as text or as fixed-width samples under the Flate filter's TIFF
+ * predictor. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "pdf_int.h"
 
-#define ROWS_MIN 256       /* points a path needs to open a row stream */
-#define TEXT_RUN 1024      /* points of text paths in a row stream before a plain one reopens */
+#define ROWS_MIN 256       /* points a lattice path needs to open a predicted stream */
+#define TEXT_RUN 1024      /* points of text paths in a predicted stream before a plain one reopens */
 
 /* ---- tokens (psdev.c's writer: one line per path, never wrapped inside one) ---- */
 
@@ -217,13 +218,13 @@ static int collect(pdf_t *s, const dev_path_t *dp, int fill)
 	return rc ? rc : 1;
 }
 
-/* 1 when the points profit from predictor rows: every coordinate fits a record's four columns,
- * at least half the points lie on the origin's 2-pixel lattice in x or y (marching-squares
- * contours, after origin() found their phase), and the bytes that Up rows leave non-zero are
- * fewer than half the path's text (contours: 1/4 to 2/5). A lattice point's Up row keeps
- * little more than the digits that moved, where text repeats every digit; random walks and
- * polygons (a tenth of their points on a lattice, 2/5 to 1/2 of their text left by Up) are
- * smaller as text: as rows workload a would grow by 10%. *n: the points. */
+/* 1 when the points profit from predicted samples: every coordinate fits a sample's four
+ * columns, at least half the points lie on the origin's 2-pixel lattice in x or y
+ * (marching-squares contours, after origin() found their phase), and the bytes that differ from
+ * the point before are fewer than half the path's text (contours: 1/4 to 2/5). A lattice
+ * point's difference keeps little more than the digits that moved, where text repeats every
+ * digit; random walks and polygons (a tenth of their points on a lattice, 2/5 to 1/2 of their
+ * text left) are smaller as text: predicted, workload a would grow by 10%. *n: the points. */
 /* digits (and sign) of v */
 static size_t digits(long long v)
 {
@@ -429,7 +430,8 @@ int pdf_paint(pdf_t *s, const dev_path_t *dp, const dev_state_t *st, int fill)
 	rec = rec && s->rows;
 	/* an origin far off the page (Ghostscript's single-precision matrix would lose the page's
 	 * fractions in its translation) stands alone in a group of its own */
-	long long lim = 4 * (long long)(s->p.page.width > s->p.page.height ? s->p.page.width : s->p.page.height) * PSD_GRID;
+	unsigned side = s->p.page.width > s->p.page.height ? s->p.page.width : s->p.page.height;
+	long long lim = 4LL * side * PSD_GRID;
 	int far = s->org_x < -lim || s->org_x > lim || s->org_y < -lim || s->org_y > lim;
 	if (!fill || s->group >= PDF_GROUP || (s->group && (far || s->group_far)))
 		pdf_end_group(s);
