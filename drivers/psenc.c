@@ -197,20 +197,23 @@ int pse_deflate_begin(pse_out_t *o, int a85, int level)
 	if (o->err)
 		return o->err;
 	z_stream *z = calloc(1, sizeof *z);
-	int huff = level == PSE_HUFFMAN, text = level == PSE_TEXT;
+	int huff = level == PSE_HUFFMAN, text = level == PSE_TEXT || level == PSE_ROWS;
 	if (!z || deflateInit2(z, huff ? 1 : text ? 9 : level, Z_DEFLATED, 15, text ? 9 : 8,
 			huff ? Z_HUFFMAN_ONLY : text ? Z_FILTERED : Z_DEFAULT_STRATEGY) != Z_OK) {
 		free(z);
 		return o->err = META_ENOMEM;
 	}
-	if (text)
+	if (level == PSE_TEXT)
 		deflateTune(z, 8, 8, 24, 40);
+	else if (level == PSE_ROWS)
+		deflateTune(z, 8, 16, 128, 64);
 	o->z = z;
 	o->a85 = a85;
 	o->tuple = 0;
 	o->ntuple = 0;
 	o->col = 0;
 	o->zout = 0;
+	o->rows = 0;
 	return 0;
 }
 
@@ -246,6 +249,7 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 		o->z = NULL;
 	}
 	o->nzin = 0;
+	o->rows = 0;
 	deflateEnd(z);
 	free(z);
 	if (o->a85) {
@@ -260,19 +264,83 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen)
 
 /* ---- the writer's formatting calls ---- */
 
+/* Bytes for the compressor, gathered in zin. */
+static int zput(pse_out_t *o, const void *p, size_t n)
+{
+	if (o->nzin + n > sizeof o->zin && zstage(o))
+		return o->err;
+	if (n > sizeof o->zin)
+		return zpump(o, p, n, Z_NO_FLUSH);
+	memcpy(o->zin + o->nzin, p, n);
+	o->nzin += n;
+	return 0;
+}
+
+/* Bytes into TIFF predictor 2 rows: each byte less the one a sample (rows bytes) before it in
+ * the same row; a row's first sample stays as it is. */
+static int rows_put(pse_out_t *o, const uint8_t *p, size_t n)
+{
+	uint8_t b[4096];
+	size_t m = 0;
+	for (size_t k = 0; k < n; k++) {
+		unsigned j = o->rowpos % o->rows;
+		b[m++] = (uint8_t)(o->rowpos < o->rows ? p[k] : p[k] - o->prev[j]);
+		o->prev[j] = p[k];
+		if (++o->rowpos == o->rowlen)
+			o->rowpos = 0;
+		if (m == sizeof b) {
+			zput(o, b, m);
+			m = 0;
+		}
+	}
+	if (m)
+		zput(o, b, m);
+	return o->err;
+}
+
+int pse_rows_begin(pse_out_t *o, unsigned w, unsigned columns)
+{
+	if (!o->z || w == 0 || w > PSE_ROW_MAX || columns == 0 || columns > (1u << 20))
+		return o->err ? o->err : (o->err = META_EIO);
+	o->rows = w;
+	o->rowlen = (size_t)w * columns;
+	o->rowpos = 0;
+	return o->err;
+}
+
+unsigned pse_rows_col(const pse_out_t *o)
+{
+	return o->rows ? (unsigned)(o->rowpos % o->rows) : 0;
+}
+
+/* Write c until the position is a multiple of `unit` bytes into the row. */
+static int rows_fill(pse_out_t *o, char c, size_t unit)
+{
+	uint8_t b[256];
+	memset(b, (unsigned char)c, sizeof b);
+	while (!o->err && o->rowpos % unit) {
+		size_t k = unit - o->rowpos % unit;
+		rows_put(o, b, k < sizeof b ? k : sizeof b);
+	}
+	return o->err;
+}
+
+int pse_rows_pad(pse_out_t *o, char c)
+{
+	return o->rows ? rows_fill(o, c, o->rows) : o->err;
+}
+
+int pse_rows_end(pse_out_t *o, char c)
+{
+	return o->rows ? rows_fill(o, c, o->rowlen) : o->err;
+}
+
 int pse_write(pse_out_t *o, const void *p, size_t n)
 {
 	if (o->err)
 		return o->err;
-	if (o->z) {
-		if (o->nzin + n > sizeof o->zin && zstage(o))
-			return o->err;
-		if (n > sizeof o->zin)
-			return zpump(o, p, n, Z_NO_FLUSH);
-		memcpy(o->zin + o->nzin, p, n);
-		o->nzin += n;
-		return 0;
-	}
+	if (o->z)
+		return o->rows ? rows_put(o, p, n) : zput(o, p, n);
 	return raw(o, p, n);
 }
 

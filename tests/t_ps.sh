@@ -321,12 +321,56 @@ for c in strokes sum-contour extreme text; do
 	ae=$(compare -metric AE "$T/$c.l2.png" "$T/$c.l3.png" null: 2>&1)
 	[ "$ae" = 0 ] && ok "$c: level 3 (binary draws) renders the pixels of level 2 (text draws)" || notok "$c: levels 2 and 3 differ by $ae pixels"
 done
-# PDF: a path is one content line, its origin translated (q 1 0 0 1 X Y cm ... S Q)
+# PDF: in a plain content stream a path is one line, its origin translated: a stroke in q 1 0 0 1
+# X Y cm ... S Q, fills chained, the first of a group by q 1 0 0 1 X Y cm, each next one from the
+# one before (1 0 0 1 DX DY cm), at most 32 a group
 if command -v qpdf > /dev/null; then
-	qpdf --qdf --object-streams=disable "$T/sum-contour.pdf" "$T/sc.qdf.pdf"
-	bad=$(awk '/^stream$/ {s = 1; next} /^endstream$/ {s = 0} s && / m / && !/^(.* )?q 1 0 0 1 -?[0-9]+ -?[0-9]+ cm .* (S|f|f\*) Q$/' "$T/sc.qdf.pdf" | wc -l)
-	paths=$(grep -ac ' S Q$' "$T/sc.qdf.pdf")
+	qpdf --qdf --object-streams=disable "$T/fills.pdf" "$T/fl.qdf.pdf" && qpdf --qdf --object-streams=disable "$T/strokes.pdf" "$T/st.qdf.pdf" && cat "$T/fl.qdf.pdf" >> "$T/st.qdf.pdf"
+	bad=$(awk '/^stream$/ {s = 1; next} /^endstream$/ {s = 0} s && / m / && !/^(.* )?(q )?1 0 0 1 -?[0-9]+ -?[0-9]+ cm .* (S Q|f|f\*)$/' "$T/st.qdf.pdf" | wc -l)
+	paths=$(awk '/^stream$/ {s = 1; next} /^endstream$/ {s = 0} s && / m / {n++} END {print n + 0}' "$T/st.qdf.pdf")
 	[ "$bad" = 0 ] && [ "$paths" -gt 3 ] && ok "PDF: each of $paths paths is one content line" || notok "PDF: $bad path lines broken ($paths whole)"
+	awk 'BEGIN { print "LOCUS-META 1"; print "page 200 100"
+		for (k = 0; k < 100; k++) printf "colour #%06x\nfill\nmove %d %d\ndraw %d %d\ndraw %d %d\nend\n", k * 997, k * 2, 3 + k % 7, k * 2 + 5, 90 - k % 11, k * 2 + 1, 50
+		print "end-page" }' > "$T/chain.meta" && "$P" "$T/chain.meta" -o "$T/chain.pdf" && qpdf --qdf --object-streams=disable "$T/chain.pdf" "$T/chain.qdf.pdf"
+	q=$(grep -ac ' q 1 0 0 1 ' "$T/chain.qdf.pdf") rel=$(grep -ac '^[^q]* 1 0 0 1 -\?[0-9]* -\?[0-9]* cm' "$T/chain.qdf.pdf")
+	# the same pixels as the PostScript (absolute origins, no matrix chain) and like locus-raster
+	"$P" --level 2 --media "$T/chain.meta" -o "$T/chain.ps"
+	"$BIN/locus-raster" "$T/chain.meta" -o "$T/chain.ref.png"
+	$GS -sDEVICE=png16m -r96 -sOutputFile="$T/chain.png" $CENTRE "$T/chain.pdf"
+	$GS -sDEVICE=png16m -r96 -sOutputFile="$T/chain.ps.png" $CENTRE "$T/chain.ps"
+	v=$(psnr "$T/chain.ref.png" "$T/chain.png") e=$(compare -metric AE "$T/chain.ps.png" "$T/chain.png" null: 2>&1)
+	[ "$q" = 4 ] && [ "$rel" = 96 ] && [ "$e" = 0 ] && atleast "$v" 24.5 &&
+		ok "100 fills: 4 groups of q ... Q, 96 relative origins, the pixels of the PS, like locus-raster (PSNR $v)" ||
+		notok "origin chain: $q groups, $rel relative origins, $e pixels from the PS, PSNR $v (floor 24.5)"
+fi
+# ---- PDF contour plates: points as predicted samples of the Flate filter --------------------
+# A contour plate's long lattice paths go into a content stream with /DecodeParms << /Predictor
+# 2 /Colors 12 /Columns 1024 >> (TIFF predictor, one point a 12-byte sample): Ghostscript and
+# pdftoppm must render it pixel for pixel as the same PDF with its streams decoded by qpdf (no
+# filter at all), and like locus-raster within the floors.
+if command -v qpdf > /dev/null && command -v pdftoppm > /dev/null; then
+	"$BIN/locus-render" --quiet fixtures/scenes/contour-sum.scene -o "$T/cs.meta" && "$P" "$T/cs.meta" -o "$T/cs.pdf" &&
+		"$P" --level 2 --media "$T/cs.meta" -o "$T/cs.ps"
+	check "contour plate PDF: qpdf --check" qpdf --check "$T/cs.pdf"
+	grep -aq '/DecodeParms << /Predictor 2 /Colors 12 /Columns 1024 >>' "$T/cs.pdf" && ok "contour plate PDF uses the TIFF predictor" ||
+		notok "contour plate PDF without the predictor"
+	qpdf --stream-data=uncompress "$T/cs.pdf" "$T/cs.plain.pdf"
+	! grep -aq 'Predictor\|FlateDecode' "$T/cs.plain.pdf" && ok "qpdf decodes the predicted stream" || notok "qpdf left filters in place"
+	for v in cs cs.plain; do
+		$GS -sDEVICE=png16m -r96 -sOutputFile="$T/$v.gs.png" $CENTRE "$T/$v.pdf"
+		$GS -sDEVICE=png16m -r96 -sOutputFile="$T/$v.gsd.png" "$T/$v.pdf"
+		pdftoppm -r 96 -aa no -aaVector no -png -singlefile "$T/$v.pdf" "$T/$v.pp"
+	done
+	for r in gs gsd pp; do
+		ae=$(compare -metric AE "$T/cs.$r.png" "$T/cs.plain.$r.png" null: 2>&1)
+		[ "$ae" = 0 ] && ok "contour plate: $r renders the predicted PDF pixel for pixel as the decoded one" || notok "contour plate: $r: $ae pixels differ"
+	done
+	"$BIN/locus-raster" "$T/cs.meta" -o "$T/cs.ref.png"
+	$GS -sDEVICE=png16m -r96 -sOutputFile="$T/cs.ps.png" $CENTRE "$T/cs.ps"
+	v=$(psnr "$T/cs.ref.png" "$T/cs.gs.png") w=$(psnr "$T/cs.ref.png" "$T/cs.pp.png") e=$(compare -metric AE "$T/cs.ps.png" "$T/cs.gs.png" null: 2>&1)
+	atleast "$v" 30.5 && atleast "$w" 17 && [ "$e" = 0 ] &&
+		ok "contour plate PDF like locus-raster (gs PSNR $v, pdftoppm $w) and gs gives the pixels of the level 2 PS" ||
+		notok "contour plate PDF: gs PSNR $v (floor 26), pdftoppm $w (floor 16), $e pixels differ from the PS"
 fi
 # ---- the benchmark's cairo anchor builds clean and draws the same picture --------------------
 if pkg-config --exists cairo 2> /dev/null; then
