@@ -140,6 +140,42 @@ static void write_numbers(pse_out_t *o, void *arg)
 	pse_real(o, -0.00001, 4);
 }
 
+/* Contour-like records, one per 12-byte sample, with text between and a padded sample. */
+static void write_rows(pse_out_t *o, void *arg)
+{
+	buf_t *b = arg;   /* gets the plain text the stream must decode to */
+	static char plain[200000];
+	size_t n = 0;
+	pse_deflate_begin(o, 0, PSE_ROWS);
+	pse_rows_begin(o, 12, 64);
+	for (int k = 0; k < 3000; k++) {
+		char rec[16];
+		if (k % 500 == 0) {   /* a path head: text of any length, then padded to a sample */
+			int m = snprintf(rec, sizeof rec, "q %d cm ", k);
+			pse_write(o, rec, (size_t)m);
+			memcpy(plain + n, rec, (size_t)m);
+			n += (size_t)m;
+			unsigned col = pse_rows_col(o);
+			pse_rows_pad(o, ' ');
+			if (col) {
+				memset(plain + n, ' ', 12 - col);
+				n += 12 - col;
+			}
+		}
+		snprintf(rec, sizeof rec, "%4d %4d l\n", 20 * (k % 40), 7 * k % 1000);
+		pse_write(o, rec, 12);
+		memcpy(plain + n, rec, 12);
+		n += 12;
+	}
+	pse_rows_end(o, ' ');
+	size_t row = 12 * 64;
+	memset(plain + n, ' ', (row - n % row) % row);
+	n += (row - n % row) % row;
+	pse_deflate_end(o, NULL);
+	b->p = (const uint8_t *)plain;
+	b->n = n;
+}
+
 int main(void)
 {
 	static uint8_t data[70000], back[80000];
@@ -208,6 +244,26 @@ int main(void)
 		pk = n85 > 0 && uncompress(back, &nu, zz, (uLong)n85) == Z_OK && nu == 20000 && !memcmp(back, data, nu);
 	}
 	CHECK(pk, "streaming Flate + ASCII85 with a level change decodes back");
+	free(f);
+
+	buf_t want_rows;
+	f = written(write_rows, &want_rows, &len);
+	int rows_ok = 0, zeros = 0;
+	static uint8_t dec[200000];
+	uLongf nd = sizeof dec;
+	if (f && uncompress(dec, &nd, f, len) == Z_OK && nd == want_rows.n && nd % (12 * 64) == 0) {
+		for (size_t i = 0; i < nd; i++)
+			zeros += dec[i] == 0;
+		/* TIFF predictor 2, 12 colours of 8 bits, 64 columns: each byte but a row's first
+		 * sample adds the same byte of the sample before */
+		for (size_t r = 0; r < nd; r += 12 * 64)
+			for (size_t i = 12; i < 12 * 64; i++)
+				dec[r + i] = (uint8_t)(dec[r + i] + dec[r + i - 12]);
+		rows_ok = !memcmp(dec, want_rows.p, nd);
+	}
+	CHECK(rows_ok, "predictor rows: Flate then TIFF predictor 2 (12 x 64) give back the text, heads padded, rows whole");
+	CHECK(zeros > (int)nd / 3, "predictor rows: the columns that repeat become zeros (%d of %lu bytes)", zeros,
+		(unsigned long)nd);
 	free(f);
 
 	f = written(write_numbers, NULL, &len);
