@@ -128,21 +128,25 @@ static size_t digits(int64_t v)
 	return n;
 }
 
-/* Text length of the pairs of pts[a..b) absolute (rel = 0) or relative to the point before. */
-static size_t list_len(const popt_pt_t *pts, size_t a, size_t b, int rel, popt_pt_t before, unsigned max)
+/* Text lengths of the pairs of pts[a..b) absolute (*labs) and relative to the point before
+ * (*lrel), in one pass. */
+static void list_lens(const popt_pt_t *pts, size_t a, size_t b, popt_pt_t before, unsigned max, size_t *labs,
+                      size_t *lrel)
 {
-	size_t len = 0, pairs = 0;
+	size_t la = 0, lr = 0, pairs = 0, extra = 0;
 	popt_pt_t at = before;
 	for (size_t i = a; i < b; i++) {
-		int64_t x = rel ? (int64_t)pts[i].x - at.x : pts[i].x, y = rel ? (int64_t)pts[i].y - at.y : pts[i].y;
-		len += digits(x) + digits(y) + 2;      /* "x,y," or "x,y;" */
+		la += digits(pts[i].x) + digits(pts[i].y);
+		lr += digits((int64_t)pts[i].x - at.x) + digits((int64_t)pts[i].y - at.y);
 		if (++pairs == max) {
-			len += 2;                          /* another "PD" */
+			extra += 2;                        /* another "PD" */
 			pairs = 0;
 		}
 		at = pts[i];
 	}
-	return len;
+	size_t sep = 2 * (b > a ? b - a : 0);    /* "x,y," or "x,y;" */
+	*labs = la + sep + extra;
+	*lrel = lr + sep + extra;
 }
 
 /* Decimal digits of v written at s, backwards from their known length (no sprintf: it was a
@@ -169,7 +173,8 @@ static int poly_hpgl(hpgl_emit_t *e, const popt_pt_t *pts, size_t n)
 	size_t mabs = digits(pts[0].x) + digits(pts[0].y) + 1, mrel = SIZE_MAX;
 	if (e->known)
 		mrel = digits((int64_t)pts[0].x - here.x) + digits((int64_t)pts[0].y - here.y) + 1;
-	size_t dabs = list_len(pts, 1, n, 0, pts[0], max), drel = list_len(pts, 1, n, 1, pts[0], max);
+	size_t dabs, drel;
+	list_lens(pts, 1, n, pts[0], max, &dabs, &drel);
 	int best_m = 0, best_d = 0;
 	size_t best = SIZE_MAX;
 	for (int m = 0; m < 2; m++)

@@ -3,6 +3,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -358,10 +359,21 @@ static double lab_f(double t)
 	return t > 216.0 / 24389 ? cbrt(t) : (24389.0 / 27 * t + 16) / 116;
 }
 
+/* srgb_lin of the 256 component values, made once (pow is most of a colour's conversion, and
+ * a page of random colours converts one per path) */
+static double lin_table[256];
+static pthread_once_t lin_once = PTHREAD_ONCE_INIT;
+
+static void lin_init(void)
+{
+	for (int v = 0; v < 256; v++)
+		lin_table[v] = srgb_lin(v / 255.0);
+}
+
 void hpgl_rgb_to_lab(uint32_t rgb, double lab[3])
 {
-	double r = srgb_lin((rgb >> 16 & 255) / 255.0), g = srgb_lin((rgb >> 8 & 255) / 255.0),
-		b = srgb_lin((rgb & 255) / 255.0);
+	pthread_once(&lin_once, lin_init);
+	double r = lin_table[rgb >> 16 & 255], g = lin_table[rgb >> 8 & 255], b = lin_table[rgb & 255];
 	double X = (0.4124564 * r + 0.3575761 * g + 0.1804375 * b) / 0.95047;
 	double Y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b;
 	double Z = (0.0193339 * r + 0.1191920 * g + 0.9503041 * b) / 1.08883;
@@ -476,11 +488,11 @@ static double de94(const double *a, const double *b)
 	return dl * dl + dc * dc / (sc * sc) + dh2 / (sh * sh);   /* squared */
 }
 
-size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb)
+/* The pen nearest to the colour lab (CIE94). */
+static size_t nearest_lab(const hpgl_pens_t *pens, const double lab[3])
 {
-	double lab[3], best = INFINITY;
+	double best = INFINITY;
 	size_t bi = 0;
-	hpgl_rgb_to_lab(rgb, lab);
 	for (size_t k = 0; k < pens->n; k++) {
 		double d = de94(lab, pens->pen[k].lab);
 		if (d < best) {
@@ -491,12 +503,19 @@ size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb)
 	return bi;
 }
 
+size_t hpgl_pens_nearest(const hpgl_pens_t *pens, uint32_t rgb)
+{
+	double lab[3];
+	hpgl_rgb_to_lab(rgb, lab);
+	return nearest_lab(pens, lab);
+}
+
 long hpgl_pens_pick(const hpgl_pens_t *pens, uint32_t rgb)
 {
-	size_t k = hpgl_pens_nearest(pens, rgb);
 	double lab[3];
 	static const double white[3] = { 100, 0, 0 };
 	hpgl_rgb_to_lab(rgb, lab);
+	size_t k = nearest_lab(pens, lab);
 	return lab[0] >= 80 && de94(lab, white) < de94(lab, pens->pen[k].lab) ? -1 : (long)k;
 }
 
