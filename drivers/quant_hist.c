@@ -309,6 +309,51 @@ void quant_near_palette(qnear_t *q, const quant_palette_t *pal)
 }
 
 
+/* ---- cell candidates ---------------------------------------------------------------- */
+
+long quant_pool_add(qpool_t *p, const int32_t *dmin, unsigned n, int32_t bound, size_t *start)
+{
+	if (p->n + n > p->cap) {
+		size_t cap = p->cap ? p->cap * 2 : 65536;
+		while (cap < p->n + n)
+			cap *= 2;
+		uint8_t *e = realloc(p->e, cap);
+		if (e)
+			p->e = e;
+		int32_t *d = realloc(p->d, cap * sizeof *d);
+		if (d)
+			p->d = d;
+		if (!e || !d)
+			return -1;
+		p->cap = cap;
+	}
+	size_t s = p->n, k = s;
+	for (unsigned e = 0; e < n; e++) {
+		if (dmin[e] > bound)
+			continue;
+		size_t j = k++;           /* insertion by distance, then index */
+		while (j > s && p->d[j - 1] > dmin[e]) {
+			p->e[j] = p->e[j - 1];
+			p->d[j] = p->d[j - 1];
+			j--;
+		}
+		p->e[j] = (uint8_t)e;
+		p->d[j] = dmin[e];
+	}
+	p->n = k;
+	*start = s;
+	return (long)(k - s);
+}
+
+void quant_pool_free(qpool_t *p)
+{
+	free(p->e);
+	free(p->d);
+	p->e = NULL;
+	p->d = NULL;
+	p->n = p->cap = 0;
+}
+
 /* ---- nearest and second-nearest by cells ------------------------------------------- */
 
 #define QCSHIFT 8               /* cells of 256 search units (64 8-bit levels) a side ... */
@@ -321,9 +366,7 @@ struct qcells {
 	int32_t cfar[3][QCLEVELS][QUANT_MAX];    /* ... squared distance to its nearest and farthest value */
 	uint32_t start[QCLEVELS * QCLEVELS * QCLEVELS];   /* per cell: its candidates in pool ... */
 	uint16_t count[QCLEVELS * QCLEVELS * QCLEVELS];   /* ... (count 0: not built) */
-	uint8_t *pool;
-	int32_t *pdist;                    /* each candidate's squared distance to its cell */
-	size_t npool, cap;
+	qpool_t pool;
 };
 
 qcells_t *quant_cells_new(void)
@@ -335,8 +378,7 @@ void quant_cells_free(qcells_t *c)
 {
 	if (!c)
 		return;
-	free(c->pool);
-	free(c->pdist);
+	quant_pool_free(&c->pool);
 	free(c);
 }
 
@@ -353,7 +395,7 @@ void quant_cells_reset(qcells_t *c, const int (*col)[3], unsigned n)
 				c->cfar[ch][L][k] = out * out;
 			}
 	memset(c->count, 0, sizeof c->count);
-	c->npool = 0;
+	c->pool.n = 0;
 }
 
 /* The candidates of a cell: every entry that can be nearest or second nearest to a colour in
@@ -380,36 +422,12 @@ static int cell_build(qcells_t *c, unsigned cell)
 	}
 	if (n < 2)
 		least2 = least1;
-	if (c->npool + n > c->cap) {
-		size_t cap = c->cap ? c->cap * 2 : 65536;
-		while (cap < c->npool + n)
-			cap *= 2;
-		uint8_t *p = realloc(c->pool, cap);
-		if (p)
-			c->pool = p;
-		int32_t *d = realloc(c->pdist, cap * sizeof *d);
-		if (d)
-			c->pdist = d;
-		if (!p || !d)
-			return -1;
-		c->cap = cap;
-	}
-	size_t start = c->npool, k = start;
-	for (unsigned e = 0; e < n; e++) {
-		if (dmin[e] > least2)
-			continue;
-		size_t j = k++;           /* insertion by distance, then index */
-		while (j > start && c->pdist[j - 1] > dmin[e]) {
-			c->pool[j] = c->pool[j - 1];
-			c->pdist[j] = c->pdist[j - 1];
-			j--;
-		}
-		c->pool[j] = (uint8_t)e;
-		c->pdist[j] = dmin[e];
-	}
-	c->npool = k;
+	size_t start;
+	long k = quant_pool_add(&c->pool, dmin, n, least2, &start);
+	if (k < 0)
+		return -1;
 	c->start[cell] = (uint32_t)start;
-	c->count[cell] = (uint16_t)(k - start);
+	c->count[cell] = (uint16_t)k;
 	return 0;
 }
 
@@ -419,8 +437,8 @@ unsigned quant_cells_find2(qcells_t *c, const qnear_t *q, int r, int g, int b, l
 	if (r < 0 || g < 0 || b < 0 || r > 1023 || g > 1023 || b > 1023 ||
 			(c->count[cell] == 0 && cell_build(c, cell) < 0))
 		return quant_near_find2(q, r, g, b, d1, d2);
-	const uint8_t *cand = c->pool + c->start[cell];
-	const int32_t *cd = c->pdist + c->start[cell];
+	const uint8_t *cand = c->pool.e + c->start[cell];
+	const int32_t *cd = c->pool.d + c->start[cell];
 	long best = -1, second = -1;
 	unsigned bi = 0;
 	/* a candidate farther from the cell than the second best so far is farther than it from

@@ -77,7 +77,20 @@ unsigned quant_near_find_from(const qnear_t *q, int r, int g, int b, int hint);
 /* The nearest entry (as quant_near_find: ties to the lowest index) and the squared distances
  * to it (*d1) and to the nearest of all the other entries (*d2; -1 when there is no other). */
 unsigned quant_near_find2(const qnear_t *q, int r, int g, int b, long *d1, long *d2);
-/* Exact nearest and second-nearest entries through the cells of a 16-level grid (k-means:
+/* The candidates of grid cells, cell after cell: entry indices and each one's squared distance
+ * to its cell (quant_map's nearest search and the k-means cells below). */
+typedef struct {
+	uint8_t *e;
+	int32_t *d;
+	size_t n, cap;
+} qpool_t;
+/* Append the entries e < n with dmin[e] <= bound, sorted by dmin (ties by index), at
+ * p->e + *start, p->d + *start. Returns how many, or -1 out of memory. */
+long quant_pool_add(qpool_t *p, const int32_t *dmin, unsigned n, int32_t bound, size_t *start);
+/* Free the pool's arrays. */
+void quant_pool_free(qpool_t *p);
+
+/* Exact nearest and second-nearest entries through the cells of a 4-level grid (k-means:
  * every pass asks thousands of colours, most in a few hundred cells): a cell's candidates
  * are the entries no farther from it than the second least farthest-corner distance of any
  * entry, sorted by their distance to the cell, built on first use. */

@@ -45,9 +45,7 @@ typedef struct {
 	int32_t cnear[3][16][QUANT_MAX];   /* per channel and grid level: each entry's squared ... */
 	int32_t cfar[3][16][QUANT_MAX];    /* ... distance to the nearest and farthest value of it */
 	uint16_t cellcount[4096];
-	uint8_t *pool;
-	int32_t *pooldist;          /* each candidate's squared distance to its cell */
-	size_t npool, cappool;
+	qpool_t pool;
 	int show[QUANT_MAX][3];     /* 8-bit colour each entry shows */
 } qmap_t;
 
@@ -123,36 +121,12 @@ static int cell_candidates(qmap_t *m, unsigned cell)
 		dmin[e] = n0[e] + n1[e] + n2[e];
 		least = b < least ? b : least;
 	}
-	if (m->npool + n > m->cappool) {
-		size_t c = m->cappool ? m->cappool * 2 : 65536;
-		while (c < m->npool + n)
-			c *= 2;
-		uint8_t *p = realloc(m->pool, c);
-		int32_t *d = realloc(m->pooldist, c * sizeof *d);
-		if (p)
-			m->pool = p;
-		if (d)
-			m->pooldist = d;
-		if (!p || !d)
-			return -1;
-		m->cappool = c;
-	}
-	size_t start = m->npool, k = start;
-	for (unsigned e = 0; e < n; e++) {
-		if (dmin[e] > least)
-			continue;
-		size_t j = k++;   /* insertion by distance, then index */
-		while (j > start && m->pooldist[j - 1] > dmin[e]) {
-			m->pool[j] = m->pool[j - 1];
-			m->pooldist[j] = m->pooldist[j - 1];
-			j--;
-		}
-		m->pool[j] = (uint8_t)e;
-		m->pooldist[j] = dmin[e];
-	}
-	m->npool = k;
+	size_t start;
+	long k = quant_pool_add(&m->pool, dmin, n, least, &start);
+	if (k < 0)
+		return -1;
 	m->cellstart[cell] = (uint32_t)start;
-	m->cellcount[cell] = (uint16_t)(k - start);
+	m->cellcount[cell] = (uint16_t)k;
 	return 0;
 }
 
@@ -162,8 +136,8 @@ static inline unsigned nearest_cached(qmap_t *m, const int *t)
 	unsigned cell = (unsigned)(t[0] >> 4) << 8 | (unsigned)(t[1] >> 4) << 4 | (unsigned)(t[2] >> 4);
 	if (m->cellcount[cell] == 0 && cell_candidates(m, cell) < 0)
 		return quant_near_find(&m->near, t[0] * 4, t[1] * 4, t[2] * 4);
-	const uint8_t *cand = m->pool + m->cellstart[cell];
-	const int32_t *cd = m->pooldist + m->cellstart[cell];
+	const uint8_t *cand = m->pool.e + m->cellstart[cell];
+	const int32_t *cd = m->pool.d + m->cellstart[cell];
 	unsigned n = m->cellcount[cell], bi = cand[0];
 	const int *s = m->show[bi];
 	int32_t dr = (s[0] - t[0]) * 4, dg = (s[1] - t[1]) * 4, db = (s[2] - t[2]) * 4;
@@ -484,8 +458,7 @@ static void qmap_free(qmap_t *m)
 		return;
 	if (m->own_bc)
 		free(m->bc);
-	free(m->pool);
-	free(m->pooldist);
+	quant_pool_free(&m->pool);
 	free(m);
 }
 
