@@ -31,41 +31,6 @@ static unsigned brute(const quant_palette_t *pal, const uint8_t *p)
 	return bi;
 }
 
-/* quant_near_find2: the nearest entry and the distances to it and to the runner-up. */
-static void test_find2(void)
-{
-	int col[QUANT_MAX][3];
-	unsigned n = 200;
-	for (unsigned k = 0; k < n; k++)
-		for (int c = 0; c < 3; c++)
-			col[k][c] = (int)(rnd() % 1021);
-	qnear_t *q = malloc(sizeof *q);
-	quant_near_init(q, (const int (*)[3])col, n);
-	int bad = 0;
-	for (int t = 0; t < 20000; t++) {
-		int x[3] = { (int)(rnd() % 1021), (int)(rnd() % 1021), (int)(rnd() % 1021) };
-		long d1 = -1, d2 = -1, b1 = -1, b2 = -1;
-		unsigned bi = 0;
-		for (unsigned k = 0; k < n; k++) {
-			long d = 0;
-			for (int c = 0; c < 3; c++)
-				d += (long)(col[k][c] - x[c]) * (col[k][c] - x[c]);
-			if (b1 < 0 || d < b1)
-				b2 = b1, b1 = d, bi = k;
-			else if (b2 < 0 || d < b2)
-				b2 = d;
-		}
-		unsigned got = quant_near_find2(q, x[0], x[1], x[2], &d1, &d2);
-		bad += got != bi || d1 != b1 || d2 != b2 || got != quant_near_find(q, x[0], x[1], x[2]);
-	}
-	CHECK(bad == 0, "quant_near_find2: nearest and runner-up as a brute-force search (%d of 20000 differ)", bad);
-	long d1, d2;
-	quant_near_init(q, (const int (*)[3])col, 1);
-	quant_near_find2(q, 0, 0, 0, &d1, &d2);
-	CHECK(d2 == -1 && d1 >= 0, "quant_near_find2: one entry has no runner-up");
-	free(q);
-}
-
 /* Brute force: nearest (ties to the lowest index), its squared distance and the runner-up's. */
 static unsigned brute2(const int (*col)[3], unsigned n, const int *x, long *d1, long *d2)
 {
@@ -82,6 +47,32 @@ static unsigned brute2(const int (*col)[3], unsigned n, const int *x, long *d1, 
 	}
 	*d1 = b1, *d2 = b2;
 	return bi;
+}
+
+/* quant_near_find2: the nearest entry and the distances to it and to the runner-up. */
+static void test_find2(void)
+{
+	int col[QUANT_MAX][3];
+	unsigned n = 200;
+	for (unsigned k = 0; k < n; k++)
+		for (int c = 0; c < 3; c++)
+			col[k][c] = (int)(rnd() % 1021);
+	qnear_t *q = malloc(sizeof *q);
+	quant_near_init(q, (const int (*)[3])col, n);
+	int bad = 0;
+	for (int t = 0; t < 20000; t++) {
+		int x[3] = { (int)(rnd() % 1021), (int)(rnd() % 1021), (int)(rnd() % 1021) };
+		long d1 = -1, d2 = -1, b1, b2;
+		unsigned bi = brute2((const int (*)[3])col, n, x, &b1, &b2);
+		unsigned got = quant_near_find2(q, x[0], x[1], x[2], &d1, &d2);
+		bad += got != bi || d1 != b1 || d2 != b2 || got != quant_near_find(q, x[0], x[1], x[2]);
+	}
+	CHECK(bad == 0, "quant_near_find2: nearest and runner-up as a brute-force search (%d of 20000 differ)", bad);
+	long d1, d2;
+	quant_near_init(q, (const int (*)[3])col, 1);
+	quant_near_find2(q, 0, 0, 0, &d1, &d2);
+	CHECK(d2 == -1 && d1 >= 0, "quant_near_find2: one entry has no runner-up");
+	free(q);
 }
 
 /* quant_cells_find2 (k-means' search through cells) gives exactly what a brute-force search
