@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "grow.h"
 #include "pdf_int.h"
 
 #define ROWS_MIN 256       /* points a lattice path needs to open a predicted stream */
@@ -172,14 +173,8 @@ void pdf_end_group(pdf_t *s)
 
 static int push(pdf_t *s, double x, double y, char op)
 {
-	if (s->npts == s->cappts) {
-		size_t n = s->cappts ? s->cappts * 2 : 256;
-		pdf_pt_t *q = realloc(s->pts, n * sizeof *q);
-		if (!q)
-			return dev_fail(s->p.dev, META_ENOMEM, "out of memory");
-		s->pts = q;
-		s->cappts = n;
-	}
+	if (dev_grow((void **)&s->pts, &s->cappts, s->npts + 1, sizeof *s->pts, 256))
+		return dev_fail(s->p.dev, META_ENOMEM, "out of memory");
 	/* as point() rounds */
 	s->pts[s->npts].x = op == 'h' ? 0 : llround(x * PSD_GRID / 1000) - s->org_x;
 	s->pts[s->npts].y = op == 'h' ? 0 : llround(y * PSD_GRID / 1000) - s->org_y;
@@ -218,13 +213,6 @@ static int collect(pdf_t *s, const dev_path_t *dp, int fill)
 	return rc ? rc : 1;
 }
 
-/* 1 when the points profit from predicted samples: every coordinate fits a sample's four
- * columns, at least half the points lie on the origin's 2-pixel lattice in x or y
- * (marching-squares contours, after origin() found their phase), and the bytes that differ from
- * the point before are fewer than half the path's text (contours: 1/4 to 2/5). A lattice
- * point's difference keeps little more than the digits that moved, where text repeats every
- * digit; random walks and polygons (a tenth of their points on a lattice, 2/5 to 1/2 of their
- * text left) are smaller as text: predicted, workload a would grow by 10%. *n: the points. */
 /* digits (and sign) of v */
 static size_t digits(long long v)
 {
@@ -260,6 +248,13 @@ static size_t moved(long long u, long long v)
 	return n;
 }
 
+/* 1 when the points profit from predicted samples: every coordinate fits a sample's four
+ * columns, at least half the points lie on the origin's 2-pixel lattice in x or y
+ * (marching-squares contours, after origin() found their phase), and the bytes that differ from
+ * the point before are fewer than half the path's text (contours: 1/4 to 2/5). A lattice
+ * point's difference keeps little more than the digits that moved, where text repeats every
+ * digit; random walks and polygons (a tenth of their points on a lattice, 2/5 to 1/2 of their
+ * text left) are smaller as text: predicted, workload a would grow by 10%. *n: the points. */
 static int rows_pay(const pdf_t *s, size_t *n)
 {
 	size_t on = 0, text = 0, up = 0;
