@@ -62,7 +62,10 @@ journal "drop after the last byte" "$META" "$T/job.hpgl" 7000
 
 # locus-ps runs its documents itself (one output for every page): a PostScript job dropped by the
 # printer is as temporary a failure as an HP-GL one (75, the same line), not an I/O error (74).
-"$EMU" --tcp --rate 8000 --pen-scale 20 --drop-after 3000 -- "$BIN/locus-ps" -f ps "$META" \
+# The emulator reads the PostScript as HP-GL, so its pen is fast here: an "lb" in the text is a
+# label to it, and at a real pen's pace the drop at 3000 bytes would come after the sender's
+# 30 s wait for room.
+"$EMU" --tcp --rate 8000 --pen-scale 1000 --drop-after 3000 -- "$BIN/locus-ps" -f ps "$META" \
 	-o "tcp:127.0.0.1:@PORT@" > "$T/ps" 2> "$T/ps.err"
 [ "$(word child "$T/ps")" = 75 ] && [ "$(wc -l < "$T/ps.err")" = 1 ] && grep -q "closed the connection having taken" "$T/ps.err" \
 	&& ok "locus-ps -f ps into a printer that drops the connection: exit 75, one line: $(cat "$T/ps.err")" \

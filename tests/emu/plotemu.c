@@ -228,7 +228,7 @@ static void consume(emu_t *e)
 	if (e->in_label) {
 		if (c == 3)
 			e->in_label = 0;
-		e->busy_until += 0.05;
+		e->busy_until += 0.05 / e->scale;   /* a character's strokes, at the pen's pace */
 		return;
 	}
 	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) {
