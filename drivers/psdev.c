@@ -584,6 +584,15 @@ long long psd_grid(int64_t t)
 	return t >= 0 ? (t + q / 2) / q : -((-t + q / 2) / q);
 }
 
+int psd_straight(long long ux, long long uy, long long vx, long long vy)
+{
+	const long long lim = 1LL << 30;
+	if (ux <= -lim || ux >= lim || uy <= -lim || uy >= lim || vx <= -lim || vx >= lim ||
+			vy <= -lim || vy >= lim)
+		return 0;
+	return ux * vy == uy * vx && ux * vx + uy * vy > 0;
+}
+
 void psd_date(long long epoch, int pdf, char *buf, size_t n)
 {
 	time_t t = (time_t)epoch;

@@ -155,6 +155,11 @@ unsigned psd_luma(meta_rgb_t rgb);
 void psd_unit(unsigned v, char *buf, size_t n);
 /* Round thousandths of a pixel to the grid (ties away from zero). */
 long long psd_grid(int64_t thousandths);
+/* 1 when a draw by (vx, vy) goes straight on from one by (ux, uy), both not zero, so that the
+ * point between them turns no corner and the two are one draw (PostScript and PDF paths drop
+ * such points, and points equal to the one before); 0 also when a delta is too large (2^30 grid
+ * units) to multiply exactly. */
+int psd_straight(long long ux, long long uy, long long vx, long long vy);
 /* "D:YYYYMMDDHHMMSSZ" (pdf = 1) or "YYYY-MM-DDTHH:MM:SSZ" for epoch seconds into buf. */
 void psd_date(long long epoch, int pdf, char *buf, size_t n);
 

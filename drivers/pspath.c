@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "grow.h"
 #include "ps_int.h"
 
 /* Colours as 8-bit values, exactly: RGB as a hex string <rrggbb> K, grey as an integer G. */
@@ -62,16 +63,24 @@ void psp_line(ps_t *s, const dev_state_t *st)
 
 /* ---- paths: absolute moves, relative integer draws in reversed chunks ---- */
 
+/* A draw into the pending run, less what draws nothing (as pdfpath.c's drop_idle): a draw of no
+ * length after another is dropped, and one that goes straight on from the draw before joins it
+ * (contour maps: a fifth of their draws). The run's first draw stays even at no length, so that a
+ * dot keeps its caps, until a draw with a length replaces it. */
 static int push_draw(ps_t *s, long long dx, long long dy)
 {
-	if (s->ndx + 2 > s->capdx) {
-		size_t n = s->capdx ? s->capdx * 2 : 256;
-		long long *q = realloc(s->dx, n * sizeof *q);
-		if (!q)
-			return dev_fail(s->p.dev, META_ENOMEM, "out of memory");
-		s->dx = q;
-		s->capdx = n;
+	if (s->ndx >= 2) {
+		long long *u = &s->dx[s->ndx - 2];
+		if (dx == 0 && dy == 0)
+			return 0;
+		if ((u[0] == 0 && u[1] == 0) || psd_straight(u[0], u[1], dx, dy)) {
+			u[0] += dx;
+			u[1] += dy;
+			return 0;
+		}
 	}
+	if (dev_grow((void **)&s->dx, &s->capdx, s->ndx + 2, sizeof *s->dx, 256))
+		return dev_fail(s->p.dev, META_ENOMEM, "out of memory");
 	s->dx[s->ndx++] = dx;
 	s->dx[s->ndx++] = dy;
 	return 0;

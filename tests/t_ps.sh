@@ -343,6 +343,82 @@ if command -v qpdf > /dev/null; then
 		ok "100 fills: 4 groups of q ... Q, 96 relative origins, the pixels of the PS, like locus-raster (PSNR $v)" ||
 		notok "origin chain: $q groups, $rel relative origins, $e pixels from the PS, PSNR $v (floor 24.5)"
 fi
+# ---- points that draw nothing --------------------------------------------------------------
+# A point equal to the one before it on the output grid, and a point on the straight way between
+# its neighbours, are dropped: idle.meta has both kinds (in a stroke, a dot of round caps, a fill
+# and a dashed line) and must give the very bytes of clean.meta, the same paths without them, in
+# every form and level. A draw that turns back is kept, and so is a dot's draw of no length.
+cat > "$T/idle.meta" << 'EOF'
+LOCUS-META 1
+page 96 64
+width 4
+stroke
+move 8 8
+draw 24 8
+draw 40 8
+draw 40.02 8
+draw 56 8
+draw 56 24
+end
+stroke
+move 8 32
+draw 40 32
+draw 24 32
+end
+cap round
+width 8
+stroke
+move 70 44
+draw 70 44
+draw 70.01 44
+end
+colour #c00000
+fill
+move 60 28
+draw 70 28
+draw 80 28
+draw 80 36
+draw 80 36
+draw 60 36
+end
+dash 4 4
+width 2
+colour #0000c0
+stroke
+move 8 52
+draw 20 52
+draw 32 52
+draw 44 52
+end
+end-page
+EOF
+sed -e '/^draw 24 8$/d' -e '/^draw 40 8$/d' -e '/^draw 40.02 8$/d' -e '/^draw 70.01 44$/d' \
+	-e '/^draw 70 28$/d' -e '/^draw 20 52$/d' -e '/^draw 32 52$/d' "$T/idle.meta" |
+	awk '!($0 == "draw 80 36" && seen++)' > "$T/clean.meta"
+differ=""
+for m in idle clean; do
+	for l in 1 2 3; do
+		"$P" --level $l "$T/$m.meta" -o "$T/$m.l$l.ps" && "$P" --level $l "$T/$m.meta" -o "$T/$m.l$l.eps" ||
+			differ="$differ $m-failed"
+	done
+	"$P" "$T/$m.meta" -o "$T/$m.pdf" || differ="$differ $m-failed"
+done
+for f in l1.ps l2.ps l3.ps l1.eps l2.eps l3.eps pdf; do cmp -s "$T/idle.$f" "$T/clean.$f" || differ="$differ $f"; done
+[ -z "$differ" ] && [ "$(grep -c '^draw' "$T/clean.meta")" = 9 ] &&
+	ok "points that draw nothing are dropped: idle.meta's PS, EPS and PDF are clean.meta's bytes" ||
+	notok "idle points: differs from the clean paths in$differ"
+grep -q '80 80 M 480 0 l 0 160 l S$' "$T/idle.l2.ps" && grep -q '80 320 M 320 0 l -160 0 l S$' "$T/idle.l2.ps" &&
+	grep -q '700 440 M 0 0 l S$' "$T/idle.l2.ps" && grep -q '80 520 M 360 0 l S$' "$T/idle.l2.ps" &&
+	ok "idle points: the straight run is one draw, the turn back and the dot's draw stay" ||
+	notok "idle points: level 2 paths $(grep ' M ' "$T/idle.l2.ps" | head -5 | tr '\n' '|')"
+"$BIN/locus-raster" "$T/idle.meta" -o "$T/idle.ref.png"
+"$P" --media "$T/idle.meta" -o "$T/idle.media.ps"
+for f in media.ps pdf; do
+	$GS -sDEVICE=png16m -r96 -sOutputFile="$T/idle.$f.png" $CENTRE "$T/idle.$f"
+	v=$(psnr "$T/idle.ref.png" "$T/idle.$f.png")
+	atleast "$v" 40 && ok "idle points $f: Ghostscript draws locus-raster's picture (PSNR $v)" ||
+		notok "idle points $f: PSNR $v (floor 40)"
+done
 # ---- PDF contour plates: points as predicted samples of the Flate filter --------------------
 # A contour plate's long lattice paths go into a content stream with /DecodeParms << /Predictor
 # 2 /Colors 12 /Columns 1024 >> (TIFF predictor, one point a 12-byte sample): Ghostscript and
