@@ -51,63 +51,6 @@ static const dev_ops_t collect_ops = {
 	.caps = DEV_CAP_RASTER, .begin_page = c_begin, .write_band = c_band, .end_page = c_end,
 };
 
-/* Estimated work of the input, or -1 when it does not read or has a page too big. */
-static double work(const uint8_t *data, size_t size)
-{
-	meta_reader_t *r = meta_reader_mem(data, size, "in");
-	meta_cmd_t c;
-	double w = 0, period = 0, len = 0, x = 0, y = 0;
-	int rc, stroke = 0;
-	if (!r)
-		return -1;
-	while ((rc = meta_read(r, &c)) > 0) {
-		switch (c.op) {
-		case META_PAGE:
-			if ((uint64_t)c.u[0] * c.u[1] > MAX_PIXELS)
-				w = -1e30;
-			period = 0;
-			break;
-		case META_DASH:
-			period = 0;
-			for (size_t i = 0; i < c.nlist; i++)
-				period += c.list[i] / 1000.0;
-			break;
-		case META_STROKE: stroke = 1, len = 0; break;
-		case META_FILL: stroke = 0, len = 0; break;
-		case META_MOVE: x = c.f[0] / 1000.0, y = c.f[1] / 1000.0; w += 1; break;
-		case META_DRAW:
-			len += hypot(c.f[0] / 1000.0 - x, c.f[1] / 1000.0 - y) + 1;
-			x = c.f[0] / 1000.0, y = c.f[1] / 1000.0;
-			w += 1;
-			break;
-		case META_ARC: case META_CIRCLE: {
-			double rr = c.f[2] / 1000.0;
-			w += 9 * sqrt(rr) + 8;
-			len += 2 * M_PI * rr;
-			break;
-		}
-		case META_TEXT:   /* glyphs are stroked with the dash in force: about 4 sizes of path each */
-			w += 20.0 * c.len;
-#if FUZZ_GUARDS
-			if (period > 0)
-				w += 4.0 * c.len * (c.f[2] / 1000.0) / period * 2;
-#endif
-			break;
-		case META_END:
-#if FUZZ_GUARDS
-			/* pending (w-fw): dash pieces are not yet bounded by the pixels a path touches */
-			if (stroke && period > 0)
-				w += len / period * 2;
-#endif
-			break;
-		default: break;
-		}
-	}
-	meta_reader_free(r);
-	(void)stroke, (void)period;   /* read only by the guards */
-	return w;
-}
-
 static int replay(const uint8_t *data, size_t size, unsigned band_rows, collect_t *c, char *err, size_t errlen,
 		unsigned *pages)
 {
@@ -133,7 +76,7 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 	char e1[600], e2[600];
 	unsigned p1, p2;
 	double w;
-	if (size > 65536 || (w = work(data, size)) < 0 || w > MAX_WORK)
+	if (size > 65536 || (w = fuzz_work(data, size, MAX_PIXELS, NULL)) < 0 || w > MAX_WORK)
 		return 0;
 	int r1 = replay(data, size, 0, &whole, e1, sizeof e1, &p1);
 	/* bands of 1 to 8 rows, chosen by the input so both small and odd heights are covered */

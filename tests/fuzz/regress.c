@@ -13,6 +13,7 @@ int fuzz_entry_image(const uint8_t *data, size_t size);
 int fuzz_entry_hpgl(const uint8_t *data, size_t size);
 int fuzz_entry_plotmeta(const uint8_t *data, size_t size);
 int fuzz_entry_imgread(const uint8_t *data, size_t size);
+int fuzz_entry_vector(const uint8_t *data, size_t size);
 
 static const struct {
 	const char *name;          /* harness name; regression files are named NAME-... */
@@ -27,6 +28,7 @@ static const struct {
 	{ "hpgl", fuzz_entry_hpgl, { "fixtures/fuzz/hpgl", "fixtures/hpgl", NULL } },
 	{ "plotmeta", fuzz_entry_plotmeta, { "fixtures/fuzz/plotmeta", "fixtures/import", NULL } },
 	{ "imgread", fuzz_entry_imgread, { "fixtures/fuzz/imgread", NULL } },
+	{ "vector", fuzz_entry_vector, { "fixtures/meta", "fixtures/fuzz/raster", NULL } },
 };
 #define NH (sizeof harness / sizeof harness[0])
 

@@ -16,6 +16,7 @@ seeds() {
 	hpgl) echo fixtures/fuzz/hpgl fixtures/hpgl ../shared/corpus/hpgl ;;
 	plotmeta) echo fixtures/fuzz/plotmeta fixtures/import ;;
 	imgread) echo fixtures/fuzz/imgread ;;
+	vector) echo fixtures/meta fixtures/fuzz/raster fixtures/raster/inputs ;;
 	esac
 }
 # libFuzzer reads every regular file of a corpus directory: give it only the inputs
@@ -37,7 +38,7 @@ corpus_of() {
 	echo "$d"
 }
 status=0
-for h in meta_text meta_binary raster scene image hpgl plotmeta imgread; do
+for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector; do
 	[ -z "$FUZZ_ONLY" ] || [ "$FUZZ_ONLY" = "$h" ] || continue
 	mkdir -p "$B/corpus/$h" "$B/crash"
 	s=$(corpus_of "$h")
