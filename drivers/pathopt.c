@@ -364,14 +364,6 @@ static double seg_dist(popt_pt_t p, popt_pt_t a, popt_pt_t b)
 	return sqrt(ex * ex + ey * ey);
 }
 
-/* b on the way from a on to c, in its direction: the line turns no corner there (plotter units:
- * the products stay below 2^63) */
-static int straight_on(popt_pt_t a, popt_pt_t b, popt_pt_t c)
-{
-	int64_t ux = (int64_t)b.x - a.x, uy = (int64_t)b.y - a.y, vx = (int64_t)c.x - b.x, vy = (int64_t)c.y - b.y;
-	return ux * vy == uy * vx && ux * vx + uy * vy > 0;
-}
-
 static int simplify_paths(popt_set_t *s, double tol)
 {
 	unsigned char *keep = NULL;
@@ -380,13 +372,9 @@ static int simplify_paths(popt_set_t *s, double tol)
 		popt_path_t *p = &s->paths[k];
 		popt_pt_t *q = s->pts + p->start;
 		size_t n = 0;
-		for (size_t i = 0; i < p->n; i++) {  /* drop repeated points, and points a line goes straight through */
-			if (n && !memcmp(&q[n - 1], &q[i], sizeof *q))
-				continue;
-			if (n >= 2 && straight_on(q[n - 2], q[n - 1], q[i]))
-				n--;
-			q[n++] = q[i];
-		}
+		for (size_t i = 0; i < p->n; i++)    /* drop repeated points */
+			if (n == 0 || memcmp(&q[n - 1], &q[i], sizeof *q))
+				q[n++] = q[i];
 		if (tol > 0 && n > 2) {
 			if (grow((void **)&keep, &capk, n, 1) || grow((void **)&stack, &caps, 2 * n, sizeof *stack)) {
 				free(keep);

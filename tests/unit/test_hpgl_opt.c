@@ -1,7 +1,6 @@
 /* test_hpgl_opt.c: path optimisation (merge, simplify, nearest-end order, 2-opt), hatching, the
  * drag-knife path, profiles, pens and the plot-time model. */
 #include <math.h>
-#include <string.h>
 #include <stdlib.h>
 #include <time.h>
 #include "hpgl_hatch.h"
@@ -94,16 +93,6 @@ static void optimiser(void)
 	popt_opts_t o2 = { 0, 0, 2, 0, 0, 0 };
 	popt_optimise(&s, (popt_pt_t){ 0, 0 }, &o2, &st);
 	CHECK(s.paths[0].n == 3, "simplify: a point 1 unit off the line and a repeat dropped (%zu points)", s.paths[0].n);
-	popt_free(&s);
-
-	/* tolerance 0: points the line goes straight through are dropped, a turn back is not */
-	popt_pt_t w[] = { { 0, 0 }, { 10, 5 }, { 20, 10 }, { 20, 10 }, { 40, 20 }, { 40, 40 }, { 40, 30 }, { 40, 35 } };
-	popt_add(&s, w, 8, 0);
-	popt_opts_t o3 = { 0, 0, 0, 0, 0, 0 };
-	popt_optimise(&s, (popt_pt_t){ 0, 0 }, &o3, &st);
-	const popt_pt_t *r = s.pts + s.paths[0].start, want[] = { { 0, 0 }, { 40, 20 }, { 40, 40 }, { 40, 30 }, { 40, 35 } };
-	CHECK(s.paths[0].n == 5 && !memcmp(r, want, sizeof want),
-		"tolerance 0: a straight run is one segment, the turns back stay (%zu points)", s.paths[0].n);
 	popt_free(&s);
 }
 
