@@ -8,6 +8,14 @@ PY=python3
 
 # admesh_field FILE LABEL: the number after "LABEL :" in admesh's report
 admesh_field() { sed -n "s/^$2 *: *\([-0-9.]*\).*/\1/p" "$1" | head -1; }
+# admesh_defects FILE: " NAME=N" for each defect count of admesh's report that is not 0
+admesh_defects() {
+	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
+		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
+		v=$(admesh_field "$1" "$f")
+		[ "$v" = 0 ] || printf ' %s=%s' "$f" "$v"
+	done
+}
 # within A B PCT: |A - B| <= PCT% of B
 within() { awk -v a="$1" -v b="$2" -v p="$3" 'BEGIN {d = a - b; if (d < 0) d = -d; exit !(a != "" && d <= p / 100 * b)}'; }
 stat() { grep -o -E "(^| )$1=[^ ]+" "$2" | head -1 | sed 's/.*=//'; }
@@ -26,12 +34,7 @@ for c in "sphere 4.18879020 12.5663706" "ellipsoid 4.02123859 12.4082835" "capsu
 	facets=$(sed -n 's/^Number of facets *: *\([0-9]*\).*/\1/p' "$T/$n.admesh")
 	grep -q "Binary STL" "$T/$n.admesh" && [ "$facets" = "$tri" ] && ok "$n: admesh reads $tri facets of binary STL" \
 		|| notok "$n: admesh facets '$facets', locus-render says $tri"
-	bad=""
-	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
-		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
-		v=$(admesh_field "$T/$n.admesh" "$f")
-		[ "$v" = 0 ] || bad="$bad $f=$v"
-	done
+	bad=$(admesh_defects "$T/$n.admesh")
 	grep -q "No holes need to be filled" "$T/$n.admesh" || bad="$bad holes"
 	[ -z "$bad" ] && [ "$(admesh_field "$T/$n.admesh" "Number of parts")" = 1 ] \
 		&& ok "$n: admesh: one part, no open edge, no wrongly oriented facet, no degenerate facet" \
@@ -185,12 +188,7 @@ end"
 # mesh closed, consistently oriented, one part; coarsening it is refused at the tolerance line
 if "$R" fixtures/mesh/mandelbrot.scene -o "$T/mandel.stl" --stats 2> "$T/mandel.stats" && command -v admesh > /dev/null; then
 	admesh "$T/mandel.stl" > "$T/mandel.admesh" 2>&1
-	bad=""
-	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
-		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
-		v=$(admesh_field "$T/mandel.admesh" "$f")
-		[ "$v" = 0 ] || bad="$bad $f=$v"
-	done
+	bad=$(admesh_defects "$T/mandel.admesh")
 	[ -z "$bad" ] && [ "$(admesh_field "$T/mandel.admesh" "Number of parts")" = 1 ] \
 		&& ok "mandelbrot (distance estimate): admesh: $(stat triangles "$T/mandel.stats") triangles, one part, closed, consistently oriented" \
 		|| notok "mandelbrot: admesh:$bad"
@@ -266,12 +264,7 @@ S=fixtures/mesh/rbox-adaptive.scene
 if "$R" "$S" -o "$T/rbox.stl" --stats 2> "$T/rbox.stats" && sed '/adaptive/d' "$S" > "$T/rbox-u.scene" &&
 	"$R" "$T/rbox-u.scene" -o "$T/rbox-u.stl" --stats 2> "$T/rbox-u.stats" && command -v admesh > /dev/null; then
 	admesh "$T/rbox.stl" > "$T/rbox.admesh" 2>&1
-	bad=""
-	for f in "Facets with 1 disconnected edge" "Facets with 2 disconnected edges" "Facets with 3 disconnected edges" \
-		"Degenerate facets" "Edges fixed" "Facets reversed" "Backwards edges" "Normals fixed"; do
-		v=$(admesh_field "$T/rbox.admesh" "$f")
-		[ "$v" = 0 ] || bad="$bad $f=$v"
-	done
+	bad=$(admesh_defects "$T/rbox.admesh")
 	[ -z "$bad" ] && [ "$(admesh_field "$T/rbox.admesh" "Number of parts")" = 1 ] \
 		&& ok "adaptive rounded box: admesh: one part, closed, consistently oriented" || notok "adaptive rounded box: admesh:$bad"
 	v=$(sed -n 's/.*Volume *: *\([0-9.]*\).*/\1/p' "$T/rbox.admesh")
