@@ -182,8 +182,10 @@ static int push(pdf_t *s, double x, double y, char op)
 	return 0;
 }
 
-/* collect() before drop_idle() */
-static int collect_all(pdf_t *s, const dev_path_t *dp, int fill)
+/* The path's points relative to its origin into s->pts, with the closepaths that the paint
+ * needs (f closes every subpath itself: h only where a draw goes on from it). 1, or 0 when the
+ * path has arcs (it is then written from its elements), or <0. */
+static int collect(pdf_t *s, const dev_path_t *dp, int fill)
 {
 	int rc = 0;
 	s->npts = 0;
@@ -250,18 +252,6 @@ static void drop_idle(pdf_t *s)
 		s->pts[w++] = *q;
 	}
 	s->npts = w;
-}
-
-/* The path's points relative to its origin into s->pts, with the closepaths that the paint
- * needs (f closes every subpath itself: h only where a draw goes on from it), less the points
- * that draw nothing (drop_idle). 1, or 0 when the path has arcs (it is then written from its
- * elements), or <0. */
-static int collect(pdf_t *s, const dev_path_t *dp, int fill)
-{
-	int rc = collect_all(s, dp, fill);
-	if (rc == 1)
-		drop_idle(s);
-	return rc;
 }
 
 /* digits (and sign) of v */
@@ -464,6 +454,8 @@ int pdf_paint(pdf_t *s, const dev_path_t *dp, const dev_state_t *st, int fill)
 	int pts = collect(s, dp, fill), rc = 0;
 	if (pts < 0)
 		return pts;
+	if (pts)
+		drop_idle(s);
 	if (pts && fill && corner)
 		lowest_first(s);
 	int rec = pts && rows_pay(s, &n);
