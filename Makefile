@@ -44,7 +44,9 @@ LIBS :=
 .PHONY: all demo check bench install deps-ok clean programs
 # keep intermediate objects: rebuilds stay incremental
 .SECONDARY:
-all: deps-ok programs
+all:
+	@$(if $(DEPS_DONE),:,scripts/deps.sh build)
+	@$(MAKE) --no-print-directory DEPS_DONE=1 programs
 
 include meta/module.mk
 include drivers/module.mk
@@ -53,10 +55,16 @@ include tests/module.mk
 
 programs: $(PROGRAMS)
 
-# Dependencies: the script installs missing Debian packages when run as root,
-# otherwise prints the exact apt-get line and fails.
+# Dependencies: scripts/deps.sh installs the missing Debian packages of its purposes when run as
+# root, otherwise prints the exact apt-get line and fails (69). Every user target runs it for its
+# purposes first and then builds what it needs in a second make, so that nothing that needs a
+# package (cairo's svg_render, the umockdev harnesses, pkg-config's answers) is built or even
+# asked about before it is installed, with -j as without. DEPS_DONE=1 tells the second make the
+# build packages are there.
+DEPS_SAN := $(if $(filter 1,$(SANITIZE)),asan)
+SUBFLAGS := --no-print-directory DEPS_DONE=1
 deps-ok:
-	@scripts/deps.sh build
+	@$(if $(DEPS_DONE),:,scripts/deps.sh build)
 
 $(B)/%.o: %.c | deps-ok
 	@mkdir -p $(dir $@)
@@ -66,20 +74,36 @@ $(B)/lib%.a:
 	@mkdir -p $(dir $@)
 	rm -f $@ && ar rcs $@ $^
 
-demo: all
-	@scripts/demo.sh
+.PHONY: testprogs
+testprogs: $(TESTPROGS)
 
-check: all $(TESTPROGS)
-	@scripts/deps.sh check
+# (the second make runs the target's *-run part: a recipe is expanded whole before its first line
+# runs, so pkg-config's answers in LDLIBS_ALL must not be asked for before deps.sh installs it)
+.PHONY: demo-run check-run fixtures-run bench-run
+demo:
+	@scripts/deps.sh build demo
+	@$(MAKE) $(SUBFLAGS) demo-run
+demo-run: programs
+	@BIN=$(BINDIR) scripts/demo.sh
+
+check:
+	@scripts/deps.sh build check $(DEPS_SAN)
+	@$(MAKE) $(SUBFLAGS) check-run
+check-run: programs testprogs
 	@BIN=$(BINDIR) TESTBIN=$(B)/tests SANITIZE=$(SANITIZE) LOCUS_LDLIBS="$(LDLIBS_ALL)" tests/run.sh
 
 # Re-record the expected outputs on purpose and print what changed through locus-diff.
 .PHONY: fixtures
-fixtures: all $(TESTPROGS)
+fixtures:
+	@scripts/deps.sh build check
+	@$(MAKE) $(SUBFLAGS) fixtures-run
+fixtures-run: programs testprogs
 	@BIN=$(BINDIR) TESTBIN=$(B)/tests scripts/fixtures.sh
 
-bench: all
-	@scripts/deps.sh bench
+bench:
+	@scripts/deps.sh build bench
+	@$(MAKE) $(SUBFLAGS) bench-run
+bench-run: programs
 	@BIN=$(BINDIR) scripts/bench.sh
 
 install: all
@@ -93,10 +117,10 @@ install: all
 # The harnesses and their rules are in tests/mk/fuzz.mk, the runner in tests/fuzz/run.sh.
 FUZZ_SECONDS ?= 60
 .PHONY: fuzz
-fuzz: deps-ok
-	@scripts/deps.sh fuzz
+fuzz:
+	@scripts/deps.sh build fuzz
 	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "make fuzz: $(FUZZ_CC) not found (Debian: apt-get install clang libclang-rt-14-dev)" >&2; exit 69; }
-	@$(MAKE) --no-print-directory fuzz-programs
+	@$(MAKE) $(SUBFLAGS) fuzz-programs
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) tests/fuzz/run.sh
 
 clean:
