@@ -51,7 +51,7 @@ for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list /etc/apt/sources.l
 	grep -q '^[[:space:]]*[^#[:space:]]' "$f" || continue
 	set -- "$@" "$f"
 done
-echo "fresh-check: apt sources: ${*:-mmdebstrap's default mirror}"
+echo "fresh-check: apt sources: ${*:-the default mirror of mmdebstrap}"
 
 t0=$(now)
 echo "fresh-check: mmdebstrap bookworm into $root"
@@ -125,7 +125,10 @@ if [ -d "$root/build/shared" ]; then
 	chmod -R u+w "$root/build/shared" && rm -rf "$root/build/shared"
 fi
 run "make check without ../shared" make check
-echo "fresh-check: summary (Debian $(cat "$root/etc/debian_version"), $(nproc) cores, total $(elapsed "$t0"))"
+deb=$(cat "$root/etc/debian_version")
+cores=$(nproc)
+total=$(elapsed "$t0")
+echo "fresh-check: summary: Debian $deb, $cores cores, $total in all"
 printf '%s' "$report" | sed 's/^/fresh-check:   /'
 [ "$fails" = 0 ] || { echo "fresh-check: $fails of the commands failed"; exit 1; }
 echo "fresh-check: all passed"
