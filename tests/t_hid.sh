@@ -38,7 +38,10 @@ need_umockdev "CP2110 bridge"
 rm -f "$T/ji"
 cat > "$T/int.sh" <<EOF
 env --default-signal=INT "\$@" 2> "$T/int.all" & pid=\$!
-sleep 1.5; kill -INT \$pid; wait \$pid; echo \$? > "$T/int.rc"
+sleep 1.5; kill -INT \$pid
+# bounded: a job that ignores SIGINT is killed after 30 s (exit 137 fails the check, not the suite)
+(sleep 30; kill -KILL \$pid) > /dev/null 2>&1 & dog=\$!
+wait \$pid; echo \$? > "$T/int.rc"; kill \$dog 2> /dev/null
 EOF
 "$EMU" --cp2110 --pen-rate 1500 --record "$T/i1" -- sh "$T/int.sh" "$H" "$META" -o "hid:10c4:ea80?flow=escb" --journal "$T/ji" > "$T/i1.r" 2>&1
 nowarn "$T/int.all" "$T/int.err"

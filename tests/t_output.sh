@@ -220,14 +220,16 @@ killed() {
 	fresh sig
 	mkfifo "$D/in"
 	exec 3<> "$D/in"   # read-write: nobody blocks opening it
-	$(cmd_of $p "$D/out.x" "$D/in") 2> "$T/err" &
+	# at the default disposition whatever this shell inherited (nohup, a background job)
+	$DEFAULT_SIGNALS $(cmd_of $p "$D/out.x" "$D/in") 2> "$T/err" &
 	pid=$!
 	# a first page whole, then the start of a second: two outputs by then for the raster drivers
 	printf 'LOCUS-META 1\npage 64 48\nclear #ff0000\nend-page\npage 64 48\nclear #00ff00\n' >&3
 	wait_tmp "$D" "$n"; seen=$?
 	kill -$sig $pid
-	{ wait $pid; } 2>/dev/null; rc=$?
+	{ wait_bounded 20 "$p: SIG$sig mid-job" $pid; } 2>/dev/null; rc=$?
 	exec 3>&-
+	[ $rc = 124 ] && return
 	[ $seen = 0 ] && [ $rc = "$want" ] && only "$D" in \
 		&& ok "$p: SIG$sig mid-job ($n temporaries): exit $want, nothing left" \
 		|| notok "$p: SIG$sig: saw temporaries $seen, exit $rc, left $(ls -A "$D")"
@@ -241,11 +243,11 @@ killed HUP 129 raster 2
 # locus-render reads its scene whole first: a big render instead (killed as soon as it writes)
 fresh sig
 sed 's/size 96 72/size 6400 4800/' fixtures/render/trifocal-raytrace.scene > "$T/big.scene"
-"$BIN/locus-render" "$T/big.scene" -o "$D/out.meta" --quiet --threads 1 2> "$T/err" &
+$DEFAULT_SIGNALS "$BIN/locus-render" "$T/big.scene" -o "$D/out.meta" --quiet --threads 1 2> "$T/err" &
 pid=$!
 wait_tmp "$D" 1; seen=$?
 kill -TERM $pid
-{ wait $pid; } 2>/dev/null; rc=$?
-[ $seen = 0 ] && [ $rc = 143 ] && only "$D" && ok "render: SIGTERM mid-render: exit 143, nothing left" \
+{ wait_bounded 30 "render: SIGTERM mid-render" $pid; } 2>/dev/null; rc=$?
+[ $rc = 124 ] || [ $seen = 0 ] && [ $rc = 143 ] && only "$D" && ok "render: SIGTERM mid-render: exit 143, nothing left" \
 	|| notok "render: SIGTERM: saw temporary $seen, exit $rc, left $(ls -A "$D")"
 done_tests

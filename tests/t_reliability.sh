@@ -269,7 +269,7 @@ for k in $KEYS; do
 	cpid=$!
 	$(feed "$k" "$g" "$o/fifo") > /dev/null 2> "$o.err"
 	rc=$?
-	if [ -p "$o/fifo" ]; then wait "$cpid"; else kill "$cpid" 2>/dev/null; wait "$cpid" 2>/dev/null; fi
+	if [ -p "$o/fifo" ]; then wait_bounded 20 "$k:devnode-fifo (its reader)" "$cpid"; else kill "$cpid" 2>/dev/null; wait "$cpid" 2>/dev/null; fi
 	[ "$rc" = 0 ] && [ -p "$o/fifo" ] && [ -s "$o.fifo-data" ]
 	res "$k:devnode-fifo" $((1 - $?)) "-o a FIFO: exit $rc, still a FIFO: $([ -p "$o/fifo" ] && echo yes || echo no), $(cat "$o.fifo-data" 2>/dev/null | wc -c) bytes through it"
 	rm -f "$o/fifo"
@@ -325,7 +325,7 @@ for k in $KEYS; do
 	sleep 1
 	during=$(ls -A "$o" | tr '\n' ' ')
 	kill -TERM "$pid" 2>/dev/null
-	wait "$pid"
+	wait_bounded 30 "$k:sigterm-clean" "$pid"
 	rc=$?
 	[ -z "$wpid" ] || { kill "$wpid" 2>/dev/null; wait "$wpid" 2>/dev/null; rm -f "$o.pipe"; wpid=; }
 	left=$(ls -A "$o" | tr '\n' ' ')

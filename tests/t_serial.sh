@@ -90,7 +90,10 @@ dup=$("$SEG" "$T/p1" "$T/p2" 2>/dev/null | sort | uniq -d | wc -l)
 rm -f "$T/ji"
 cat > "$T/int.sh" <<EOF
 env --default-signal=INT "$H" "$META" -o "serial:\$1?baud=9600&flow=escb" --journal "$T/ji" 2> "$T/int.all" & pid=\$!
-sleep 1.2; kill -INT \$pid; wait \$pid; echo \$? > "$T/int.rc"
+sleep 1.2; kill -INT \$pid
+# bounded: a job that ignores SIGINT is killed after 30 s (exit 137 fails the check, not the suite)
+(sleep 30; kill -KILL \$pid) > /dev/null 2>&1 & dog=\$!
+wait \$pid; echo \$? > "$T/int.rc"; kill \$dog 2> /dev/null
 EOF
 "$EMU" --handshake n --pen-scale 4 --record "$T/i1" -- sh "$T/int.sh" @TTY@ > "$T/i1.r" 2>&1
 nowarn "$T/int.all" "$T/int.err"

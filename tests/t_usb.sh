@@ -88,7 +88,10 @@ grep -Eq "the job differs from the journaled one|the job ended before the point 
 rm -f "$T/ji"
 cat > "$T/int.sh" <<EOF
 env --default-signal=INT "\$@" 2> "$T/int.all" & pid=\$!
-sleep 1.5; kill -INT \$pid; wait \$pid; echo \$? > "$T/int.rc"
+sleep 1.5; kill -INT \$pid
+# bounded: a job that ignores SIGINT is killed after 30 s (exit 137 fails the check, not the suite)
+(sleep 30; kill -KILL \$pid) > /dev/null 2>&1 & dog=\$!
+wait \$pid; echo \$? > "$T/int.rc"; kill \$dog 2> /dev/null
 EOF
 "$EMU" --hold-at 4000 9000 --record "$T/i1" -- sh "$T/int.sh" "$H" "$META" -o usb:03f0:0107 --journal "$T/ji" > "$T/i1.r" 2>&1
 nowarn "$T/int.all" "$T/int.err"
