@@ -39,7 +39,8 @@ fb "8-bit, --hold: restored" 8 320 200 200 150 352 - 13h -- --hold 0.02 $F -o fb
 sig() {   # sig DESC SIGNAL STATUS BPP LINE_LENGTH
 	d=$1 s=$2 want=$3 bpp=$4 ll=$5
 	t0=$(date +%s)
-	FBH_SIGNAL=$s "$H" "$bpp" 320 200 200 150 "$ll" "$T/o" -- "$BIN/locus-vga" --hold 30 $F -o fb:/dev/fb0 > "$T/err" 2>&1
+	# at the default dispositions: a background job of a non-interactive shell starts with INT ignored
+	FBH_SIGNAL=$s $DEFAULT_SIGNALS "$H" "$bpp" 320 200 200 150 "$ll" "$T/o" -- "$BIN/locus-vga" --hold 30 $F -o fb:/dev/fb0 > "$T/err" 2>&1
 	r=$? t=$(( $(date +%s) - t0 ))
 	if [ "$r" = "$want" ] && [ "$t" -lt 20 ] && grep -q "signal $s" "$T/o.log"; then
 		ok "$d: exit $r after ${t} s"
