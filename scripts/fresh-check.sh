@@ -107,10 +107,12 @@ run() {
 	log=$W/$(echo "$name" | tr ' /' '__').log
 	echo "fresh-check: == $name"
 	t=$(now)
-	chroot "$root" /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-		HOME=/root LANG=C.UTF-8 TERM=dumb sh -c "cd /build/locus && $*" < /dev/null > "$log" 2>&1
-	rc=$?
-	cat "$log"
+	{
+		chroot "$root" /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+			HOME=/root LANG=C.UTF-8 TERM=dumb sh -c "cd /build/locus && $*" < /dev/null 2>&1
+		echo $? > "$log.rc"
+	} | tee "$log"
+	rc=$(cat "$log.rc")
 	sum=$(grep -E '^[0-9]+ passed, [0-9]+ failed, [0-9]+ skipped$' "$log" | tail -n 1)
 	grep '^SKIP ' "$log" | sed "s/^/fresh-check: $name: /"
 	line="$name: exit $rc, $(elapsed "$t")${sum:+, $sum}"
