@@ -59,7 +59,7 @@ if ! mmdebstrap --quiet --variant=apt --include=git,ca-certificates,make,gcc boo
 	echo "fresh-check: mmdebstrap failed"
 	exit 1
 fi
-echo "fresh-check: root made in $(elapsed "$t0")"
+echo "fresh-check: root made in $(elapsed "$t0"): $(installed)"
 
 # The stand-in convert: reads a PNG only, as the base image's stand-in does when ImageMagick is
 # absent (with ImageMagick installed it hands every call to it, as the base image's does).
@@ -99,6 +99,11 @@ for m in proc sys dev dev/pts; do
 	mounted="$m $mounted"
 done
 
+# installed: the root's Debian packages, and their installed size in MB
+installed() {
+	dpkg-query --admindir="$root/var/lib/dpkg" -W -f '${db:Status-Abbrev} ${Installed-Size}\n' 2>/dev/null |
+		awk '$1 == "ii" { n++; kb += $2 } END { printf "%d packages, %d MB", n, kb / 1024 }'
+}
 # run NAME COMMAND: one command in the root as root, in the clone, with no standard input
 fails=0
 report=""
@@ -115,7 +120,7 @@ run() {
 	rc=$(cat "$log.rc")
 	sum=$(grep -E '^[0-9]+ passed, [0-9]+ failed, [0-9]+ skipped$' "$log" | tail -n 1)
 	grep '^SKIP ' "$log" | sed "s/^/fresh-check: $name: /"
-	line="$name: exit $rc, $(elapsed "$t")${sum:+, $sum}"
+	line="$name: exit $rc, $(elapsed "$t")${sum:+, $sum}; root now $(installed)"
 	echo "fresh-check: $line"
 	report="$report$line
 "
