@@ -10,6 +10,7 @@
 # Prints each command's exit status, its time and the test summary line; exits 1 if any failed,
 # 69 if its own needs (mmdebstrap: scripts/deps.sh fresh) are missing. Everything happens in a
 # mktemp directory (FRESH_KEEP=1 keeps it); mounts are undone on every exit path.
+{ # the whole script is read before it runs: editing the file meanwhile cannot change this run
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 repo=$(git -C "$here" rev-parse --show-toplevel) || exit 70
@@ -139,3 +140,5 @@ echo "fresh-check: summary: Debian $deb, $cores cores, $total in all"
 printf '%s' "$report" | sed 's/^/fresh-check:   /'
 [ "$fails" = 0 ] || { echo "fresh-check: $fails of the commands failed"; exit 1; }
 echo "fresh-check: all passed"
+exit 0
+}
