@@ -44,6 +44,12 @@ trap 'exit 129' HUP
 now() { date +%s; }
 elapsed() { s=$(( $(now) - $1 )); printf '%dm%02ds' $((s / 60)) $((s % 60)); }
 
+# installed: the root's Debian packages, and their installed size in MB
+installed() {
+	dpkg-query --admindir="$root/var/lib/dpkg" -W -f '${db:Status-Abbrev} ${Installed-Size}\n' 2>/dev/null |
+		awk '$1 == "ii" { n++; kb += $2 } END { printf "%d packages, %d MB", n, kb / 1024 }'
+}
+
 # The host's apt sources, as mmdebstrap arguments (it writes them into the root): the one-line
 # sources.list, *.list files and deb822 *.sources files that apt itself would read.
 set --
@@ -100,11 +106,6 @@ for m in proc sys dev dev/pts; do
 	mounted="$m $mounted"
 done
 
-# installed: the root's Debian packages, and their installed size in MB
-installed() {
-	dpkg-query --admindir="$root/var/lib/dpkg" -W -f '${db:Status-Abbrev} ${Installed-Size}\n' 2>/dev/null |
-		awk '$1 == "ii" { n++; kb += $2 } END { printf "%d packages, %d MB", n, kb / 1024 }'
-}
 # run NAME COMMAND: one command in the root as root, in the clone, with no standard input
 fails=0
 report=""
