@@ -16,7 +16,7 @@ for mark, name in (('/* dev-mine.c:', 'mine'), ('/* dev-svg.c:', 'svg')):
 PY
 cat > "$T/main.c" <<'C'
 #include <stdio.h>
-#include "device.h"
+#include "device/device.h"
 extern const dev_ops_t dev_docsvg_ops;
 int main(int argc, char **argv)
 {

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include "devaa.h"
+#include "render/aa.h"
 #include "unit.h"
 
 #define W 37

@@ -1,7 +1,7 @@
 /* test_font.c: the stroke font (spec §5.5): glyph table, advances, replacement, transform. */
 #include <math.h>
 #include <stdlib.h>
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 /* The glyph table as markdown rows, as docs/stroke-font.md lists it. */

@@ -3,7 +3,7 @@
  * draws, arcs, circles and closes (close after close included), and its chord counts are §5.4's. */
 #include <stdlib.h>
 #include "meta_int.h"
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 static unsigned seed = 12345;
