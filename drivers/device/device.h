@@ -33,6 +33,7 @@
 #include "locus_meta.h"
 #include "geom/scan.h"
 #include "io/transport.h"
+#include "render/band.h"
 
 /* Capability flags. */
 #define DEV_CAP_RASTER  0x01   /* framework renders; device gets finished bands */
@@ -98,15 +99,7 @@ typedef struct {
 	size_t len;
 } dev_text_t;
 
-/* Finished rows for a raster device: rows [y0, y0 + nrows) counted from the TOP of the page
- * (y0 = 0 is the top row), 3 bytes per pixel R, G, B, row k at pix + k * stride. */
-typedef struct {
-	const uint8_t *pix;
-	size_t stride;
-	unsigned width;
-	unsigned y0, nrows;
-	unsigned page_height;
-} dev_band_t;
+/* Finished rows for a raster device (dev_band_t): render/band.h. */
 
 typedef struct dev dev_device_t;
 
@@ -242,7 +235,7 @@ const char *dev_error(const dev_device_t *d);
  * "byte 1042: ..."). */
 int dev_play(meta_reader_t *r, dev_device_t *d);
 
-/* Device options (devopt.c). The value of key in d->options copied into buf (NULL when the
+/* Device options (options.c). The value of key in d->options copied into buf (NULL when the
  * key is absent or the value does not fit). */
 const char *dev_option(const dev_device_t *d, const char *key, char *buf, size_t n);
 /* 0 when every key in d->options is in d->ops->option_list, else DEV_EUSAGE with a one-line
@@ -250,7 +243,7 @@ const char *dev_option(const dev_device_t *d, const char *key, char *buf, size_t
 int dev_check_options(dev_device_t *d);
 #define DEV_EUSAGE (-21)
 
-/* Formatted output for text-format drivers (devout.c): printf through d->out (io_write); 0, or
+/* Formatted output for text-format drivers (textout.c): printf through d->out (io_write); 0, or
  * <0 with a message naming the output (META_EIO) or the device. */
 int dev_printf(dev_device_t *d, const char *fmt, ...)
 #ifdef __GNUC__

@@ -1,8 +1,8 @@
-/* devaa.h: anti-aliased raster output by k x k supersampling (framework internals). */
+/* aa.h: anti-aliased raster output by k x k supersampling (framework internals). */
 #ifndef LOCUS_DEVAA_H
 #define LOCUS_DEVAA_H
 
-#include "device/device.h"
+#include "render/band.h"
 
 typedef struct devaa devaa_t;
 /* Where finished output bands go (the device's write_band, through the framework). */

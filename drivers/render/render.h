@@ -2,7 +2,9 @@
 #ifndef LOCUS_RENDER_H
 #define LOCUS_RENDER_H
 
-#include "device/device.h"
+#include "locus_meta.h"
+#include "geom/scan.h"
+#include "render/band.h"
 
 typedef struct dev_render dev_render_t;
 
