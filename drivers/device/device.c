@@ -7,7 +7,6 @@
 #include "render/aa.h"
 #include "device/fit.h"
 #include "device/vecsupply.h"
-#include "geom/scan_int.h"
 #include "render/render.h"
 
 #define DEFAULT_BUDGET ((size_t)64 << 20)

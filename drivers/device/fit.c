@@ -1,9 +1,8 @@
-/* devres.c: a model page mapped onto a device raster: fit rules, paths, spans, resampled images. */
+/* fit.c: a model page mapped onto a device raster: fit rules, paths, spans, resampled images. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include "device/fit.h"
-#include "geom/scan_int.h"
 
 /* ---- the mapping ---- */
 

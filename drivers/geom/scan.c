@@ -607,12 +607,6 @@ int scan_fill(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, int rul
 	return sweep(c, b, n, rule, rgb);
 }
 
-int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
-		meta_rgb_t rgb)
-{
-	return scan_fill_piece(c, b, pts, m, rule, rgb, 0);
-}
-
 int scan_fill_piece(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t m, int rule,
 		meta_rgb_t rgb, int convex)
 {

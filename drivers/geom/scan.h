@@ -9,6 +9,7 @@
 #ifndef LOCUS_SCAN_H
 #define LOCUS_SCAN_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include "locus_meta.h"
@@ -62,9 +63,6 @@ void scan_ctx_free(scan_ctx_t *c);
  * rgb into the band, by rule (META_RULE_EVEN_ODD or META_RULE_NON_ZERO), exactly per §5.1.
  * Returns 0, or META_ENOMEM. */
 int scan_fill(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, int rule, meta_rgb_t rgb);
-/* Fill one contour of n points (convenience for pieces). */
-int scan_fill_poly(scan_ctx_t *c, const scan_band_t *b, const scan_pt_t *pts, size_t n, int rule,
-		meta_rgb_t rgb);
 /* Stroke the path's subpaths with the style (§5.3). Returns 0 or META_ENOMEM. */
 int scan_stroke(scan_ctx_t *c, const scan_band_t *b, const scan_path_t *p, const scan_style_t *st,
 		meta_rgb_t rgb);
@@ -118,6 +116,19 @@ int scan_path_circle_res(scan_path_t *p, int64_t cx, int64_t cy, int64_t r, int6
 int scan_circle_chords(int64_t r);
 /* Bounding box of the path's points; returns 0 when the path has no points. */
 int scan_path_bbox(const scan_path_t *p, int64_t *x0, int64_t *y0, int64_t *x1, int64_t *y1);
+
+/* The dash pattern's period (sum of the even list); §5.3 draws a pattern whose period is below
+ * one pixel (SCAN_DASH_MIN_PERIOD thousandths) as a solid line (§6). */
+int64_t scan_dash_period(const int64_t *dash, size_t ndash);
+#define SCAN_DASH_MIN_PERIOD 1000
+
+/* Round a double to the nearest integer (thousandths), ties away from zero. */
+static inline int64_t scan_round(double v)
+{
+	double t = trunc(v), f = v - t;
+	/* without branches (the fraction's side is unpredictable); |t| >= 2^53 has f = 0 */
+	return (int64_t)t + (f >= 0.5) - (f <= -0.5);
+}
 
 /* ---- Text (font.c) ---- */
 
