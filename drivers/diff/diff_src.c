@@ -7,7 +7,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "diff/diff_src.h"
-#include "image/imgread_int.h"
 
 const char *const dsrc_kind_name[] = { "raster", "meta", "HP-GL", "PostScript", "PDF" };
 
@@ -139,9 +138,7 @@ int dsrc_sniff(dsrc_t *s, const char *path, unsigned page)
 		s->kind = DSRC_PDF;
 	else if ((n >= 2 && memcmp(h, "%!", 2) == 0) || (n >= 4 && memcmp(h, "\xC5\xD0\xD3\xC6", 4) == 0))
 		s->kind = DSRC_PS;
-	else if ((n >= 8 && memcmp(h, "\x89PNG", 4) == 0) || (n >= 2 && h[0] == 'P' && h[1] == '6') ||
-			(n >= 4 && memcmp(h, DEV_RLE_MAGIC, 4) == 0) || imgr_is_pcx(h, n) || imgr_is_bmp(h, n) ||
-			imgr_is_dpx(h, n) || imgr_is_cineon(h, n))
+	else if (dev_imgr_sniff(h, n))
 		s->kind = DSRC_RASTER;
 	else if (is_hpgl(h, n))
 		s->kind = DSRC_HPGL;

@@ -35,11 +35,6 @@ int dev_format_by_suffix(const char *path)
 	return dev_format_by_name(dot + 1);
 }
 
-const char *dev_format_suffix(int fmt)
-{
-	return fmt == DEV_FMT_PPM ? ".ppm" : fmt == DEV_FMT_RLE ? ".rle" : ".png";
-}
-
 static void png_out(png_structp png, png_bytep data, size_t n)
 {
 	dev_imgw_t *w = png_get_io_ptr(png);

@@ -17,8 +17,6 @@ enum { DEV_FMT_PNG, DEV_FMT_PPM, DEV_FMT_RLE, DEV_FMT_UNKNOWN = -1 };
 /* Format by name ("png", "ppm", "rle") or by the suffix of a path; DEV_FMT_UNKNOWN if none. */
 int dev_format_by_name(const char *name);
 int dev_format_by_suffix(const char *path);
-/* Suffix of a format, with the dot. */
-const char *dev_format_suffix(int fmt);
 
 typedef struct dev_imgw dev_imgw_t;
 
@@ -55,6 +53,15 @@ typedef struct dev_imgr dev_imgr_t;
  * ..."), -74 (read error), -70 (out of memory) with the message in err; *out is then NULL. */
 int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
 		dev_imgr_t **out, char *err, size_t errlen);
+/* 1 when the first n bytes of b look like an image dev_imgr_open reads (PNG, PPM P6, Locus RLE,
+ * PCX, BMP, DPX, Cineon), else 0: how locus-diff tells an image from other inputs. */
+int dev_imgr_sniff(const unsigned char *b, size_t n);
+/* Headerless framebuffer dumps, told by their size: the dump mode (rd_fbdump.c) of a file of
+ * size bytes, or -1. */
+int imgr_fbdump_mode(uint64_t size);
+/* dev_imgr_open for a headerless framebuffer dump of size bytes (its mode follows from it). */
+int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		uint64_t size, dev_imgr_t **out, char *err, size_t errlen);
 /* Size of the image. */
 unsigned dev_imgr_width(const dev_imgr_t *r);
 unsigned dev_imgr_height(const dev_imgr_t *r);

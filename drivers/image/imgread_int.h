@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include "image/image.h"
 
-/* One format read by a file of its own (rd-*.c): open reads the header (the stream starts at the
+/* One format read by a file of its own (rd_*.c): open reads the header (the stream starts at the
  * format's magic), row decodes one row (top first), end checks the rest, done frees st. */
 typedef struct {
 	int (*open)(dev_imgr_t *r);
@@ -29,13 +29,13 @@ struct dev_imgr {
 	png_infop info;
 	unsigned char *prow;    /* one PNG row after the transforms (RGB or RGBA, 8 bits) */
 	unsigned channels;
-	const imgr_fmt_t *ops;  /* formats of rd-*.c files, else NULL */
+	const imgr_fmt_t *ops;  /* formats of rd_*.c files, else NULL */
 	void *st;               /* their state */
 	uint64_t fsize;         /* the file's size when known (framebuffer dumps), else 0 */
 	char err[512];
 };
 
-/* Stream offset of the next unconsumed byte. */
+/* The input buffer (imgread_io.c). Stream offset of the next unconsumed byte. */
 uint64_t imgr_offset(const dev_imgr_t *r);
 /* Set "NAME: byte OFF: what" as the error; returns -65. */
 int imgr_bad(dev_imgr_t *r, uint64_t off, const char *what);
@@ -48,17 +48,12 @@ int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what);
 /* Set "NAME: out of memory"; returns -70. */
 int imgr_nomem(dev_imgr_t *r);
 
-/* The formats of the rd-*.c files: sniff (1 when the first n bytes of b are the format's). */
+/* The formats of the rd_*.c files: sniff (1 when the first n bytes of b are the format's). */
 extern const imgr_fmt_t imgr_pcx, imgr_bmp, imgr_dpx, imgr_cineon, imgr_fbdump;
 int imgr_is_pcx(const unsigned char *b, size_t n);
 int imgr_is_bmp(const unsigned char *b, size_t n);
 int imgr_is_dpx(const unsigned char *b, size_t n);
 int imgr_is_cineon(const unsigned char *b, size_t n);
-/* The framebuffer dump mode (rd-fbdump.c) of a file of size bytes, or -1: dumps have no header. */
-int imgr_fbdump_mode(uint64_t size);
-/* dev_imgr_open for a headerless framebuffer dump of size bytes (its mode follows from it). */
-int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		uint64_t size, dev_imgr_t **out, char *err, size_t errlen);
 
 /* Largest picture a buffered format (BMP stored bottom up, PCX with its palette at the end)
  * holds in memory, in pixels; the buffer grows with the rows decoded, never from the header. */

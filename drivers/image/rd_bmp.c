@@ -1,4 +1,4 @@
-/* rd-bmp.c: Windows BMP reader (1/4/8-bit palettes, 16/24/32-bit, bit fields; top-down or bottom-up). */
+/* rd_bmp.c: Windows BMP reader (1/4/8-bit palettes, 16/24/32-bit, bit fields; top-down or bottom-up). */
 #include <stdlib.h>
 #include <string.h>
 #include "image/imgread_int.h"

@@ -1,4 +1,4 @@
-/* rd-fbdump.c: the framebuffer drivers' video-memory dumps (docs/framebuffer.md), told by size. */
+/* rd_fbdump.c: the framebuffer drivers' video-memory dumps (docs/framebuffer.md), told by size. */
 #include <stdlib.h>
 #include <string.h>
 #include "image/imgread_int.h"

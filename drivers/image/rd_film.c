@@ -1,4 +1,4 @@
-/* rd-film.c: DPX (8, 10 filled, 16 bit; either byte order) and Cineon (8, 10 bit) readers, top down. */
+/* rd_film.c: DPX (8, 10 filled, 16 bit; either byte order) and Cineon (8, 10 bit) readers, top down. */
 #include <stdlib.h>
 #include <string.h>
 #include "image/imgread_int.h"

@@ -1,4 +1,4 @@
-/* rd-pcx.c: ZSoft PCX reader (1-bit mono, 16-colour planes, 8-bit palette, 24-bit RGB planes). */
+/* rd_pcx.c: ZSoft PCX reader (1-bit mono, 16-colour planes, 8-bit palette, 24-bit RGB planes). */
 #include <stdlib.h>
 #include <string.h>
 #include "image/imgread_int.h"
