@@ -1,33 +1,11 @@
 /* hpgl_read_draw.c: the HP-GL reader's drawing: strokes, the polygon buffer, arcs, circles,
  * rectangles, wedges and scaling (the parser is hpgl_read.c). */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "util/grow.h"
 #include "hpgl/read/hpgl_read_int.h"
-
-int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
-{
-	char m[256];
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(m, sizeof m, fmt, ap);
-	va_end(ap);
-	snprintf(r->err, r->errlen, "%s: byte %zu: %s", r->name, off, m);
-	return -1;
-}
-
-int hpgl_rd_nomem(hpgl_rd_t *r)
-{
-	return hpgl_rd_fail(r, r->i, "out of memory");
-}
-
-int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size)
-{
-	return dev_grow(p, cap, need, size, 64);
-}
 
 /* ---- strokes ---- */
 
@@ -133,24 +111,6 @@ int hpgl_rd_figure(hpgl_rd_t *r, const hpgl_rpt_t *p, size_t n, int kind)
 	r->x = x;
 	r->y = y;
 	return 0;
-}
-
-/* User units to plotter units (SC in force). */
-void hpgl_rd_user_to_pu(const hpgl_rd_t *r, double u, double v, double *x, double *y)
-{
-	if (r->sc) {
-		*x = r->ox + (u - r->sc_xmin) * r->sx;
-		*y = r->oy + (v - r->sc_ymin) * r->sy;
-	} else {
-		*x = u;
-		*y = v;
-	}
-}
-
-void hpgl_rd_user_len(const hpgl_rd_t *r, double u, double v, double *x, double *y)
-{
-	*x = r->sc ? u * r->sx : u;
-	*y = r->sc ? v * r->sy : v;
 }
 
 /* ---- arcs ---- */
