@@ -1,81 +1,9 @@
-/* dev-pdf.c: the PDF 1.4 device: Flate content streams, image XObjects, exact xref offsets. */
+/* dev_pdf.c: the PDF 1.4 device: Flate content streams, image XObjects, exact xref offsets. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include "ps/pdf_int.h"
-
-static int add(psd_t *p, pdf_list_t *l, uint64_t v)
-{
-	if (l->n == l->cap) {
-		size_t n = l->cap ? l->cap * 2 : 16;
-		uint64_t *q = realloc(l->v, n * sizeof *q);
-		if (!q)
-			return dev_fail(p->dev, META_ENOMEM, "out of memory");
-		l->v = q;
-		l->cap = n;
-	}
-	l->v[l->n++] = v;
-	return 0;
-}
-
-/* Reserve the next object number (its offset is set when it is written). */
-static unsigned new_obj(pdf_t *s)
-{
-	if (add(&s->p, &s->offsets, 0))
-		return 0;
-	return (unsigned)s->offsets.n;
-}
-
-static void begin_obj(pdf_t *s, unsigned n)
-{
-	s->offsets.v[n - 1] = s->p.out.pos;
-	pse_printf(&s->p.out, "%u 0 obj\n", n);
-}
-
-static int failed(pdf_t *s)
-{
-	if (s->p.out.err)
-		return psd_out_fail(&s->p);
-	return 0;
-}
-
-/* ---- content streams ---- */
-
-int pdf_open_stream(pdf_t *s, int rows)
-{
-	unsigned n = new_obj(s);
-	if (!n || add(&s->p, &s->contents, n) || !new_obj(s))
-		return META_ENOMEM;
-	begin_obj(s, n);
-	pse_printf(&s->p.out, "<< /Length %u 0 R /Filter /FlateDecode", n + 1);
-	if (rows)
-		pse_printf(&s->p.out, " /DecodeParms << /Predictor 2 /Colors %d /Columns %d >>", PDF_ROW, PDF_COLUMNS);
-	pse_puts(&s->p.out, " >>\nstream\n");
-	s->stream_obj = n;
-	s->stream_start = s->p.out.pos;
-	s->p.col = 0;
-	s->rows = rows;
-	s->packed_run = 0;
-	int rc = pse_deflate_begin(&s->p.out, 0, rows ? PSE_ROWS : PSE_TEXT);
-	return rc || !rows ? rc : pse_rows_begin(&s->p.out, PDF_ROW, PDF_COLUMNS);
-}
-
-int pdf_close_stream(pdf_t *s)
-{
-	if (!s->stream_obj)
-		return 0;
-	pdf_end_group(s);
-	psd_newline(&s->p);
-	pse_rows_end(&s->p.out, ' ');   /* rows end whole */
-	pse_deflate_end(&s->p.out, NULL);
-	uint64_t len = s->p.out.pos - s->stream_start;
-	pse_puts(&s->p.out, "\nendstream\nendobj\n");
-	begin_obj(s, s->stream_obj + 1);
-	pse_printf(&s->p.out, "%llu\nendobj\n", (unsigned long long)len);
-	s->stream_obj = 0;
-	return failed(s);
-}
 
 /* ---- paths ---- */
 
@@ -85,7 +13,7 @@ static int pdf_stroke(dev_device_t *d, const dev_path_t *dp, const dev_state_t *
 	int rc = psd_paint_begin(&s->p, dp, st, 1);
 	if (rc || (rc = pdf_paint(s, dp, st, 0)))
 		return rc;
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st)
@@ -94,7 +22,7 @@ static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st
 	int rc = psd_paint_begin(&s->p, dp, st, 0);
 	if (rc || (rc = pdf_paint(s, dp, st, 1)))
 		return rc;
-	return failed(s);
+	return pdf_failed(s);
 }
 
 /* ---- rasters ---- */
@@ -110,7 +38,7 @@ static int pdf_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, me
 	psd_int(p, (long long)h * PSD_GRID);
 	psd_tok(p, "re f");
 	psd_newline(p);
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb)
@@ -137,12 +65,12 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 	int rows = s->rows;
 	if ((rc = pdf_close_stream(s)))
 		goto done;
-	unsigned obj = new_obj(s);
-	if (!obj || add(p, &s->images, obj)) {
+	unsigned obj = pdf_new_obj(s);
+	if (!obj || pdf_list_add(p, &s->images, obj)) {
 		rc = dev_fail(p->dev, META_ENOMEM, "out of memory");
 		goto done;
 	}
-	begin_obj(s, obj);
+	pdf_begin_obj(s, obj);
 	pse_printf(&p->out, "<< /Type /XObject /Subtype /Image /Width %u /Height %u /ColorSpace /Device%s\n"
 		"/BitsPerComponent %d%s /Length %zu >>\nstream\n", sm.width, sm.height, sm.comps == 1 ? "Gray" : "RGB",
 		sm.bpc, filter, nbest);
@@ -152,7 +80,7 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 		goto done;
 	pse_printf(&p->out, "q %lld 0 0 %lld %lld %lld cm /I%zu Do Q\n", (long long)w * PSD_GRID,
 		(long long)h * PSD_GRID, (long long)x * PSD_GRID, (long long)y * PSD_GRID, s->images.n);
-	rc = failed(s);
+	rc = pdf_failed(s);
 done:
 	free(sm.owned);
 	free(rle);
@@ -168,27 +96,27 @@ static int start_doc(pdf_t *s)
 	pse_set_transport(&s->p.out, s->p.dev->out);
 	pse_puts(&s->p.out, "%PDF-1.4\n%\xe2\xe3\xcf\xd3\n");
 	/* 1: catalog, 2: page tree, both written at the end */
-	if (!new_obj(s) || !new_obj(s))
+	if (!pdf_new_obj(s) || !pdf_new_obj(s))
 		return META_ENOMEM;
 	s->p.doc_open = 1;
 	s->p.doc_pages = 0;
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int finish_doc(pdf_t *s)
 {
 	pse_out_t *o = &s->p.out;
-	begin_obj(s, 2);
+	pdf_begin_obj(s, 2);
 	pse_puts(o, "<< /Type /Pages /Kids [");
 	for (size_t k = 0; k < s->kids.n; k++)
 		pse_printf(o, "%s%llu 0 R", k ? " " : "", (unsigned long long)s->kids.v[k]);
 	pse_printf(o, "] /Count %zu >>\nendobj\n", s->kids.n);
-	begin_obj(s, 1);
+	pdf_begin_obj(s, 1);
 	pse_puts(o, "<< /Type /Catalog /Pages 2 0 R >>\nendobj\n");
-	unsigned info = new_obj(s);
+	unsigned info = pdf_new_obj(s);
 	if (!info)
 		return META_ENOMEM;
-	begin_obj(s, info);
+	pdf_begin_obj(s, info);
 	pse_puts(o, "<< /Producer (locus-ps " LOCUS_VERSION ")");
 	if (s->p.title[0]) {
 		pse_puts(o, " /Title ");
@@ -208,7 +136,7 @@ static int finish_doc(pdf_t *s)
 		s->offsets.n + 1, info, (unsigned long long)xref);
 	s->p.doc_open = 0;
 	pse_flush(o);
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int pdf_open(dev_device_t *d)
@@ -249,7 +177,7 @@ static int pdf_begin(dev_device_t *d, const dev_page_t *pg)
 	pse_real(&s->p.out, s->p.oy, 4);
 	pse_printf(&s->p.out, " cm /G0 gs 0 0 %lld %lld re W n\n", (long long)pg->width * PSD_GRID,
 		(long long)pg->height * PSD_GRID);
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int pdf_end(dev_device_t *d, const dev_page_t *pg)
@@ -260,10 +188,10 @@ static int pdf_end(dev_device_t *d, const dev_page_t *pg)
 	int rc = psd_flush(&s->p);
 	if (rc || (rc = pdf_close_stream(s)))
 		return rc;
-	unsigned page = new_obj(s);
-	if (!page || add(&s->p, &s->kids, page))
+	unsigned page = pdf_new_obj(s);
+	if (!page || pdf_list_add(&s->p, &s->kids, page))
 		return dev_fail(d, META_ENOMEM, "out of memory");
-	begin_obj(s, page);
+	pdf_begin_obj(s, page);
 	pse_puts(o, "<< /Type /Page /Parent 2 0 R /MediaBox [0 0 ");
 	pse_real(o, s->p.media_w, 4);
 	pse_puts(o, " ");
@@ -281,7 +209,7 @@ static int pdf_end(dev_device_t *d, const dev_page_t *pg)
 	pse_puts(o, " >> >>\nendobj\n");
 	if (s->p.per_page && (rc = finish_doc(s)))
 		return rc;
-	return failed(s);
+	return pdf_failed(s);
 }
 
 static int pdf_close(dev_device_t *d)

@@ -1,5 +1,5 @@
-/* pdf_int.h: the PDF device's state and its path writer (pdfpath.c), shared by dev-pdf.c and
- * pdfpath.c only. */
+/* pdf_int.h: the PDF device's state, its objects (pdfobj.c) and its content streams and path
+ * writer (pdfpath.c), shared by dev_pdf.c, pdfobj.c and pdfpath.c only. */
 #ifndef LOCUS_PDF_INT_H
 #define LOCUS_PDF_INT_H
 
@@ -53,7 +53,16 @@ typedef struct {
 	uint64_t stream_start;
 } pdf_t;
 
-/* Open a content stream (rows = 1: Flate with TIFF predictor rows of PDF_COLUMNS samples of
+/* The objects (pdfobj.c). Append v to the list l; 0 or META_ENOMEM with a message. */
+int pdf_list_add(psd_t *p, pdf_list_t *l, uint64_t v);
+/* Reserve the next object number (its offset is set when it is written); 0 when out of memory. */
+unsigned pdf_new_obj(pdf_t *s);
+/* Start object n at the current output offset ("n 0 obj"). */
+void pdf_begin_obj(pdf_t *s, unsigned n);
+/* 0, or the output's error (recorded on the device) when writing failed. */
+int pdf_failed(pdf_t *s);
+
+/* The content streams and paths (pdfpath.c). Open a content stream (rows = 1: Flate with TIFF predictor rows of PDF_COLUMNS samples of
  * PDF_ROW bytes). 0 or <0. */
 int pdf_open_stream(pdf_t *s, int rows);
 /* Close the open content stream (and its group), if any. 0 or <0 with a message. */

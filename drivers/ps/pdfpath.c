@@ -1,6 +1,6 @@
-/* pdfpath.c: the PDF device's paths: graphics state, path origins (fills chained by cm inside
- * q ... Q groups), and points as text or as fixed-width samples under the Flate filter's TIFF
- * predictor. */
+/* pdfpath.c: the PDF device's content streams and paths: graphics state, path origins (fills
+ * chained by cm inside q ... Q groups), and points as text or as fixed-width samples under the
+ * Flate filter's TIFF predictor. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -508,4 +508,41 @@ int pdf_paint(pdf_t *s, const dev_path_t *dp, const dev_state_t *st, int fill)
 	tok(s, !fill ? "S Q" : st->rule == META_RULE_EVEN_ODD ? "f*" : "f");
 	psd_newline(&s->p);
 	return 0;
+}
+
+/* ---- content streams ---- */
+
+int pdf_open_stream(pdf_t *s, int rows)
+{
+	unsigned n = pdf_new_obj(s);
+	if (!n || pdf_list_add(&s->p, &s->contents, n) || !pdf_new_obj(s))
+		return META_ENOMEM;
+	pdf_begin_obj(s, n);
+	pse_printf(&s->p.out, "<< /Length %u 0 R /Filter /FlateDecode", n + 1);
+	if (rows)
+		pse_printf(&s->p.out, " /DecodeParms << /Predictor 2 /Colors %d /Columns %d >>", PDF_ROW, PDF_COLUMNS);
+	pse_puts(&s->p.out, " >>\nstream\n");
+	s->stream_obj = n;
+	s->stream_start = s->p.out.pos;
+	s->p.col = 0;
+	s->rows = rows;
+	s->packed_run = 0;
+	int rc = pse_deflate_begin(&s->p.out, 0, rows ? PSE_ROWS : PSE_TEXT);
+	return rc || !rows ? rc : pse_rows_begin(&s->p.out, PDF_ROW, PDF_COLUMNS);
+}
+
+int pdf_close_stream(pdf_t *s)
+{
+	if (!s->stream_obj)
+		return 0;
+	pdf_end_group(s);
+	psd_newline(&s->p);
+	pse_rows_end(&s->p.out, ' ');   /* rows end whole */
+	pse_deflate_end(&s->p.out, NULL);
+	uint64_t len = s->p.out.pos - s->stream_start;
+	pse_puts(&s->p.out, "\nendstream\nendobj\n");
+	pdf_begin_obj(s, s->stream_obj + 1);
+	pse_printf(&s->p.out, "%llu\nendobj\n", (unsigned long long)len);
+	s->stream_obj = 0;
+	return pdf_failed(s);
 }
