@@ -8,8 +8,8 @@
 #include <unistd.h>
 #include "render/render_int.h"
 
-/* The painters' threads and the spool's replay are in render_par.c; what both files share is in
- * render_int.h. */
+/* The painters' threads are in render_par.c, the replay of a spooled record in replay.c; what
+ * the files share is in render_int.h. */
 
 uint64_t dev_render_spool_default(void)
 {
@@ -29,20 +29,6 @@ void dev_render_set_spool_limit(dev_render_t *r, uint64_t bytes)
 const char *dev_render_error(const dev_render_t *r)
 {
 	return r->err;
-}
-
-/* Record why the spool failed (errno, or the limit when err_no is 0); returns META_EIO. */
-int render_spool_fail(dev_render_t *r, int err_no, const char *doing)
-{
-	if (err_no)
-		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): %s: %s", r->spool_dir,
-			doing, strerror(err_no));
-	else
-		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): the page needs more "
-			"than its limit of %llu %s (LOCUS_SPOOL_MAX_MB)", r->spool_dir,
-			(unsigned long long)(r->spool_max >= 1 << 20 ? r->spool_max >> 20 : r->spool_max),
-			r->spool_max >= 1 << 20 ? "MiB" : "bytes");
-	return META_EIO;
 }
 
 /* The spool: a file created in $TMPDIR (else /tmp) and unlinked at once, so that nothing is
@@ -207,11 +193,6 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	return 0;
 }
 
-/* Serialised path: npts (PACKED set when the points are int32 pairs), nsubs (uint64), subs,
- * points. Points within 32 bits (every path of the meta-language's range but wide text) take
- * half the spool. */
-#define PACKED ((uint64_t)1 << 63)
-
 static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
 		const scan_path_t *p)
 {
@@ -242,22 +223,6 @@ static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, 
 	free(meta);
 	return rc;
 }
-
-/* Head of a stroke record; only the ndash entries in use are spooled (STROKE_HEAD(n) bytes), so
- * that a record costs the path and a few dozen bytes, not a whole dash array. */
-typedef struct {
-	meta_rgb_t rgb;
-	int32_t cap, join;
-	int64_t width, miter_limit;
-	uint64_t ndash;
-	int64_t dash[2 * META_MAX_DASH];
-} stroke_head_t;
-#define STROKE_HEAD(n) (offsetof(stroke_head_t, dash) + (size_t)(n) * sizeof(int64_t))
-
-typedef struct {
-	meta_rgb_t rgb;
-	int32_t rule;
-} fill_head_t;
 
 int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 {
@@ -318,109 +283,14 @@ int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t
 	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
 }
 
-static void paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run_t *runs, size_t n)
-{
-	for (size_t k = 0; k < n; k++) {
-		scan_span(b, x, y, runs[k].count, runs[k].rgb);
-		x += runs[k].count;
-	}
-}
-
 int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	if (!r->spool && !r->split) {
-		paint_row(&r->main.band, x, y, runs, nruns);
+		render_paint_row(&r->main.band, x, y, runs, nruns);
 		return 0;
 	}
 	int64_t v[2] = { x, y };
 	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
-}
-
-/* ---- replay ---- */
-
-static int load_path(painter_t *pt, const unsigned char *q)
-{
-	uint64_t cnt[2];
-	memcpy(cnt, q, sizeof cnt);
-	q += sizeof cnt;
-	int packed = (cnt[0] & PACKED) != 0;
-	cnt[0] &= ~PACKED;
-	scan_path_t *p = &pt->path;
-	if (cnt[0] > p->cappts) {
-		scan_pt_t *n = realloc(p->pts, cnt[0] * sizeof(scan_pt_t));
-		if (!n)
-			return META_ENOMEM;
-		p->pts = n;
-		p->cappts = cnt[0];
-	}
-	if (cnt[1] > p->capsubs) {
-		scan_subpath_t *n = realloc(p->subs, cnt[1] * sizeof(scan_subpath_t));
-		if (!n)
-			return META_ENOMEM;
-		p->subs = n;
-		p->capsubs = cnt[1];
-	}
-	p->npts = cnt[0];
-	p->nsubs = cnt[1];
-	memcpy(p->subs, q, cnt[1] * sizeof(scan_subpath_t));
-	q += cnt[1] * sizeof(scan_subpath_t);
-	if (!packed) {
-		memcpy(p->pts, q, cnt[0] * sizeof(scan_pt_t));
-		return 0;
-	}
-	for (size_t k = 0; k < cnt[0]; k++) {
-		int32_t v[2];
-		memcpy(v, q + 8 * k, sizeof v);
-		p->pts[k].x = v[0];
-		p->pts[k].y = v[1];
-	}
-	return 0;
-}
-
-/* Paint one record (header h, payload q) onto the painter's band. */
-int render_replay_rec(painter_t *pt, const rec_t *hp, const unsigned char *q)
-{
-	rec_t h = *hp;
-	int rc = 0;
-	if (h.jhi <= pt->band.jlo || h.jlo >= pt->band.jhi)
-		return 0;
-	if (h.kind == REC_CLEAR) {
-		meta_rgb_t c;
-		memcpy(&c, q, sizeof c);
-		scan_clear(&pt->band, c);
-	} else if (h.kind == REC_FILL) {
-		fill_head_t f;
-		memcpy(&f, q, sizeof f);
-		if (!(rc = load_path(pt, q + sizeof f)))
-			rc = scan_fill(pt->ctx, &pt->band, &pt->path, f.rule, f.rgb);
-	} else if (h.kind == REC_STROKE) {
-		stroke_head_t s;
-		memcpy(&s, q, STROKE_HEAD(0));
-		memcpy(s.dash, q + STROKE_HEAD(0), s.ndash * sizeof(int64_t));
-		scan_style_t st = { s.width, s.cap, s.join, s.miter_limit, s.dash, s.ndash };
-		if (!(rc = load_path(pt, q + STROKE_HEAD(s.ndash))))
-			rc = scan_stroke(pt->ctx, &pt->band, &pt->path, &st, s.rgb);
-	} else if (h.kind == REC_SPAN) {
-		int64_t v[3];
-		meta_rgb_t c;
-		memcpy(v, q, sizeof v);
-		memcpy(&c, q + sizeof v, sizeof c);
-		scan_span(&pt->band, v[0], v[1], v[2], c);
-	} else if (h.kind == REC_ROW) {
-		int64_t v[2];
-		memcpy(v, q, sizeof v);
-		size_t n = (h.len - sizeof v) / sizeof(meta_run_t);
-		if (n > pt->cap_runs) {
-			meta_run_t *m = realloc(pt->runs, n * sizeof *m);
-			if (!m)
-				return META_ENOMEM;
-			pt->runs = m;
-			pt->cap_runs = n;
-		}
-		memcpy(pt->runs, q + sizeof v, n * sizeof(meta_run_t));
-		paint_row(&pt->band, v[0], v[1], pt->runs, n);
-	}
-	return rc;
 }
 
 int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)

@@ -1,8 +1,9 @@
-/* render_int.h: the renderer's internals shared by render.c and render_par.c (not public). */
+/* render_int.h: the renderer's internals shared by render.c, render_par.c and replay.c (not public). */
 #ifndef LOCUS_RENDER_INT_H
 #define LOCUS_RENDER_INT_H
 
 #include <pthread.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
 #include "render/render.h"
@@ -115,11 +116,42 @@ struct dev_render {
 /* What a split helper is told: its renderer and its painter. */
 typedef struct helper_arg helper_arg_t;
 
-/* Paint one spool record (header h, payload q) onto the painter's band (render.c). Returns 0
+/* Serialised path: npts (PACKED set when the points are int32 pairs), nsubs (uint64), subs,
+ * points. Points within 32 bits (every path of the meta-language's range but wide text) take
+ * half the spool. */
+#define PACKED ((uint64_t)1 << 63)
+
+/* Head of a stroke record; only the ndash entries in use are spooled (STROKE_HEAD(n) bytes), so
+ * that a record costs the path and a few dozen bytes, not a whole dash array. */
+typedef struct {
+	meta_rgb_t rgb;
+	int32_t cap, join;
+	int64_t width, miter_limit;
+	uint64_t ndash;
+	int64_t dash[2 * META_MAX_DASH];
+} stroke_head_t;
+#define STROKE_HEAD(n) (offsetof(stroke_head_t, dash) + (size_t)(n) * sizeof(int64_t))
+
+typedef struct {
+	meta_rgb_t rgb;
+	int32_t rule;
+} fill_head_t;
+
+/* Paint the runs of one image row at page row y from x into the band. */
+static inline void render_paint_row(const scan_band_t *b, int64_t x, int64_t y, const meta_run_t *runs,
+		size_t n)
+{
+	for (size_t k = 0; k < n; k++) {
+		scan_span(b, x, y, runs[k].count, runs[k].rgb);
+		x += runs[k].count;
+	}
+}
+
+/* Paint one spool record (header h, payload q) onto the painter's band (replay.c). Returns 0
  * or <0. */
 int render_replay_rec(painter_t *pt, const rec_t *h, const unsigned char *q);
 /* Record why the spool failed (errno, or the limit when err_no is 0) in r->err; returns
- * META_EIO (render.c). */
+ * META_EIO (replay.c). */
 int render_spool_fail(dev_render_t *r, int err_no, const char *doing);
 /* Start the two split helpers with their contexts; nonzero leaves the page to one thread
  * (the caller sets their bands before the first record). */
