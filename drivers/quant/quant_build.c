@@ -1,4 +1,4 @@
-/* quant.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
+/* quant_build.c: adaptive palettes from the histogram: median cut, octree, variance cut + k-means. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,4 +1,4 @@
-/* quant_int.h: internals shared by quant.c and quant_map.c (histogram layout, nearest search). */
+/* quant_int.h: internals shared by quant_build.c and quant_map.c (histogram layout, nearest search). */
 #ifndef LOCUS_QUANT_INT_H
 #define LOCUS_QUANT_INT_H
 
