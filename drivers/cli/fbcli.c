@@ -4,6 +4,7 @@
 #include <string.h>
 #include <unistd.h>
 #include "cli/cli.h"
+#include "cli/fbcli.h"
 #include "fb/fbmode.h"
 #include "quant/quant.h"
 #include "cli/run.h"

@@ -1,5 +1,5 @@
 /* main-vga.c: locus-vga, a meta file onto VGA mode 13h or 12h (files or a Linux framebuffer). */
-#include "fb/fbmode.h"
+#include "cli/fbcli.h"
 
 int main(int argc, char **argv)
 {

@@ -1,5 +1,5 @@
 /* main-xga.c: locus-xga, a meta file onto XGA 1024x768x256 or 640x480 5-6-5. */
-#include "fb/fbmode.h"
+#include "cli/fbcli.h"
 
 int main(int argc, char **argv)
 {

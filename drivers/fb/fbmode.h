@@ -1,6 +1,6 @@
 /* fbmode.h: the display modes of the VGA and XGA devices and the device code they share.
  *
- * dev-vga.c and dev-xga.c each give a table of modes; everything else (options, the page
+ * dev_vga.c and dev_xga.c each give a table of modes; everything else (options, the page
  * buffer, palette and dithering, the output formats and the Linux framebuffer) is here, so
  * the two devices behave alike. Device options (-O key=value): mode, format, palette, quant,
  * dither, fit, letterbox, fb, hold; see fbm_options and docs/framebuffer.md.
@@ -38,7 +38,7 @@ const fbm_mode_t *fbm_find_mode(const fbm_modes_t *ml, const char *name);
 /* One line describing a mode (for --list-modes), without the newline. */
 void fbm_describe(const fbm_mode_t *m, char *buf, size_t n);
 
-/* The device operations, given the device's mode list (dev-vga.c, dev-xga.c wrap them). */
+/* The device operations, given the device's mode list (dev_vga.c, dev_xga.c wrap them). */
 int fbm_open(dev_device_t *d, const fbm_modes_t *ml);
 int fbm_begin_page(dev_device_t *d, const dev_page_t *pg);
 int fbm_write_band(dev_device_t *d, const dev_band_t *b);
@@ -52,7 +52,7 @@ int fbm_close(dev_device_t *d);
 	.end_page = fbm_end_page, .close = fbm_close
 
 /* Define a framebuffer device from its table of modes `static const fbm_mode_t NAME_modes[]`
- * (dev-vga.c, dev-xga.c): the mode list NAME_mode_list, an open() that gives fbm_open() that
+ * (dev_vga.c, dev_xga.c): the mode list NAME_mode_list, an open() that gives fbm_open() that
  * list, and the operations dev_NAME_ops registered as device "NAME". */
 #define FBM_DEVICE(NAME, DESCRIPTION) \
 	const fbm_modes_t NAME##_mode_list = { NAME##_modes, sizeof NAME##_modes / sizeof NAME##_modes[0] }; \
@@ -60,12 +60,8 @@ int fbm_close(dev_device_t *d);
 	const dev_ops_t dev_##NAME##_ops = { .name = #NAME, .description = DESCRIPTION, .open = NAME##_open, \
 		FBM_OPS_COMMON }
 
-/* The two devices and their modes (dev-vga.c, dev-xga.c). */
+/* The two devices and their modes (dev_vga.c, dev_xga.c). */
 extern const dev_ops_t dev_vga_ops, dev_xga_ops;
 extern const fbm_modes_t vga_mode_list, xga_mode_list;
-
-/* The whole program locus-vga / locus-xga (fbcli.c): options, --list-modes, -o fb:NODE, the
- * job. Prints its own messages; returns the exit status. */
-int fbcli_main(int argc, char **argv, const char *prog, const dev_ops_t *ops, const fbm_modes_t *ml);
 
 #endif
