@@ -29,16 +29,6 @@ int fbout_format_by_suffix(const char *path)
 	return fbout_format_by_name(s);
 }
 
-size_t fbout_dump_size(int layout, unsigned width, unsigned height)
-{
-	size_t px = (size_t)width * height;
-	if (layout == FBOUT_PLANAR4)
-		return 4 * ((size_t)(width + 7) / 8) * height + 48;
-	if (layout == FBOUT_DIRECT565)
-		return 2 * px;
-	return px + 768;
-}
-
 /* The 8-bit colour of pixel k (any layout). */
 static void rgb_of(const fbout_picture_t *p, size_t k, uint8_t *c)
 {

@@ -40,7 +40,5 @@ int fbout_format_by_name(const char *name);
 int fbout_format_by_suffix(const char *path);
 /* Write the picture as one file of the format. 0, or <0 with a message in err. */
 int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *err, size_t errlen);
-/* Bytes of the dump of a picture of that layout and size. */
-size_t fbout_dump_size(int layout, unsigned width, unsigned height);
 
 #endif

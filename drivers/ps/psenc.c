@@ -443,14 +443,6 @@ int pse_spool_copy(pse_out_t *o, void *spool)
 	return o->err;
 }
 
-void pse_drop_spool(pse_out_t *o)
-{
-	if (o->spool)
-		fclose(o->spool);
-	o->spool = NULL;
-	o->n = 0;
-}
-
 int pse_flush(pse_out_t *o)
 {
 	if (o->err)

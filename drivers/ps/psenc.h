@@ -48,8 +48,6 @@ int pse_spool(pse_out_t *o);
 void *pse_spool_end(pse_out_t *o);
 /* Write the spool's bytes through the writer (after what was written since) and close it. */
 int pse_spool_copy(pse_out_t *o, void *spool);
-/* Drop a spool without copying it (after a failure). */
-void pse_drop_spool(pse_out_t *o);
 /* Append n bytes. Returns 0 or the sticky error. */
 int pse_write(pse_out_t *o, const void *p, size_t n);
 /* Append a NUL-terminated string. */
