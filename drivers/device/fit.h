@@ -1,4 +1,4 @@
-/* devres.h: rendering at a device's own resolution: the model-to-device mapping applied to
+/* fit.h: rendering at a device's own resolution: the model-to-device mapping applied to
  * paths, widths, spans and images (framework internals, used by device.c; not for drivers).
  *
  * The public part (dev_map_t, dev_fit_map) is in device.h; docs/drivers.md describes the rules.

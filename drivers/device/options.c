@@ -1,4 +1,4 @@
-/* devopt.c: device options given as "key=value,key=value" (-O), looked up and checked. */
+/* options.c: device options given as "key=value,key=value" (-O), looked up and checked. */
 #include <stdio.h>
 #include <string.h>
 #include "device/device.h"

@@ -1,4 +1,4 @@
-/* devout.c: formatted output for text-format drivers (PostScript, HP-GL, SVG): printf through
+/* textout.c: formatted output for text-format drivers (PostScript, HP-GL, SVG): printf through
  * the device's transport, and numbers that never print as -0. */
 #include <stdarg.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* dev-vga.c: the VGA device: mode 13h (320x200, 256 colours) and mode 12h (640x480, 16 colours). */
+/* dev_vga.c: the VGA device: mode 13h (320x200, 256 colours) and mode 12h (640x480, 16 colours). */
 #include "fb/fbmode.h"
 #include "fb/fbout.h"
 

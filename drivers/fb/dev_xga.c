@@ -1,4 +1,4 @@
-/* dev-xga.c: the XGA device: 1024x768 with 256 colours, or 640x480 with 65,536 direct colours. */
+/* dev_xga.c: the XGA device: 1024x768 with 256 colours, or 640x480 with 65,536 direct colours. */
 #include "fb/fbmode.h"
 #include "fb/fbout.h"
 

@@ -1,4 +1,4 @@
-/* dev-film.c: the film-recorder device: DPX 10-bit log, DPX 16-bit linear, Cineon, RLE frames. */
+/* dev_film.c: the film-recorder device: DPX 10-bit log, DPX 16-bit linear, Cineon, RLE frames. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>

@@ -1,6 +1,6 @@
 /* filmenc.h: film-recorder encoding: log printing density, calibration curves, DPX/Cineon files.
  *
- * The film device (dev-film.c) turns 24-bit RGB rows into what a film recorder takes:
+ * The film device (dev_film.c) turns 24-bit RGB rows into what a film recorder takes:
  *  - a per-channel table from the 8-bit value to the file's code value (film_lut_t), built from
  *    the log parameters (film_log_t: Kodak's reference white/black, density per code value, film
  *    and display gamma) and an optional calibration curve file (film_cal_t) applied first;
@@ -107,7 +107,7 @@ typedef struct {
 extern const film_preset_t film_presets[];
 const film_preset_t *film_preset_find(const char *name);
 
-/* For the film device and its program (dev-film.c). */
+/* For the film device and its program (dev_film.c). */
 /* A format by name ("dpx", "dpx16", "cineon" or "cin", "rle"), or by a path's suffix (.dpx,
  * .cin, .rle); -1 when unknown. */
 int film_kind_by_name(const char *name);

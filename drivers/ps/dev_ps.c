@@ -1,4 +1,4 @@
-/* dev-ps.c: the PostScript devices: EPS (one embeddable page) and printable multi-page PS. */
+/* dev_ps.c: the PostScript devices: EPS (one embeddable page) and printable multi-page PS. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* ps_int.h: the PostScript device's state and its path and state writer (pspath.c), shared by
- * dev-ps.c and pspath.c only. */
+ * dev_ps.c and pspath.c only. */
 #ifndef LOCUS_PS_INT_H
 #define LOCUS_PS_INT_H
 

@@ -1,4 +1,4 @@
-/* dev-raster.c: the reference raster devices (PNG, PPM, RLE at 24 bits) and the null device. */
+/* dev_raster.c: the reference raster devices (PNG, PPM, RLE at 24 bits) and the null device. */
 #include <stdio.h>
 #include <string.h>
 #include "device/device.h"

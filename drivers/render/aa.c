@@ -1,4 +1,4 @@
-/* devaa.c: anti-aliasing by supersampling: k x k exact samples per pixel, averaged in linear
+/* aa.c: anti-aliasing by supersampling: k x k exact samples per pixel, averaged in linear
  * light, band by band, so banding and the memory budget work as in the exact mode. */
 #include <math.h>
 #include <stdlib.h>
