@@ -57,7 +57,7 @@ int main(int argc, char **argv)
 		return 0;
 	}
 	int dm = doc_matches();
-	CHECK(dm == 0, "docs/stroke-font.md lists every glyph exactly as drivers/font.c (%d missing)", dm);
+	CHECK(dm == 0, "docs/stroke-font.md lists every glyph exactly as drivers/geom/font.c (%d missing)", dm);
 	/* every printable character has a parseable glyph inside the font grid */
 	int ok = 1, strokes = 0;
 	for (int ch = 0x20; ch <= 0x7e; ch++) {
