@@ -4,7 +4,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "util/grow.h"
 #include "hpgl/read/hpgl_read_int.h"
 
 /* ---- strokes ---- */

@@ -4,6 +4,7 @@
 #define LOCUS_HPGL_READ_INT_H
 
 #include <stddef.h>
+#include "util/grow.h"
 #include "hpgl/read/hpgl_read.h"
 
 /* The parser's state: input, place, and the plotter state it tracks. */
@@ -69,8 +70,12 @@ int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 	;
 /* Out of memory at the current byte; -1. */
 int hpgl_rd_nomem(hpgl_rd_t *r);
-/* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
-int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size);
+/* Grow *p (cap elements of size bytes) to hold need; 0 or -1. Inline: it is on the path of
+ * every point. */
+static inline int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size)
+{
+	return dev_grow(p, cap, need, size, 64);
+}
 /* End the stroke being drawn (a lone point is dropped). */
 void hpgl_rd_end_stroke(hpgl_rd_t *r);
 /* Append a point to the open stroke. */

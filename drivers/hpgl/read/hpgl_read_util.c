@@ -1,8 +1,7 @@
-/* hpgl_read_util.c: the HP-GL reader's messages, growth and user-unit scaling, shared by the
+/* hpgl_read_util.c: the HP-GL reader's messages and user-unit scaling, shared by the
  * parser (hpgl_read.c), the attributes (hpgl_read_attr.c) and the drawing (hpgl_read_draw.c). */
 #include <stdarg.h>
 #include <stdio.h>
-#include "util/grow.h"
 #include "hpgl/read/hpgl_read_int.h"
 
 int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
@@ -19,11 +18,6 @@ int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 int hpgl_rd_nomem(hpgl_rd_t *r)
 {
 	return hpgl_rd_fail(r, r->i, "out of memory");
-}
-
-int hpgl_rd_grow(void **p, size_t *cap, size_t need, size_t size)
-{
-	return dev_grow(p, cap, need, size, 64);
 }
 
 /* User units to plotter units (SC in force). */
