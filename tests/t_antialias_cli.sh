@@ -1,5 +1,5 @@
 #!/bin/sh
-# t_antialias_cli.sh: --antialias[=K], the common option of every raster program (drivers/cli.c):
+# t_antialias_cli.sh: --antialias[=K], the common option of every raster program (drivers/cli/cli.c):
 # it is -O antialias=K, K=1 is the exact mode, edge pixels get partial coverage, a half-covered
 # pixel is the linear-light midpoint, it reaches locus-vga, locus-xga and locus-film, and bad
 # factors are refused in one line with 64.
@@ -43,7 +43,7 @@ for k in 2 4 8; do
 		notok "K=$k: first row $v"
 done
 
-# the option reaches the framebuffer programs and the film recorder through cli.c
+# the option reaches the framebuffer programs and the film recorder through cli/cli.c
 for p in vga xga; do
 	"$BIN/locus-$p" -f dump -o "$T/$p-e.dump" $M/strokes.meta &&
 		"$BIN/locus-$p" -f dump --antialias -o "$T/$p-a.dump" $M/strokes.meta &&

@@ -1,5 +1,5 @@
 #!/bin/sh
-# t_driver_cli.sh: locus-play and locus-raster parse through drivers/cli.h (getopt_long): the
+# t_driver_cli.sh: locus-play and locus-raster parse through drivers/cli/cli.h (getopt_long): the
 # long and attached option forms, "--", repeated -O, and unknown device options refused.
 . tests/lib.sh
 : "${T:?T (a scratch directory) must be set: run through tests/run.sh}"

@@ -10,13 +10,13 @@ CC=${CC:-cc}
 python3 - "$T" <<'PY' || { notok "examples not found in docs/drivers.md"; done_tests; }
 import sys
 s = open('docs/drivers.md').read(); t = sys.argv[1]
-for mark, name in (('/* dev-mine.c:', 'mine'), ('/* dev-svg.c:', 'svg')):
+for mark, name in (('/* dev_mine.c:', 'mine'), ('/* dev_svg.c:', 'svg')):
     i = s.index(mark); j = s.index('```', i)
     open('%s/doc-%s.c' % (t, name), 'w').write(s[i:j].replace('dev_svg_ops', 'dev_docsvg_ops'))
 PY
 cat > "$T/main.c" <<'C'
 #include <stdio.h>
-#include "device.h"
+#include "device/device.h"
 extern const dev_ops_t dev_docsvg_ops;
 int main(int argc, char **argv)
 {
@@ -35,7 +35,7 @@ int main(int argc, char **argv)
 }
 C
 F="-std=c11 -Wall -Wextra -Werror -D_POSIX_C_SOURCE=200809L -Imeta -Idrivers $SAN"
-check "the raster example (dev-mine.c) compiles without a warning" $CC $F -c "$T/doc-mine.c" -o "$T/mine.o"
+check "the raster example (dev_mine.c) compiles without a warning" $CC $F -c "$T/doc-mine.c" -o "$T/mine.o"
 check "the SVG example compiles without a warning" $CC $F -c "$T/doc-svg.c" -o "$T/svg.o"
 if $CC $F "$T/main.c" "$T/svg.o" "$L/libdrivers.a" "$L/libmeta.a" ${LOCUS_LDLIBS:-$(pkg-config --libs libpng zlib) -lpthread -lm} -o "$T/docsvg"; then
 	ok "the SVG example links as a program"

@@ -11,7 +11,7 @@ PENDING="
 pending_reason() {
 	case $1 in
 	diff:*) echo "w-diff: locus-diff's exit codes (out of memory in its readers exits 74, 66 or 65, not 70)" ;;
-	hpgl:alloc:safe) echo "drivers/pathopt.c two_opt() skips the 2-opt pass when its arrays cannot be allocated and returns as if done, so the plot exits 0 with a different pen order (w-hpgl: return an error, which hpgl_page.c already maps to 70)" ;;
+	hpgl:alloc:safe) echo "drivers/hpgl/pathopt.c two_opt() skips the 2-opt pass when its arrays cannot be allocated and returns as if done, so the plot exits 0 with a different pen order (w-hpgl: return an error, which hpgl/hpgl_page.c already maps to 70)" ;;
 	*) echo "?" ;;
 	esac
 }

@@ -1,5 +1,5 @@
 #!/bin/sh
-# t_output.sh: every program's output path (drivers/transport.h): devices and FIFOs written in
+# t_output.sh: every program's output path (drivers/io/transport.h): devices and FIFOs written in
 # place and never replaced, write errors named with their cause (exit 74), no file from a failed
 # run, temporaries that never follow a symlink, the target's mode kept, and no temporary left
 # by SIGTERM or SIGHUP. Device nodes are private copies (mknod) or, for the names /dev/null and

@@ -2,7 +2,7 @@
 # t_raster_spec.sh: an independent, brute-force implementation of spec §5 (written from
 # docs/meta-language.md, per pixel, exact integers in Python) must draw the same pixels as
 # locus-raster on the stroke, fill, image, coverage and text fixtures (the font is read from the
-# glyph listing in docs/stroke-font.md, not from drivers/font.c).
+# glyph listing in docs/stroke-font.md, not from drivers/geom/font.c).
 . tests/lib.sh
 command -v python3 >/dev/null 2>&1 || { ok "python3 missing # SKIP"; done_tests; }
 cat > "$T/spec.py" <<'EOF'

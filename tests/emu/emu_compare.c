@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "emu.h"
-#include "hpgl_read.h"
+#include "hpgl/read/hpgl_read.h"
 
 /* Canonical text of each stroke, sorted, for a multiset comparison. */
 static int cmp_str(const void *a, const void *b)

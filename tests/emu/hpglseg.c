@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "hpgl_read.h"
+#include "hpgl/read/hpgl_read.h"
 
 static int one(const char *path)
 {

@@ -1,7 +1,7 @@
 /* fuzz_hpgl.c: libFuzzer harness of the HP-GL reader and `locus-meta import`: a read is the same twice, an error is one line naming the byte, and an import is a meta file the meta reader accepts. */
 #include "fuzz.h"
-#include "hpgl_read.h"
-#include "meta_import.h"
+#include "hpgl/read/hpgl_read.h"
+#include "import/meta_import.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

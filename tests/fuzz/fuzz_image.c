@@ -1,6 +1,6 @@
 /* fuzz_image.c: libFuzzer harness of the image readers (PNG, PPM, RLE): an error is one line naming the input, a picture is whole, and reading twice gives the same pixels. */
 #include "fuzz.h"
-#include "image.h"
+#include "image/image.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

@@ -1,7 +1,7 @@
 /* fuzz_imgread.c: libFuzzer harness of locus-diff's streaming image readers (PCX, BMP, DPX, Cineon, framebuffer dumps, and PNG/PPM/RLE) fed a few bytes at a time: an error is one line naming the input, a picture's rows all decode, and the stream and whole-buffer reads agree. */
 #include "fuzz.h"
-#include "image.h"
-#include "imgread_int.h"
+#include "image/image.h"
+#include "image/imgread_int.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

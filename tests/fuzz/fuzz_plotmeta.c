@@ -1,6 +1,6 @@
 /* fuzz_plotmeta.c: libFuzzer harness of the plotutils metafile reader (portable and binary): the same statements twice, an error is one line naming the byte, and a success is a meta file the meta reader accepts. */
 #include "fuzz.h"
-#include "plotmeta.h"
+#include "import/plotmeta.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

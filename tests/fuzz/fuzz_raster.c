@@ -1,7 +1,7 @@
 /* fuzz_raster.c: libFuzzer harness of replay through the raster framework on small pages: the whole-page and the banded replay give the same pixels, pages and message. */
 #include <math.h>
 #include "fuzz.h"
-#include "device.h"
+#include "device/device.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

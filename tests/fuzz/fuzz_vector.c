@@ -3,8 +3,8 @@
  * is its object, PS and EPS with their DSC frame; a PDF written twice is the same bytes. */
 #include <unistd.h>
 #include "fuzz.h"
-#include "device.h"
-#include "transport.h"
+#include "device/device.h"
+#include "io/transport.h"
 
 #ifndef FUZZ_ENTRY
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput

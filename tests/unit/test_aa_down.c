@@ -1,10 +1,10 @@
-/* test_aa_down.c: the anti-aliased downsampler (devaa.c) against a plain reference: every output
+/* test_aa_down.c: the anti-aliased downsampler (render/aa.c) against a plain reference: every output
  * byte is the linear-light mean of its k x k samples encoded by a linear scan, whatever the band
  * rows, with flat runs (the neighbour-reuse path) and random samples (the table start). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include "devaa.h"
+#include "render/aa.h"
 #include "unit.h"
 
 #define W 37

@@ -3,7 +3,7 @@
  * cost what the page can show. */
 #include <stdlib.h>
 #include <time.h>
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 enum { W = 96, H = 80 };

@@ -2,7 +2,7 @@
  * resampled images, banded against whole, and the identity. */
 #include <math.h>
 #include <stdlib.h>
-#include "device.h"
+#include "device/device.h"
 #include "unit.h"
 
 /* The raster the test device declares in open(). */

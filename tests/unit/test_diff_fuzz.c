@@ -3,11 +3,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "diff.h"
-#include "image.h"
-#include "imgread_int.h"
+#include "diff/diff.h"
+#include "image/image.h"
+#include "image/imgread_int.h"
 #include "locus_meta.h"
-#include "plotmeta.h"
+#include "import/plotmeta.h"
 #include "unit.h"
 
 static uint64_t rng = 0x243f6a8885a308d3u;

@@ -1,7 +1,7 @@
 /* test_font.c: the stroke font (spec §5.5): glyph table, advances, replacement, transform. */
 #include <math.h>
 #include <stdlib.h>
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 /* The glyph table as markdown rows, as docs/stroke-font.md lists it. */
@@ -57,7 +57,7 @@ int main(int argc, char **argv)
 		return 0;
 	}
 	int dm = doc_matches();
-	CHECK(dm == 0, "docs/stroke-font.md lists every glyph exactly as drivers/font.c (%d missing)", dm);
+	CHECK(dm == 0, "docs/stroke-font.md lists every glyph exactly as drivers/geom/font.c (%d missing)", dm);
 	/* every printable character has a parseable glyph inside the font grid */
 	int ok = 1, strokes = 0;
 	for (int ch = 0x20; ch <= 0x7e; ch++) {

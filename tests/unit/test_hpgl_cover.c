@@ -6,9 +6,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <unistd.h>
-#include "device.h"
-#include "hpgl.h"
-#include "hpgl_read.h"
+#include "device/device.h"
+#include "hpgl/hpgl.h"
+#include "hpgl/read/hpgl_read.h"
 #include "unit.h"
 
 extern const dev_ops_t dev_hpgl_ops;

@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <time.h>
-#include "hpgl_hatch.h"
-#include "hpgl.h"
+#include "hpgl/hpgl_hatch.h"
+#include "hpgl/hpgl.h"
 #include "unit.h"
 
 static uint64_t rng = 88172645463325252ULL;

@@ -3,7 +3,7 @@
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include "hpgl_read.h"
+#include "hpgl/read/hpgl_read.h"
 #include "unit.h"
 
 #define CORPUS "../shared/corpus/hpgl/"

@@ -1,8 +1,8 @@
 /* test_import_pens.c: `locus-meta import`'s HP-GL pens from a profile's carousel where the file
  * sets no PC colour or PW width (mimp_hpgl_pens), the file's own settings winning. */
 #include <stdlib.h>
-#include "hpgl.h"
-#include "meta_import.h"
+#include "hpgl/hpgl.h"
+#include "import/meta_import.h"
 #include "membuf.h"
 #include "unit.h"
 

@@ -12,7 +12,7 @@
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
-#include "transport.h"
+#include "io/transport.h"
 #include "unit.h"
 
 static char dir[256];

@@ -7,8 +7,8 @@
  * they fall, so a restore without them draws elsewhere). */
 #include <stdlib.h>
 #include <string.h>
-#include "hpgl_read.h"
-#include "journal.h"
+#include "hpgl/read/hpgl_read.h"
+#include "io/journal.h"
 #include "unit.h"
 
 /* Every modal command changes after the first strokes, and again later, between strokes drawn

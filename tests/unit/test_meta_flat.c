@@ -1,9 +1,9 @@
 /* test_meta_flat.c: the reader's count of flattened path points (spec §6) is exactly the number
- * of points the reference flattening (drivers/flatten.c) stores, on random paths of moves,
+ * of points the reference flattening (drivers/geom/flatten.c) stores, on random paths of moves,
  * draws, arcs, circles and closes (close after close included), and its chord counts are §5.4's. */
 #include <stdlib.h>
 #include "meta_int.h"
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 static unsigned seed = 12345;
@@ -69,7 +69,7 @@ int main(void)
 		meta_reader_free(rd);
 		free(text);
 	}
-	CHECK(bad_paths == 0, "reader's flattened count = flatten.c's points on %d random paths", paths);
+	CHECK(bad_paths == 0, "reader's flattened count = geom/flatten.c's points on %d random paths", paths);
 	int agree = 1;
 	for (int64_t r = 1; r <= 1000000000; r = r * 3 + 7)
 		if (meta_circle_chords(r) != scan_circle_chords(r))

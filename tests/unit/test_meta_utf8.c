@@ -3,7 +3,7 @@
  * same characters, and the writer keeps exactly the well-formed sequences raw. */
 #include <stdlib.h>
 #include "meta_int.h"
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 static size_t unhex(const char *h, unsigned char *out, size_t cap)

@@ -5,8 +5,8 @@
 #include <string.h>
 #include <unistd.h>
 #include <zlib.h>
-#include "psdev.h"
-#include "psenc.h"
+#include "ps/psdev.h"
+#include "ps/psenc.h"
 #include "unit.h"
 
 static char path[64];

@@ -2,7 +2,7 @@
  * hand-worked cases, flat colours, dithering, fixed palettes and palette files. */
 #include <math.h>
 #include <stdlib.h>
-#include "quant.h"
+#include "quant/quant.h"
 #include "unit.h"
 
 static uint32_t rng = 12345;

@@ -3,8 +3,8 @@
  * halves, the whole-bin look-up) against a brute-force search, Floyd-Steinberg leaving colours
  * within the DAC's rounding of an entry undithered, and the rows a mapping reports. */
 #include <stdlib.h>
-#include "quant.h"
-#include "quant_int.h"
+#include "quant/quant.h"
+#include "quant/quant_int.h"
 #include "unit.h"
 
 static uint32_t rng = 987654321u;

@@ -3,7 +3,7 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/resource.h>
-#include "render.h"
+#include "render/render.h"
 #include "unit.h"
 
 static int band_count(void *user, const dev_band_t *b)

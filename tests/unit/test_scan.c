@@ -1,8 +1,8 @@
 /* test_scan.c: polygon coverage rules of spec §5.1 against exact brute force, and banding. */
 #include <math.h>
 #include <stdlib.h>
-#include "scan.h"
-#include "render.h"
+#include "geom/scan.h"
+#include "render/render.h"
 #include "unit.h"
 
 #define W 40

@@ -1,6 +1,6 @@
 /* test_scan_play.c: dev_play drives a vector device: paths, state, defaults, page hooks, errors. */
 #include <stdlib.h>
-#include "device.h"
+#include "device/device.h"
 #include "unit.h"
 
 /* A recording vector device. */

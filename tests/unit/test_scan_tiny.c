@@ -1,7 +1,7 @@
 /* test_scan_tiny.c: the small-piece fast path of scan_fill_piece against §5.1 by brute force. */
 #include <stdlib.h>
-#include "scan.h"
-#include "scan_int.h"
+#include "geom/scan.h"
+#include "geom/scan_int.h"
 #include "unit.h"
 
 #define W 24

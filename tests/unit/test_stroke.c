@@ -1,7 +1,7 @@
 /* test_stroke.c: wide lines (spec §5.3): caps, joins, miter limit, dashes, dots, arcs (§5.4). */
 #include <math.h>
 #include <stdlib.h>
-#include "scan.h"
+#include "geom/scan.h"
 #include "unit.h"
 
 #define W 40

@@ -2,7 +2,7 @@
  * 70, 74 or 75 by value and not by the words of the message; and which names are device links. */
 #include <errno.h>
 #include <stdlib.h>
-#include "transport.h"
+#include "io/transport.h"
 #include "unit.h"
 
 int main(void)

@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <sys/socket.h>
 #include <unistd.h>
-#include "journal.h"
-#include "tr_link.h"
+#include "io/journal.h"
+#include "io/link.h"
 #include "unit.h"
 
 static void query(void)

@@ -2,7 +2,7 @@
  * pieces, stroke outlines, hatching, raw elements for text, the page on clear, clipped image
  * rows, minimum widths; and dev_printf / dev_fmt_fix. */
 #include <stdlib.h>
-#include "device.h"
+#include "device/device.h"
 #include "unit.h"
 
 /* A recording vector device; the caps vary per test through a copy of the table. */

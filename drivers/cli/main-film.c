@@ -1,0 +1,200 @@
+/* main-film.c: locus-film, meta file to film-recorder frames (DPX, Cineon, RLE) at film size. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "cli/cli.h"
+#include "device/device.h"
+#include "film/filmenc.h"
+#include "cli/run.h"
+
+static const char usage_text[] =
+	"usage: locus-film [-o OUT] [-f dpx|dpx16|cineon|rle] [--preset NAME | --size WxH] [IN]\n"
+	"Replay a Locus meta file (IN, default stdin) into film-recorder frames at the film's own\n"
+	"resolution: the page is fitted with its aspect kept and scan-converted at frame size.\n"
+	"OUT defaults to stdout; with several pages, page k goes to OUT with -00k before its suffix.\n"
+	"  -f, --format F        dpx (DPX 2.0, 10-bit printing density, default), dpx16 (16-bit\n"
+	"                        linear DPX), cineon (Cineon 4.5, 10-bit log), rle; default: OUT's suffix\n"
+	"  --preset NAME         slide4k (4096x2730, default), slide8k, 2k, 4k, 6x7\n"
+	"  --list-presets        print the presets and exit\n"
+	"  --size WxH            a custom frame size in pixels\n"
+	"  --endian big|little   byte order of a DPX file (default big)\n"
+	"  --fit aspect|fill|stretch   how the page meets the frame (default aspect)\n"
+	"  --letterbox #RRGGBB   colour of the bars around a fitted page (default #000000)\n"
+	"  --antialias K         K x K samples per film pixel, averaged (default: exact, 1 sample)\n"
+	"  --white N, --black N  reference white and black code values (685, 95)\n"
+	"  --density D           printing density per code value (0.002)\n"
+	"  --film-gamma G, --display-gamma G   (0.6, 1.7)\n"
+	"  --calibration FILE    per-channel calibration curve applied before encoding (docs/film.md)\n"
+	"  --separations[=files|planar]  red, green and blue exposures: three single-channel files\n"
+	"                        OUT-r, OUT-g, OUT-b (default), or one planar file\n"
+	"  -O KEY=VALUE[,...]    device options (the long options above, as locus-play -d film takes)\n"
+	"  --band-rows N, --mem-budget MIB   banding of the frame (default: an 8 MiB page buffer)\n"
+	"  --help, --version\n"
+	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
+
+enum { O_PRESET = 0x2000, O_LIST, O_SIZE, O_ENDIAN, O_FIT, O_LETTERBOX, O_WHITE, O_BLACK, O_DENSITY,
+	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA };
+
+static const struct option film_long[] = {
+	{ "format", required_argument, NULL, 'f' },
+	{ "preset", required_argument, NULL, O_PRESET },
+	{ "list-presets", no_argument, NULL, O_LIST },
+	{ "size", required_argument, NULL, O_SIZE },
+	{ "endian", required_argument, NULL, O_ENDIAN },
+	{ "fit", required_argument, NULL, O_FIT },
+	{ "letterbox", required_argument, NULL, O_LETTERBOX },
+	{ "white", required_argument, NULL, O_WHITE },
+	{ "black", required_argument, NULL, O_BLACK },
+	{ "density", required_argument, NULL, O_DENSITY },
+	{ "film-gamma", required_argument, NULL, O_FGAMMA },
+	{ "display-gamma", required_argument, NULL, O_DGAMMA },
+	{ "calibration", required_argument, NULL, O_CAL },
+	{ "separations", optional_argument, NULL, O_SEP },
+	{ NULL, 0, NULL, 0 }
+};
+
+/* The page buffer budget unless --mem-budget says otherwise: a frame is written in bands of
+ * about 8 MiB (340 rows of 8192 pixels), so a whole process stays near 11 MiB at any preset;
+ * measured no slower than one 64 MiB buffer (docs/film.md). */
+#define FILM_BUDGET_MIB 8
+
+typedef struct {
+	const char *cal;
+	int separations;          /* 0 none, 1 three files, 2 planar */
+} film_args_t;
+
+static int on_option(cli_t *c, int key, const char *arg)
+{
+	film_args_t *a = c->user;
+	unsigned w, h;
+	switch (key) {
+	case 'f':
+		if (film_kind_by_name(arg) < 0)
+			return cli_fail(c, 64, "unknown format '%s' (dpx, dpx16, cineon or rle)", arg);
+		return cli_set_option(c, "format", arg) ? 64 : CLI_RUN;
+	case O_LIST:
+		for (const film_preset_t *p = film_presets; p->name; p++)
+			printf("%-8s %5ux%-5u %6.2f x %5.2f mm  %s\n", p->name, p->width, p->height, p->width_mm,
+				p->height_mm, p->description);
+		return 0;
+	case O_PRESET:
+		if (!film_preset_find(arg))
+			return cli_fail(c, 64, "unknown preset '%s' (--list-presets lists them)", arg);
+		return cli_set_option(c, "preset", arg) ? 64 : CLI_RUN;
+	case O_SIZE:
+		if (film_parse_size(arg, &w, &h))
+			return cli_fail(c, 64, "--size needs WxH with each side 1 to %d pixels, not '%s'",
+				META_MAX_DIM, arg);
+		return cli_set_option(c, "size", arg) ? 64 : CLI_RUN;
+	case O_CAL:
+		a->cal = arg;
+		return cli_set_option(c, "calibration", arg) ? 64 : CLI_RUN;
+	case O_SEP:
+		if (!arg || !strcmp(arg, "files"))
+			a->separations = 1;
+		else if (!strcmp(arg, "planar"))
+			a->separations = 2;
+		else
+			return cli_fail(c, 64, "--separations takes files or planar, not '%s'", arg);
+		return CLI_RUN;
+	default: {
+		static const char *const keys[] = { "endian", "fit", "letterbox", "white", "black", "density",
+			"film-gamma", "display-gamma" };
+		if (key >= O_ENDIAN && key <= O_DGAMMA)
+			return cli_set_option(c, keys[key - O_ENDIAN], arg) ? 64 : CLI_RUN;
+		return cli_fail(c, 64, "unhandled option");
+	}
+	}
+}
+
+/* "out.dpx", "r" -> "out-r.dpx" (malloc'd) */
+static char *separation_name(const char *out, const char *tag)
+{
+	const char *dot = strrchr(out, '.'), *slash = strrchr(out, '/');
+	if (!dot || (slash && dot < slash) || dot == out || (slash && dot == slash + 1))
+		dot = out + strlen(out);
+	size_t n = strlen(out) + strlen(tag) + 2;
+	char *s = malloc(n);
+	if (s)
+		snprintf(s, n, "%.*s-%s%s", (int)(dot - out), out, tag, dot);
+	return s;
+}
+
+static int report(int st, const char *err)
+{
+	if (st == 65)
+		fprintf(stderr, "%s\n", err);   /* already "FILE:LINE:COL: ..." or "FILE: byte N: ..." */
+	else if (st)
+		fprintf(stderr, "locus-film: %s\n", err);
+	return st;
+}
+
+int main(int argc, char **argv)
+{
+	film_args_t a = { NULL, 0 };
+	cli_t c;
+	memset(&c, 0, sizeof c);
+	c.prog = "locus-film";
+	c.usage = usage_text;
+	c.extra = film_long;
+	c.extra_short = "f:";
+	c.on_option = on_option;
+	c.user = &a;
+	int st = cli_parse(&c, argc, argv);
+	if (st != CLI_RUN)
+		return st;
+	const char *out = c.out ? c.out : "-";
+	char err[700];
+	if (!c.budget)
+		c.budget = (size_t)FILM_BUDGET_MIB << 20;
+	int has_format = !strncmp(c.options, "format=", 7) || strstr(c.options, ",format=");
+	if (!has_format && strcmp(out, "-")) {   /* the suffix's format, known to the device from open() */
+		static const char *const names[] = { "dpx", "dpx16", "cineon", "rle" };
+		int k = film_kind_by_suffix(out);
+		if (k >= 0 && cli_set_option(&c, "format", names[k]))
+			return 64;
+	}
+	if (a.cal) {   /* checked here first so that a bad file is 65 (66: missing) naming only itself */
+		film_cal_t *cal = NULL;
+		int rc = film_cal_load(a.cal, &cal, err, sizeof err);
+		film_cal_free(cal);
+		if (rc) {
+			fprintf(stderr, "%s\n", err);
+			return rc == -66 ? 66 : rc == -70 ? 70 : 65;
+		}
+	}
+	int64_t t;
+	if (film_source_time(&t, err, sizeof err))
+		return cli_fail(&c, 64, "%s", err);
+	if (a.separations == 2 && cli_set_option(&c, "separations", "planar"))
+		return 64;
+	if (a.separations != 1) {
+		dev_job_t job = { c.in[0], out, &dev_film_ops, c.band_rows, c.budget, c.options };
+		return report(dev_run(&job, err, sizeof err), err);
+	}
+	if (!strcmp(out, "-"))
+		return cli_fail(&c, 64, "--separations=files needs -o OUT (three files OUT-r, OUT-g, OUT-b);"
+			" --separations=planar writes one file to stdout");
+	if (!strcmp(c.in[0], "-"))
+		return cli_fail(&c, 64, "--separations=files replays the input three times: give a file, not stdin");
+	static const char *const tags[3] = { "r", "g", "b" };
+	char *names[3] = { NULL, NULL, NULL };
+	st = 0;
+	int done = 0;
+	for (int k = 0; k < 3 && st == 0; k++) {
+		if (!(names[k] = separation_name(out, tags[k])) || cli_set_option(&c, "channel", tags[k])) {
+			snprintf(err, sizeof err, "out of memory");
+			st = 70;
+			break;
+		}
+		dev_job_t job = { c.in[0], names[k], &dev_film_ops, c.band_rows, c.budget, c.options };
+		st = dev_run(&job, err, sizeof err);
+		done += st == 0;
+	}
+	for (int k = 0; k < 3; k++) {
+		if (st && k < done)
+			remove(names[k]);   /* no partial set of separations (single-page names) */
+		free(names[k]);
+	}
+	return report(st, err);
+}

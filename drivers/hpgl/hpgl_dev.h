@@ -1,0 +1,90 @@
+/* hpgl_dev.h: the HP-GL device's state, shared by its collecting side (dev-hpgl.c) and its
+ * page writer (hpgl_page.c). Internal to the driver. */
+#ifndef LOCUS_HPGL_DEV_H
+#define LOCUS_HPGL_DEV_H
+
+#include "device/device.h"
+#include "hpgl/hpgl.h"
+
+enum { HPGL_FILL_HATCH, HPGL_FILL_NATIVE, HPGL_FILL_NONE, HPGL_FILL_OUTLINE };
+
+/* A label kept for the end of the page (text=label). */
+typedef struct {
+	size_t pen;
+	int32_t x, y;
+	double height_mm, angle;
+	char *s;
+	size_t len;
+} hpgl_label_t;
+
+/* A native fill kept for the end of the page (fill=native: FP in HP-GL/2, RA in HP-GL). */
+typedef struct {
+	size_t pen;
+	size_t first, ncont;        /* contours: starts[first .. first + ncont] into fpts */
+	int even_odd;
+} hpgl_nfill_t;
+
+/* The device's private state (dev->priv): options, the page's mapping, the paths per pen. */
+typedef struct {
+	hpgl_profile_t prof;
+	hpgl_pens_t pens;
+	hpgl_place_t place;
+	int optimise;
+	popt_opts_t popt;
+	int fill, outline, text_label, raster_skip, passes, dash_split, background;
+	int pcl;                    /* 1: PCL framing around the HP-GL/2 (ESC %-1B ... ESC %0A) */
+	double hatch_mm, hatch_angle;
+	double knife, overcut;
+	hpgl_emit_t *em;
+	hpgl_map_t map;
+	popt_set_t *sets;           /* one per carousel pen */
+	hpgl_label_t *labels;
+	size_t nlabels, caplabels;
+	hpgl_nfill_t *fills;
+	size_t nfills, capfills;
+	popt_pt_t *fpts;
+	size_t nfpts, capfpts;
+	size_t *fstarts;
+	size_t nfstarts, capfstarts;
+	hpgl_dpt_t *tmp;
+	size_t captmp;
+	popt_pt_t *ipts;
+	size_t capipts;
+	size_t cur_pen;             /* the pen the current primitive goes to */
+	size_t total_paths;         /* paths of the page, all pens */
+	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
+	int warned, warned_bg;
+	unsigned page_w, page_h;
+	popt_pt_t at;               /* the pen's position while writing */
+	hpgl_report_t *rep;         /* streaming (no optimiser): the page's report as it is written */
+	size_t stream_pen;          /* streaming: the carousel pen selected, SIZE_MAX none */
+	hpgl_pen_report_t *stream_pr;
+	popt_pt_t *spts;            /* streaming: a path with room for its closing point */
+	size_t capspts;
+	hpgl_dpt_t *kpts;           /* the drag knife's input path */
+	size_t capkpts;
+	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
+	hpgl_pen_report_t *k_pr;
+} hpgl_dev_t;
+
+/* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
+int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size);
+/* Record "hpgl: out of memory"; returns META_ENOMEM. */
+int hpgl_dev_nomem(dev_device_t *d);
+/* The scratch point buffer h->tmp with room for n points; 0 or -1. */
+int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n);
+/* Record the emitter's failure (a transport error) on the device; returns META_EIO. */
+int hpgl_dev_emit_fail(dev_device_t *d);
+/* One warning of a kind per run (*flag remembers it), through the reporter. */
+void hpgl_dev_warn(int *flag, const char *msg);
+/* Start a page after the emitter is made: IN, VS, the pen's position; without the optimiser
+ * the page is streamed (h->rep collects its report). */
+int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg);
+/* Streaming: select carousel pen k (SP, PW in HP-GL/2) when it is not the current one. */
+int hpgl_page_pen(dev_device_t *d, size_t k);
+/* Streaming: write one path of pen k now (closed: the segment back to the first point too). */
+int hpgl_page_put(dev_device_t *d, size_t k, const popt_pt_t *pts, size_t n, int closed);
+/* Write the collected page pen by pen, report it, and reset the page's labels (end_page). */
+int hpgl_page_write(dev_device_t *d, const dev_page_t *pg);
+
+#endif

@@ -1,0 +1,241 @@
+/* image.c: streaming PNG (libpng), PPM (P6) and RLE raster writers (readers: imgread.c). */
+#include <png.h>
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image/image.h"
+
+struct dev_imgw {
+	int fmt;
+	io_transport_t *t;
+	unsigned width, height, rows;
+	png_structp png;
+	png_infop info;
+	int io_failed, info_done;
+	double wmm, hmm;
+	unsigned char *rle;      /* one encoded row */
+	char err[256];
+};
+
+int dev_format_by_name(const char *name)
+{
+	if (!strcmp(name, "png")) return DEV_FMT_PNG;
+	if (!strcmp(name, "ppm")) return DEV_FMT_PPM;
+	if (!strcmp(name, "rle")) return DEV_FMT_RLE;
+	return DEV_FMT_UNKNOWN;
+}
+
+int dev_format_by_suffix(const char *path)
+{
+	const char *dot = strrchr(path, '.');
+	const char *slash = strrchr(path, '/');
+	if (!dot || (slash && dot < slash))
+		return DEV_FMT_UNKNOWN;
+	return dev_format_by_name(dot + 1);
+}
+
+static void png_out(png_structp png, png_bytep data, size_t n)
+{
+	dev_imgw_t *w = png_get_io_ptr(png);
+	if (io_write(w->t, data, n)) {
+		w->io_failed = 1;   /* the transport's message names the output and the cause */
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+		png_error(png, "write failed");
+	}
+}
+
+static void png_flush_cb(png_structp png)
+{
+	(void)png;
+}
+
+static void png_err(png_structp png, png_const_charp msg)
+{
+	dev_imgw_t *w = png_get_error_ptr(png);
+	/* libpng says "Out of memory", "insufficient memory", ...: one wording, so that the
+	 * programs tell it from an I/O error (exit 70, not 74) */
+	if (!w->io_failed)
+		snprintf(w->err, sizeof w->err, "png: %s", strstr(msg, "memory") ? "out of memory" : msg);
+	png_longjmp(png, 1);
+}
+
+static void png_warn(png_structp png, png_const_charp msg)
+{
+	(void)png;
+	(void)msg;
+}
+
+static void put_be32(unsigned char *p, uint32_t v)
+{
+	p[0] = (unsigned char)(v >> 24); p[1] = (unsigned char)(v >> 16);
+	p[2] = (unsigned char)(v >> 8); p[3] = (unsigned char)v;
+}
+
+static int png_start(dev_imgw_t *w)
+{
+	w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w, png_err, png_warn);
+	if (!w->png || !(w->info = png_create_info_struct(w->png))) {
+		snprintf(w->err, sizeof w->err, "png: out of memory");
+		return -1;
+	}
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	png_set_write_fn(w->png, w, png_out, png_flush_cb);
+	png_set_IHDR(w->png, w->info, w->width, w->height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+		PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_set_compression_level(w->png, 3);
+	png_set_filter(w->png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
+	return 0;
+}
+
+/* The PNG header goes out with the first rows, so that the physical size can still be set. */
+static int png_header(dev_imgw_t *w)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	if (w->wmm > 0 && w->hmm > 0) {
+		/* spec §4 `size`: pixels stay square; the pitch is the largest at which the page fits
+		 * the size, so one resolution for both axes (the finer of the two) */
+		double px = w->width / (w->wmm / 1000.0), py = w->height / (w->hmm / 1000.0);
+		png_uint_32 ppm = (png_uint_32)((px > py ? px : py) + 0.5);
+		png_set_pHYs(w->png, w->info, ppm, ppm, PNG_RESOLUTION_METER);
+	}
+	png_write_info(w->png, w->info);
+	w->info_done = 1;
+	return 0;
+}
+
+void dev_imgw_physical(dev_imgw_t *w, double width_mm, double height_mm)
+{
+	w->wmm = width_mm;
+	w->hmm = height_mm;
+}
+
+dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
+		size_t errlen)
+{
+	dev_imgw_t *w = calloc(1, sizeof *w);
+	if (!w) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	w->fmt = fmt;
+	w->t = t;
+	w->width = width;
+	w->height = height;
+	int rc = 0;
+	if (fmt == DEV_FMT_PPM) {
+		char h[64];
+		int n = snprintf(h, sizeof h, "P6\n%u %u\n255\n", width, height);
+		rc = io_write(t, h, (size_t)n);
+	} else if (fmt == DEV_FMT_RLE) {
+		unsigned char h[DEV_RLE_HEADER];
+		memcpy(h, DEV_RLE_MAGIC, 4);
+		h[4] = DEV_RLE_VERSION;
+		put_be32(h + 5, width);
+		put_be32(h + 9, height);
+		w->rle = malloc((size_t)width * 4);
+		rc = w->rle ? io_write(t, h, sizeof h) : -1;
+	} else {
+		rc = png_start(w);
+	}
+	if (rc && fmt == DEV_FMT_RLE && !w->rle) {
+		snprintf(err, errlen, "out of memory");
+		dev_imgw_abort(w);
+		return NULL;
+	}
+	if (rc) {
+		snprintf(err, errlen, "%s", w->io_failed || fmt != DEV_FMT_PNG ? io_error(t) : w->err);
+		dev_imgw_abort(w);
+		return NULL;
+	}
+	return w;
+}
+
+static int rle_row(dev_imgw_t *w, const uint8_t *p)
+{
+	unsigned char *o = w->rle;
+	unsigned x = 0;
+	while (x < w->width) {
+		unsigned n = 1;
+		while (x + n < w->width && n < 256 && memcmp(p + 3 * (x + n), p + 3 * x, 3) == 0)
+			n++;
+		*o++ = (unsigned char)(n - 1);
+		memcpy(o, p + 3 * x, 3);
+		o += 3;
+		x += n;
+	}
+	return io_write(w->t, w->rle, (size_t)(o - w->rle));
+}
+
+static int png_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	for (unsigned k = 0; k < n; k++)
+		png_write_row(w->png, (png_const_bytep)(pix + k * stride));
+	return 0;
+}
+
+int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
+{
+	int rc = 0;
+	if (w->rows + n > w->height) {
+		snprintf(w->err, sizeof w->err, "too many rows");
+		return -1;
+	}
+	if (w->fmt == DEV_FMT_PNG) {
+		rc = w->info_done ? 0 : png_header(w);
+		if (rc == 0)
+			rc = png_rows(w, pix, stride, n);
+	} else {
+		for (unsigned k = 0; k < n && rc == 0; k++)
+			rc = w->fmt == DEV_FMT_RLE ? rle_row(w, pix + k * stride)
+				: io_write(w->t, pix + k * stride, (size_t)w->width * 3);
+		if (rc)
+			snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+	}
+	w->rows += n;
+	return rc;
+}
+
+static int png_end(dev_imgw_t *w)
+{
+	if (setjmp(png_jmpbuf(w->png)))
+		return -1;
+	png_write_end(w->png, w->info);
+	return 0;
+}
+
+int dev_imgw_finish(dev_imgw_t *w)
+{
+	int rc = 0;
+	if (w->rows != w->height) {
+		snprintf(w->err, sizeof w->err, "image incomplete (%u of %u rows)", w->rows, w->height);
+		rc = -1;
+	} else if (w->fmt == DEV_FMT_PNG) {
+		rc = png_end(w);
+	}
+	if (rc == 0 && (rc = io_flush(w->t)) != 0)
+		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+	if (rc)
+		return rc;   /* caller reads the message, then aborts */
+	dev_imgw_abort(w);
+	return 0;
+}
+
+void dev_imgw_abort(dev_imgw_t *w)
+{
+	if (!w)
+		return;
+	if (w->png)
+		png_destroy_write_struct(&w->png, w->info ? &w->info : NULL);
+	free(w->rle);
+	free(w);
+}
+
+const char *dev_imgw_error(const dev_imgw_t *w)
+{
+	return w->err;
+}

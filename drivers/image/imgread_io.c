@@ -1,0 +1,72 @@
+/* imgread_io.c: the image readers' input buffer (fill, take, skip, offsets) and their messages. */
+#include <stdio.h>
+#include <string.h>
+#include "image/imgread_int.h"
+
+uint64_t imgr_offset(const dev_imgr_t *r)
+{
+	return r->base + r->pos;
+}
+
+int imgr_bad(dev_imgr_t *r, uint64_t off, const char *what)
+{
+	snprintf(r->err, sizeof r->err, "%s: byte %llu: %s", r->name, (unsigned long long)off, what);
+	return -65;
+}
+
+int imgr_fill(dev_imgr_t *r)
+{
+	if (r->pos < r->len)
+		return 1;
+	if (r->eof || r->ioerr)
+		return r->ioerr ? -74 : 0;
+	r->base += r->len;
+	r->pos = r->len = 0;
+	long n = r->fn(r->user, r->buf, r->cap);
+	if (n < 0) {
+		r->ioerr = 1;
+		snprintf(r->err, sizeof r->err, "%s: read error at byte %llu", r->name,
+			(unsigned long long)r->base);
+		return -74;
+	}
+	if (n == 0) {
+		r->eof = 1;
+		return 0;
+	}
+	r->len = (size_t)n;
+	return 1;
+}
+
+long imgr_take(dev_imgr_t *r, void *dst, size_t n)
+{
+	size_t got = 0;
+	while (got < n) {
+		int rc = imgr_fill(r);
+		if (rc <= 0)
+			return rc < 0 ? rc : (long)got;
+		size_t k = r->len - r->pos < n - got ? r->len - r->pos : n - got;
+		memcpy((unsigned char *)dst + got, r->buf + r->pos, k);
+		r->pos += k;
+		got += k;
+	}
+	return (long)got;
+}
+
+int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what)
+{
+	while (n) {
+		int rc = imgr_fill(r);
+		if (rc <= 0)
+			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), what);
+		size_t k = r->len - r->pos < n ? r->len - r->pos : (size_t)n;
+		r->pos += k;
+		n -= k;
+	}
+	return 0;
+}
+
+int imgr_nomem(dev_imgr_t *r)
+{
+	snprintf(r->err, sizeof r->err, "%s: out of memory", r->name);
+	return -70;
+}

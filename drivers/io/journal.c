@@ -1,0 +1,359 @@
+/* journal.c: the job journal of a device link: an HP-GL tracker over the acknowledged bytes
+ * (resumable boundaries, modal state, a check sum of the prefix) written to a small text file. */
+#include <errno.h>
+#include <inttypes.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "io/journal.h"
+
+/* Modal commands replayed on resume, in the order they are sent (IP before SC). */
+static const char *const modal_cmds[] = { "IP", "SC", "IW", "VS", "LT", "PW", "SI", "DI" };
+#define NMODAL (sizeof modal_cmds / sizeof modal_cmds[0])
+
+typedef struct {
+	int pen, pendown, relative, pos_known;
+	double x, y;
+	char modal[NMODAL][64];
+	char cmd[3];                /* the command a mid-command boundary lies in */
+	int mid;
+	unsigned long pages, cmds;
+} hstate_t;
+
+struct jn {
+	char *path, *name;
+	hstate_t st, safe_st;
+	unsigned long long off, safe;
+	uint64_t hash, safe_hash;
+	/* the parser */
+	char mn[3];
+	int nmn, in_label;
+	char num[32];
+	int nnum, nargs;
+	double args[2];
+	char text[64];
+	size_t ntext;
+	/* resuming */
+	int skipping;
+	unsigned long long skip_to;
+	uint64_t want_hash;
+	char restore[768];
+};
+
+static int positional(const char *m)
+{
+	return !strcmp(m, "PU") || !strcmp(m, "PD") || !strcmp(m, "PA") || !strcmp(m, "PR");
+}
+
+static void boundary(jn_t *j, unsigned long long at, int mid)
+{
+	if (!j->st.pos_known)
+		return;   /* after an arc or a label: no exact restart point until the next PA */
+	j->safe = at;
+	j->safe_hash = j->hash;
+	j->safe_st = j->st;
+	j->safe_st.mid = mid;
+	memcpy(j->safe_st.cmd, j->mn, sizeof j->mn);
+}
+
+/* A number ended: a coordinate pair moves the pen; returns 1 when a pair completed. */
+static int end_number(jn_t *j)
+{
+	if (!j->nnum)
+		return 0;
+	j->num[j->nnum] = 0;
+	double v = strtod(j->num, NULL);
+	j->nnum = 0;
+	if (!strcmp(j->mn, "SP")) {
+		j->st.pen = (int)v;
+		return 0;
+	}
+	if (!positional(j->mn))
+		return 0;
+	j->args[j->nargs++] = v;
+	if (j->nargs < 2)
+		return 0;
+	j->nargs = 0;
+	if (j->st.relative) {
+		j->st.x += j->args[0];
+		j->st.y += j->args[1];
+	} else {
+		j->st.x = j->args[0];
+		j->st.y = j->args[1];
+		j->st.pos_known = 1;
+	}
+	return 1;
+}
+
+static void end_command(jn_t *j)
+{
+	end_number(j);
+	if (j->nmn == 2) {
+		size_t n = j->ntext < sizeof j->text ? j->ntext : sizeof j->text - 1;
+		while (n > 2 && !((j->text[n - 1] >= '0' && j->text[n - 1] <= '9') || j->text[n - 1] == '.'))
+			n--;   /* the terminator, or the next command's first letter */
+		j->text[n] = 0;
+		for (size_t k = 0; k < NMODAL; k++)
+			if (!strcmp(j->mn, modal_cmds[k]))
+				snprintf(j->st.modal[k], sizeof j->st.modal[k], "%s", j->text);
+		j->st.cmds++;
+	}
+	j->nmn = 0;
+	j->mn[0] = 0;
+	j->nargs = 0;
+	j->ntext = 0;
+}
+
+/* The mnemonic is complete: the state it sets at once. */
+static void start_command(jn_t *j)
+{
+	const char *m = j->mn;
+	if (!strcmp(m, "PU"))
+		j->st.pendown = 0;
+	else if (!strcmp(m, "PD"))
+		j->st.pendown = 1;
+	else if (!strcmp(m, "PA"))
+		j->st.relative = 0;
+	else if (!strcmp(m, "PR"))
+		j->st.relative = 1;
+	else if (!strcmp(m, "LB"))
+		j->in_label = 1;
+	else if (!strcmp(m, "PG"))
+		j->st.pages++;
+	else if (!strcmp(m, "IN")) {
+		unsigned long pages = j->st.pages + 1, cmds = j->st.cmds;
+		memset(&j->st, 0, sizeof j->st);
+		j->st.pos_known = 1;
+		j->st.pages = pages;
+		j->st.cmds = cmds;
+	}
+	if (!strcmp(m, "AA") || !strcmp(m, "AR") || !strcmp(m, "PE") || !strcmp(m, "LB") || !strcmp(m, "BZ"))
+		j->st.pos_known = 0;
+}
+
+static void feed(jn_t *j, unsigned char c)
+{
+	unsigned long long at = j->off++;
+	j->hash = (j->hash ^ c) * 0x100000001b3ULL;
+	if (j->ntext < sizeof j->text)
+		j->text[j->ntext++] = (char)c;
+	if (j->in_label) {
+		if (c == 3) {
+			j->in_label = 0;
+			end_command(j);
+		}
+		return;
+	}
+	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) {
+		if (j->nmn == 2) {
+			end_command(j);
+			j->text[0] = (char)c;
+			j->ntext = 1;
+		}
+		j->mn[j->nmn++] = (char)(c & ~0x20);
+		j->mn[j->nmn] = 0;
+		if (j->nmn == 2)
+			start_command(j);
+		return;
+	}
+	if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') {
+		if (j->nnum + 1 < (int)sizeof j->num)
+			j->num[j->nnum++] = (char)c;
+		return;
+	}
+	if (c == ';') {
+		end_command(j);
+		boundary(j, at + 1, 0);
+		return;
+	}
+	int pair = end_number(j);
+	if (pair && c == ',' && j->nmn == 2)
+		boundary(j, at + 1, 1);   /* within PU/PD/PA/PR, after a whole pair */
+}
+
+static void make_restore(const hstate_t *s, char *buf, size_t len)
+{
+	size_t n = 0;
+#define PUT(...) do { int w_ = snprintf(buf + n, n < len ? len - n : 0, __VA_ARGS__); if (w_ > 0) n += (size_t)w_; } while (0)
+	if (s->pen > 0)
+		PUT("SP%d;", s->pen);
+	for (size_t k = 0; k < NMODAL; k++)
+		if (s->modal[k][0])
+			PUT("%s;", s->modal[k]);
+	PUT("PU;PA%.10g,%.10g;", s->x, s->y);
+	if (s->relative)
+		PUT("PR;");
+	if (s->pendown)
+		PUT("PD;");
+	if (s->mid)
+		PUT("%s", s->cmd);
+#undef PUT
+	if (n >= len && len)
+		buf[len - 1] = 0;
+}
+
+static int save(jn_t *j, const char *state)
+{
+	char tmp[4200], restore[768];
+	if (snprintf(tmp, sizeof tmp, "%s.tmp", j->path) >= (int)sizeof tmp)
+		return -1;
+	make_restore(&j->safe_st, restore, sizeof restore);
+	FILE *f = fopen(tmp, "w");
+	if (!f)
+		return -1;
+	fprintf(f, "LOCUS-JOURNAL 1\nname %s\nstate %s\nacked %llu\nsafe %llu\nhash %016" PRIx64
+		"\npage %lu\ncommand %lu\nrestore %s\n", j->name, state, j->off, j->safe, j->safe_hash,
+		j->safe_st.pages, j->safe_st.cmds, restore);
+	if (fclose(f) != 0 || rename(tmp, j->path) != 0) {
+		remove(tmp);
+		return -1;
+	}
+	return 0;
+}
+
+static jn_t *alloc(const char *path, const char *name, char *err, size_t errlen)
+{
+	jn_t *j = calloc(1, sizeof *j);
+	if (j) {
+		j->path = strdup(path);
+		j->name = strdup(name);
+		j->hash = j->safe_hash = 0xcbf29ce484222325ULL;
+		j->st.pos_known = 1;
+		j->safe_st = j->st;
+		if (j->path && j->name)
+			return j;
+		free(j->path);
+		free(j->name);
+		free(j);
+	}
+	snprintf(err, errlen, "%s: out of memory", path);
+	errno = ENOMEM;
+	return NULL;
+}
+
+jn_t *jn_create(const char *path, const char *name, char *err, size_t errlen)
+{
+	jn_t *j = alloc(path, name, err, errlen);
+	if (j && save(j, "running")) {
+		snprintf(err, errlen, "%s: cannot write the job journal: %s", path, strerror(errno));
+		jn_close(j, 0);
+		return NULL;
+	}
+	return j;
+}
+
+jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen)
+{
+	FILE *f = fopen(path, "r");
+	if (!f) {
+		snprintf(err, errlen, "%s: cannot read the job journal: %s", path, strerror(errno));
+		return NULL;
+	}
+	jn_t *j = alloc(path, name, err, errlen);
+	char line[1024], state[32] = "";
+	int have = 0, lineno = 0, bad = 0;
+	while (j && fgets(line, sizeof line, f)) {
+		lineno++;
+		line[strcspn(line, "\n")] = 0;
+		if (lineno == 1)
+			bad |= strcmp(line, "LOCUS-JOURNAL 1") != 0;
+		else if (!strncmp(line, "safe ", 5))
+			have |= (sscanf(line + 5, "%llu", &j->skip_to) == 1) << 0;
+		else if (!strncmp(line, "hash ", 5))
+			have |= (sscanf(line + 5, "%" SCNx64, &j->want_hash) == 1) << 1;
+		else if (!strncmp(line, "restore ", 8)) {
+			snprintf(j->restore, sizeof j->restore, "%.700s", line + 8);
+			have |= 1 << 2;
+		} else if (!strncmp(line, "state ", 6))
+			snprintf(state, sizeof state, "%.30s", line + 6);
+	}
+	fclose(f);
+	if (!j)
+		return NULL;
+	if (bad || have != 7) {
+		snprintf(err, errlen, "%s:%d: not a Locus job journal (expected LOCUS-JOURNAL 1 with safe, hash "
+			"and restore lines)", path, bad ? 1 : lineno);
+		jn_close(j, 0);
+		return NULL;
+	}
+	if (!strcmp(state, "done")) {
+		snprintf(err, errlen, "%s: that job was delivered whole: nothing to resume", path);
+		jn_close(j, 0);
+		return NULL;
+	}
+	j->skipping = 1;
+	return j;
+}
+
+int jn_skipping(const jn_t *j)
+{
+	return j->skipping;
+}
+
+long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, size_t errlen)
+{
+	const unsigned char *b = p;
+	size_t k = 0;
+	*restore = NULL;
+	while (k < n && j->off < j->skip_to)
+		feed(j, b[k++]);
+	if (j->off == j->skip_to) {
+		if (j->hash != j->want_hash) {
+			snprintf(err, errlen, "the job differs from the journaled one before byte %llu: resume with "
+				"the same input and options", j->skip_to);
+			return -1;
+		}
+		j->skipping = 0;
+		*restore = j->restore;
+	}
+	return (long)k;
+}
+
+int jn_ack(jn_t *j, const void *p, size_t n)
+{
+	const unsigned char *b = p;
+	for (size_t k = 0; k < n; k++)
+		feed(j, b[k]);
+	return save(j, "running");
+}
+
+/* The program's resume command (jn_set_command), or "". */
+static char resume_cmd[1024];
+
+void jn_set_command(const char *cmd)
+{
+	snprintf(resume_cmd, sizeof resume_cmd, "%s", cmd ? cmd : "");
+}
+
+void jn_where(const jn_t *j, char *buf, size_t len)
+{
+	if (resume_cmd[0]) {
+		snprintf(buf, len, "page %lu, command %lu (byte %llu of the job) reached; resume with: %s",
+			j->safe_st.pages ? j->safe_st.pages : 1, j->safe_st.cmds, j->safe, resume_cmd);
+		return;
+	}
+	char name[600];
+	const char *q = strstr(j->name, "journal=");
+	if (q)
+		snprintf(name, sizeof name, "%.*sresume=%s", (int)(q - j->name), j->name, q + 8);
+	else
+		snprintf(name, sizeof name, "%s", j->name);
+	snprintf(buf, len, "page %lu, command %lu (byte %llu of the job) reached; resume with -o '%s'",
+		j->safe_st.pages ? j->safe_st.pages : 1, j->safe_st.cmds, j->safe, name);
+}
+
+int jn_close(jn_t *j, int done)
+{
+	int rc = 0;
+	if (!j)
+		return 0;
+	if (done)
+		rc = save(j, "done");
+	else if (!j->skipping && j->off)
+		rc = save(j, "interrupted");
+	free(j->path);
+	free(j->name);
+	free(j);
+	return rc;
+}

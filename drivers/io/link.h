@@ -1,0 +1,92 @@
+/* tr_link.h: the device links (serial:, tcp:, usb:, hid:) as transport.c calls them, and the
+ * helpers they share (not public: programs use transport.h). */
+#ifndef LOCUS_TR_LINK_H
+#define LOCUS_TR_LINK_H
+
+#include <stddef.h>
+#include "io/transport_int.h"
+
+/* tr-serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
+ * &flow=xonxoff|rtscts|escb|none&timeout=S" (termios; escb: HP-GL ESC.B pacing). */
+int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_serial_write(io_transport_t *t, const void *buf, size_t n);
+long tr_serial_read(io_transport_t *t, void *buf, size_t n);
+int tr_serial_close(io_transport_t *t);
+
+/* tr-tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
+int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_tcp_write(io_transport_t *t, const void *buf, size_t n);
+long tr_tcp_read(io_transport_t *t, void *buf, size_t n);
+int tr_tcp_close(io_transport_t *t);
+/* The bytes the peer acknowledged (SIOCOUTQ: sent less what waits in the send queue). */
+long long tr_tcp_acked(io_transport_t *t);
+/* Half-close, then wait (bounded) for the peer's close; -1 (message set) when it did not take
+ * every byte, or reset the connection before it had them all. */
+int tr_tcp_drain(io_transport_t *t);
+
+/* tr-usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
+int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_usb_write(io_transport_t *t, const void *buf, size_t n);
+long tr_usb_read(io_transport_t *t, void *buf, size_t n);
+int tr_usb_close(io_transport_t *t);
+
+/* The link's own error line, "NAME: " + the formatted words; sets failed. Returns -1. */
+int io_link_fail(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
+ * HID UART bridge through hidapi). */
+int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
+long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
+long tr_hid_read(io_transport_t *t, void *buf, size_t n);
+int tr_hid_close(io_transport_t *t);
+/* One line per attached CP2110 bridge, as --list-devices prints them. */
+void tr_hid_list(io_transport_t *out);
+
+/* io_link_fail for a failure that may pass (a device unplugged, off, busy, out of paper, a
+ * dropped connection): io_temporary() is 1 afterwards. Returns -1. */
+int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
+/* link_signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
+ * program left them at their default (nested opens count); the last one closed gives them back. */
+void tr_signals_take(void);
+void tr_signals_give(void);
+/* link_journal.c: the link took w job bytes p; the journal hears of them when the device
+ * confirms them (at once for a link without acked). 0, or -1 (message set). */
+int tr_took(io_transport_t *t, const unsigned char *p, size_t w);
+/* Feed the journal what the device has confirmed so far (links with acked). 0, or -1. */
+int tr_confirm(io_transport_t *t);
+/* A link failed mid-job: the journal brought to what the device confirmed, and its point (or,
+ * after a signal, that no journal was kept) added to the transport's line. Returns -1. */
+int tr_journal_where(io_transport_t *t);
+/* A signal arrived during the job (io_interrupted): a temporary failure "interrupted by SIGINT
+ * after N bytes" (io_errno EINTR) and -1; else 0. Links call it in every wait. */
+int tr_check_interrupt(io_transport_t *t);
+/* One "key=value" of a query string "a=1&b=2": copies them out and advances *p past the '&'.
+ * Returns 1 for a pair, 0 at the end, -1 for a malformed pair (no '=' or too long). */
+int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);
+/* Parse a whole decimal number in [lo, hi] into *out: 0, or -1. */
+int tr_parse_long(const char *s, long lo, long hi, long *out);
+/* flow=escb on a link that reads the plotter's replies (serial, HID): how it sends and asks. */
+typedef struct {
+	/* send all n bytes: 0, or -1 (message set) */
+	int (*put)(io_transport_t *t, const void *buf, size_t n);
+	/* send query q and read its number reply within ms: 0, or -1 (message set, naming what) */
+	int (*ask)(io_transport_t *t, const char *q, const char *what, long ms, long *out);
+	long bufsize;               /* the plotter's buffer (ESC.L) */
+	long timeout_ms;            /* a buffer full for this long: a temporary failure */
+} tr_escb_t;
+/* link_escb.c: send at most half the buffer of buf/n, after an ESC.B says there is room for it
+ * (*space: the last answer not yet used, or -1; waiting while there is none), then ESC.B again:
+ * its answer, read behind the chunk, confirms the chunk reached the plotter (the journal counts
+ * what this returns) and is left in *space for the next chunk. Bytes sent, or -1. */
+long tr_escb_write(io_transport_t *t, const tr_escb_t *e, long *space, const void *buf, size_t n);
+/* Milliseconds since an arbitrary start (CLOCK_MONOTONIC). */
+long long tr_now_ms(void);
+
+#endif
