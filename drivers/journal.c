@@ -350,8 +350,8 @@ int jn_close(jn_t *j, int done)
 		return 0;
 	if (done)
 		rc = save(j, "done");
-	else if (!j->skipping && j->off)
-		rc = save(j, "interrupted");
+	else if (!j->skipping)
+		rc = save(j, "interrupted");   /* even at 0: a failed job is never left "running" */
 	free(j->path);
 	free(j->name);
 	free(j);
