@@ -39,6 +39,9 @@ struct jn {
 	unsigned long long skip_to;
 	uint64_t want_hash;
 	char restore[768];
+	/* the job's language: 0 not looked at yet, 1 HP-GL, -1 refused */
+	int lang;
+	int created;                /* jn_create made the file (removed again when refused) */
 };
 
 static int positional(const char *m)
@@ -235,6 +238,8 @@ static jn_t *alloc(const char *path, const char *name, char *err, size_t errlen)
 jn_t *jn_create(const char *path, const char *name, char *err, size_t errlen)
 {
 	jn_t *j = alloc(path, name, err, errlen);
+	if (j)
+		j->created = 1;
 	if (j && save(j, "running")) {
 		snprintf(err, errlen, "%s: cannot write the job journal: %s", path, strerror(errno));
 		jn_close(j, 0);
@@ -284,6 +289,32 @@ jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen)
 	}
 	j->skipping = 1;
 	return j;
+}
+
+int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen)
+{
+	const unsigned char *b = p;
+	size_t k = 0;
+	if (j->lang)
+		return j->lang > 0 ? 0 : -1;
+	while (k < n && (b[k] == ' ' || b[k] == '\t' || b[k] == '\r' || b[k] == '\n'))
+		k++;
+	if (k == n)
+		return 0;   /* nothing but blanks yet */
+	unsigned c = b[k], d = k + 1 < n ? b[k + 1] : 0;
+	/* HP-GL begins with a mnemonic, a ';', or a device-control escape ESC . */
+	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == ';' || (c == 27 && (d == '.' || d == 0))) {
+		j->lang = 1;
+		return 0;
+	}
+	const char *what = n - k >= 5 && !memcmp(b + k, "%PDF-", 5) ? "a PDF document"
+		: n - k >= 2 && !memcmp(b + k, "%!", 2) ? "a PostScript document"
+		: c == 27 ? "a printer-language job (PCL or an escape sequence)" : "not HP-GL (a raster or binary job)";
+	j->lang = -1;
+	snprintf(err, errlen, "%s: a job journal keeps HP-GL jobs only, and this job is %s: it cannot be "
+		"resumed mid-document; nothing was sent: send it again without --journal (a failed job is "
+		"then sent again whole)", j->name, what);
+	return -1;
 }
 
 int jn_skipping(const jn_t *j)
@@ -348,7 +379,10 @@ int jn_close(jn_t *j, int done)
 	int rc = 0;
 	if (!j)
 		return 0;
-	if (done)
+	if (j->lang < 0) {
+		if (j->created)
+			remove(j->path);   /* refused before a byte went: no journal to resume */
+	} else if (done)
 		rc = save(j, "done");
 	else if (!j->skipping)
 		rc = save(j, "interrupted");   /* even at 0: a failed job is never left "running" */

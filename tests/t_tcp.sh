@@ -45,6 +45,7 @@ journal() {
 	"$EMU" --tcp --rate "${RATE:-200000}" --rcvbuf "${RCVBUF:-4096}" --pen-scale 1000 "$how" "$after" --record "$T/$f.p1" --deadline 40 -- "$H" "$@" "$m" \
 		-o "tcp:127.0.0.1:@PORT@?timeout=10" --journal "$T/$f.j" > "$T/$f.r1" 2> "$T/$f.all"
 	nowarn "$T/$f.all" "$T/$f.err"
+	cp "$T/$f.j" "$T/$f.j1"
 	took=$(word first "$T/$f.r1") acked=$(sed -n 's/^acked //p' "$T/$f.j") safe=$(sed -n 's/^safe //p' "$T/$f.j")
 	[ "$(word child "$T/$f.r1")" = 75 ] && [ "$(wc -l < "$T/$f.err")" = 1 ] && [ -n "$acked" ] && [ "$acked" -le "$took" ] \
 		&& grep -q "having taken [0-9]* of [0-9]* bytes sent.*; page [0-9]*, command [0-9]* (byte $safe of the job) reached; resume with: .*--resume $T/$f.j" "$T/$f.err" \
@@ -80,6 +81,28 @@ RCVBUF=0 journal "reset after the last byte" "$T/big.meta" "$T/big.hpgl" --reset
 [ "$(word child "$T/ps")" = 75 ] && [ "$(wc -l < "$T/ps.err")" = 1 ] && grep -q "closed the connection having taken" "$T/ps.err" \
 	&& ok "locus-ps -f ps into a printer that drops the connection: exit 75, one line: $(cat "$T/ps.err")" \
 	|| notok "locus-ps dropped: $(cat "$T/ps" "$T/ps.err")"
+
+# A journal resumes HP-GL only: locus-ps's PostScript and PDF documents with --journal are
+# refused in one line before a byte goes (no journal file left), and resuming an HP-GL journal
+# with a PostScript job sends nothing either (before, the restore PU;PA0,0; went ahead of
+# %!PS-Adobe-3.0).
+for fmt in ps pdf; do
+	rm -f "$T/lang.j"
+	"$EMU" --tcp --rate 200000 --pen-scale 1000 --deadline 30 -- "$BIN/locus-ps" -f $fmt "$META" \
+		-o "tcp:127.0.0.1:@PORT@?timeout=10" --journal "$T/lang.j" > "$T/lang" 2> "$T/lang.err"
+	c=$(word child "$T/lang")
+	[ "$c" != 0 ] && [ "$c" != 75 ] && [ "$(wc -l < "$T/lang.err")" = 1 ] && grep -q "keeps HP-GL jobs only" "$T/lang.err" \
+		&& [ "$(word received "$T/lang")" = 0 ] && [ ! -e "$T/lang.j" ] \
+		&& ok "locus-ps -f $fmt --journal: refused (exit $c), nothing sent, no journal; one line: $(cat "$T/lang.err")" \
+		|| notok "locus-ps -f $fmt --journal: exit $c, $(cat "$T/lang" "$T/lang.err"), journal: $(cat "$T/lang.j" 2>&1)"
+done
+cp "$T/drop-after-the-last-byte.j1" "$T/lang.j"
+"$EMU" --tcp --rate 200000 --pen-scale 1000 --deadline 30 -- "$BIN/locus-ps" -f ps "$META" \
+	-o "tcp:127.0.0.1:@PORT@?timeout=10" --resume "$T/lang.j" > "$T/lang" 2> "$T/lang.err"
+[ "$(word received "$T/lang")" = 0 ] && [ "$(wc -l < "$T/lang.err")" = 1 ] && grep -q "keeps HP-GL jobs only" "$T/lang.err" \
+	&& cmp -s "$T/lang.j" "$T/drop-after-the-last-byte.j1" \
+	&& ok "locus-ps -f ps --resume of an HP-GL journal: nothing sent, the journal untouched" \
+	|| notok "PostScript resumed from an HP-GL journal: $(cat "$T/lang" "$T/lang.err")"
 
 # Bad names and absent printers: one line, and what to do.
 bad 74 "no host" "tcp:" "name a host"
