@@ -39,6 +39,8 @@ struct jn {
 	unsigned long long skip_to;
 	uint64_t want_hash;
 	char restore[768];
+	unsigned long long held_to;   /* resuming: the device had the job up to here (acked) */
+	char closer[1100];            /* resuming: what ends the device's partial command, + restore */
 	/* the job's language: 0 not looked at yet, 1 HP-GL, -1 refused */
 	int lang;
 	int created;                /* jn_create made the file (removed again when refused) */
@@ -263,6 +265,8 @@ jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen)
 		line[strcspn(line, "\n")] = 0;
 		if (lineno == 1)
 			bad |= strcmp(line, "LOCUS-JOURNAL 1") != 0;
+		else if (!strncmp(line, "acked ", 6))
+			sscanf(line + 6, "%llu", &j->held_to);
 		else if (!strncmp(line, "safe ", 5))
 			have |= (sscanf(line + 5, "%llu", &j->skip_to) == 1) << 0;
 		else if (!strncmp(line, "hash ", 5))
@@ -317,6 +321,52 @@ int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen)
 	return -1;
 }
 
+/* The restore, led by what ends the command the device may hold unfinished. The device had the
+ * job up to held_to (the journal's acked count), past the safe point where the job goes on: a
+ * number, a coordinate pair, a mnemonic or a label may be half there ("PD...,-11,-1,-"). A lone
+ * terminator would leave a malformed number or an odd coordinate count, which a plotter reports
+ * as an error or completes into a stroke to a wrong point; ESC.K would discard its buffer (what
+ * it has not drawn yet), and IN would throw away state the restore does not replay. So the
+ * partial command is finished with the job's own next bytes, up to where the command may end
+ * (after a whole pair, the end of a label, before the next mnemonic), then ';': the device draws
+ * what the job would have drawn there, and the restore brings it back to the safe point (those
+ * few strokes are drawn twice, never a wrong one). rest (len bytes) is the job from the safe
+ * point. With nothing held past the safe point the closer is the ';' alone (harmless after a
+ * command or a whole pair); when the job's bytes at hand do not reach an end within 512 bytes,
+ * the ';' too. */
+static void make_closer(jn_t *j, const unsigned char *rest, size_t len)
+{
+	size_t held = j->held_to > j->off ? (size_t)(j->held_to - j->off) : 0, k = 0, end = 0;
+	int found = 0;
+	jn_t *c = malloc(sizeof *c);
+	if (c && held <= len) {
+		*c = *j;
+		for (k = 0; k < held; k++)
+			feed(c, rest[k]);
+		for (; k <= len && k < held + 512; k++) {
+			int letter = k < len && ((rest[k] >= 'A' && rest[k] <= 'Z') || (rest[k] >= 'a' && rest[k] <= 'z'));
+			/* the command may end here: nothing half-read, a positional command's pairs whole */
+			if (!c->in_label && c->nnum == 0
+				&& (c->nmn == 0 || (c->nmn == 2 && (letter || (positional(c->mn) && c->nargs == 0
+					&& (k == held || rest[k - 1] == ',')))))) {
+				found = 1;
+				end = k;
+				break;
+			}
+			if (k == len)
+				break;
+			feed(c, rest[k]);
+		}
+	}
+	free(c);
+	size_t n = 0;
+	if (found && end > held && end - held < sizeof j->closer - sizeof j->restore - 2) {
+		memcpy(j->closer, rest + held, end - held);
+		n = end - held;
+	}
+	snprintf(j->closer + n, sizeof j->closer - n, ";%s", j->restore);
+}
+
 int jn_skipping(const jn_t *j)
 {
 	return j->skipping;
@@ -336,7 +386,8 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 			return -1;
 		}
 		j->skipping = 0;
-		*restore = j->restore;
+		make_closer(j, b + k, n - k);
+		*restore = j->closer;
 	}
 	return (long)k;
 }
