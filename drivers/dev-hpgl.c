@@ -188,9 +188,8 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	double pen = h->pens.pen[h->cur_pen].width_mm * HPGL_PU_PER_MM;
 	if (!h->passes || h->line_width_pu <= pen * 1.5 || n < 2)
 		return hpgl_clip_poly(pts, n, closed, h->map.clip, add_piece, d);
-	int k = (int)ceil(h->line_width_pu / pen);
-	if (k > 64)
-		k = 64;
+	double kd = ceil(h->line_width_pu / pen);
+	int k = kd > 64 ? 64 : (int)kd;   /* compared first: a huge width is no int */
 	hpgl_dpt_t *off = malloc(2 * n * sizeof *off);
 	if (!off)
 		return -1;
@@ -475,9 +474,10 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 		return 0;
 	h->cur_pen = pen;
 	double px = h->map.pu_per_px, pw = h->pens.pen[pen].width_mm * HPGL_PU_PER_MM;
-	unsigned lines = (unsigned)lround(px / pw), step = 1;
+	double lr = px / pw < 1e6 ? round(px / pw) : 1e6, sr = pw / px < 1e6 ? round(pw / px) : 1e6;
+	unsigned lines = (unsigned)lr, step = 1;
 	if (lines == 0) {
-		step = (unsigned)lround(pw / px);
+		step = (unsigned)sr;
 		lines = 1;
 		if (y % step)
 			return 0;

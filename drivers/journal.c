@@ -13,7 +13,8 @@ static const char *const modal_cmds[] = { "IP", "SC", "IW", "VS", "LT", "PW", "S
 #define NMODAL (sizeof modal_cmds / sizeof modal_cmds[0])
 
 typedef struct {
-	int pen, pendown, relative, pos_known;
+	double pen;                 /* SP's number as sent (a double: any number the job gives) */
+	int pendown, relative, pos_known;
 	double x, y;
 	char modal[NMODAL][64];
 	char cmd[3];                /* the command a mid-command boundary lies in */
@@ -71,7 +72,7 @@ static int end_number(jn_t *j)
 	double v = strtod(j->num, NULL);
 	j->nnum = 0;
 	if (!strcmp(j->mn, "SP")) {
-		j->st.pen = (int)v;
+		j->st.pen = v;   /* no cast: an SP parameter out of int's range was undefined behaviour */
 		return 0;
 	}
 	if (!positional(j->mn))
@@ -177,16 +178,31 @@ static void feed(jn_t *j, unsigned char c)
 		boundary(j, at + 1, 1);   /* within PU/PD/PA/PR, after a whole pair */
 }
 
+/* A number as HP-GL writes it: no exponent (an 'e' would be read as a mnemonic). */
+static const char *hnum(char *b, size_t n, double v)
+{
+	if (v != v || v > 1e15 || v < -1e15)
+		snprintf(b, n, "%.0f", v != v ? 0.0 : v > 0 ? 1e15 : -1e15);
+	else if (v >= 1e9 || v <= -1e9)
+		snprintf(b, n, "%.0f", v);
+	else if (v < 1e-4 && v > -1e-4)
+		snprintf(b, n, "%.6f", v);
+	else
+		snprintf(b, n, "%.10g", v);   /* no exponent between 1e-4 and 1e9 */
+	return b;
+}
+
 static void make_restore(const hstate_t *s, char *buf, size_t len)
 {
+	char a[48], b[48];
 	size_t n = 0;
 #define PUT(...) do { int w_ = snprintf(buf + n, n < len ? len - n : 0, __VA_ARGS__); if (w_ > 0) n += (size_t)w_; } while (0)
 	if (s->pen > 0)
-		PUT("SP%d;", s->pen);
+		PUT("SP%s;", hnum(a, sizeof a, s->pen));
 	for (size_t k = 0; k < NMODAL; k++)
 		if (s->modal[k][0])
 			PUT("%s;", s->modal[k]);
-	PUT("PU;PA%.10g,%.10g;", s->x, s->y);
+	PUT("PU;PA%s,%s;", hnum(a, sizeof a, s->x), hnum(b, sizeof b, s->y));
 	if (s->relative)
 		PUT("PR;");
 	if (s->pendown)

@@ -160,6 +160,8 @@ static int on_option(cli_t *c, int key, const char *arg)
 
 static void fmt_time(char *s, size_t n, double t)
 {
+	if (!(t < 1e9))
+		t = 1e9;   /* a time beyond int (or NaN) would be undefined when cast: say 31 years */
 	if (t >= 3600)
 		snprintf(s, n, "%dh%02dm%02ds", (int)(t / 3600), (int)(t / 60) % 60, (int)t % 60);
 	else if (t >= 60)
