@@ -181,8 +181,8 @@ static void feed(jn_t *j, unsigned char c)
 /* A number as HP-GL writes it: no exponent (an 'e' would be read as a mnemonic). */
 static const char *hnum(char *b, size_t n, double v)
 {
-	if (v != v || v > 1e15 || v < -1e15)
-		snprintf(b, n, "%.0f", v != v ? 0.0 : v > 0 ? 1e15 : -1e15);
+	if (v != v || v > 1e38 || v < -1e38)
+		snprintf(b, n, "%.0f", v != v ? 0.0 : v > 0 ? 1e38 : -1e38);   /* (no such number is read) */
 	else if (v >= 1e9 || v <= -1e9)
 		snprintf(b, n, "%.0f", v);
 	else if (v < 1e-4 && v > -1e-4)

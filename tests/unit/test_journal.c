@@ -206,6 +206,22 @@ int main(void)
 		bad_text ? ": " : "", first_bad);
 	CHECK(bad_draw == 0, "the part before the point plus restore and the rest draw the whole job's %d segments once, at every cut%s%s",
 		nwhole, bad_draw ? ": " : "", draw_bad);
+	/* numbers out of int's range: SP's went through (int) (undefined; UBSan under SANITIZE=1),
+	 * and the restore wrote 1e+20, which HP-GL reads as a mnemonic */
+	{
+		static const char big[] = "IN;SP123456789012345678901;PU;PA100000000000000000000,-3;";
+		jn_t *jb = jn_create(path, "usb:03f0:0107?journal=x", err, sizeof err);
+		int okb = jb && !jn_ack(jb, big, sizeof big - 1) && !jn_close(jb, 0);
+		char line[1024] = "";
+		FILE *f = okb ? fopen(path, "r") : NULL;
+		while (f && fgets(line, sizeof line, f))
+			if (!strncmp(line, "restore ", 8))
+				break;
+		if (f)
+			fclose(f);
+		CHECK(okb && strstr(line, "SP1234567890123456") && strstr(line, "PA100000000000000000000,-3;") && !strchr(line + 8, 'e') && !strchr(line + 8, 'E'),
+			"huge SP and PA numbers: the restore writes them whole, no exponent: %s", line);
+	}
 	CHECK(bad_join == 0, "with the cut part still in the plotter, the joined bytes read cleanly (strict) and draw every segment, at every cut%s%s",
 		bad_join ? ": " : "", join_bad);
 	free(whole);
