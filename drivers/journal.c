@@ -401,6 +401,14 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 				"the same input and options", j->skip_to);
 			return -1;
 		}
+		if (j->safe != j->skip_to) {
+			snprintf(err, errlen, "the journal's point, byte %llu, is not a point where this job can go on "
+				"(after a command or a whole coordinate pair): not this job's journal", j->skip_to);
+			return -1;
+		}
+		/* the restore is the job's own state at the point (the tracker has just read the job up
+		 * to it), not the file's line: a journal edited or damaged cannot send other HP-GL */
+		make_restore(&j->safe_st, j->restore, sizeof j->restore);
 		j->skipping = 0;
 		make_closer(j, b + k, n - k);
 		*restore = j->closer;
