@@ -41,7 +41,7 @@ struct jn {
 	uint64_t want_hash;
 	char restore[768];
 	unsigned long long held_to;   /* resuming: the device had the job up to here (acked) */
-	char closer[1100];            /* resuming: what ends the device's partial command, + restore */
+	char closer[4096 + 800];      /* resuming: what ends the device's partial command, + restore */
 	/* the job's language: 0 not looked at yet, 1 HP-GL, -1 refused */
 	int lang;
 	int created;                /* jn_create made the file (removed again when refused) */
@@ -348,8 +348,8 @@ int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen)
  * what the job would have drawn there, and the restore brings it back to the safe point (those
  * few strokes are drawn twice, never a wrong one). rest (len bytes) is the job from the safe
  * point. With nothing held past the safe point the closer is the ';' alone (harmless after a
- * command or a whole pair); when the job's bytes at hand do not reach an end within 512 bytes,
- * the ';' too. */
+ * command or a whole pair); when the job's bytes at hand do not reach an end within 4096 bytes
+ * (a longer label), the ';' too. */
 static void make_closer(jn_t *j, const unsigned char *rest, size_t len)
 {
 	size_t held = j->held_to > j->off ? (size_t)(j->held_to - j->off) : 0, k = 0, end = 0;
@@ -359,7 +359,7 @@ static void make_closer(jn_t *j, const unsigned char *rest, size_t len)
 		*c = *j;
 		for (k = 0; k < held; k++)
 			feed(c, rest[k]);
-		for (; k <= len && k < held + 512; k++) {
+		for (; k <= len && k < held + 4096; k++) {
 			int letter = k < len && ((rest[k] >= 'A' && rest[k] <= 'Z') || (rest[k] >= 'a' && rest[k] <= 'z'));
 			/* the command may end here: nothing half-read, a positional command's pairs whole */
 			if (!c->in_label && c->nnum == 0
@@ -381,6 +381,11 @@ static void make_closer(jn_t *j, const unsigned char *rest, size_t len)
 		n = end - held;
 	}
 	snprintf(j->closer + n, sizeof j->closer - n, ";%s", j->restore);
+}
+
+unsigned long long jn_held(const jn_t *j)
+{
+	return j->held_to;
 }
 
 int jn_skipping(const jn_t *j)

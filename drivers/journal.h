@@ -29,6 +29,9 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
  * PDF, PCL, raster): a journal resumes HP-GL only, and refuses the others before a byte goes.
  * A journal refused so is removed at jn_close when this run created it. */
 int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen);
+/* Resume mode: the journal's acked count (how far the device had the job: the restore's closer
+ * is made from the job's bytes between the point and there). */
+unsigned long long jn_held(const jn_t *j);
 /* 1 while bytes are still to be skipped. */
 int jn_skipping(const jn_t *j);
 /* The device acknowledged the job's next n bytes p. 0, or -1 when the file cannot be written. */

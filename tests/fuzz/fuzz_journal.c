@@ -40,8 +40,10 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 	long k = 0;
 	/* the job in two pieces, as a transport's buffer may hand it over */
 	size_t first = size ? data[0] % n + 1 : n;
+	size_t piece_end = n;
 	while (off < n && jn_skipping(j)) {
 		size_t len = off < first ? first - off : n - off;
+		piece_end = off + len;
 		k = jn_skip(j, job + off, len, &restore, err, sizeof err);
 		if (k < 0)
 			break;
@@ -57,21 +59,13 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 		const char *semi = strchr(restore, ';');
 		for (size_t i = semi ? (size_t)(semi - restore) : 0; i < rl; i++)
 			FUZZ_ASSERT(restore[i] >= 32 && restore[i] < 127, "the restore has byte 0x%02x", (unsigned char)restore[i]);
-		/* the plotter holds the job up to the acked count (at least the safe point) */
-		unsigned long long acked = off;
-		const char *a = NULL;
-		for (size_t i = 0; i + 7 <= size && !a; i++)
-			if (!memcmp(data + i, "\nacked ", 7))
-				a = (const char *)data + i;
-		if (a) {
-			char num[24] = "";
-			size_t q = 0;
-			for (a += 7; q + 1 < sizeof num && a < (const char *)data + size && *a >= '0' && *a <= '9'; a++)
-				num[q++] = *a;
-			acked = strtoull(num, NULL, 10);
-		}
-		if (acked < off || acked > n)
-			acked = off;   /* the closer is made from the job's bytes only when they are at hand */
+		/* the plotter holds the job up to the acked count, when the closer could be made: the
+		 * job's bytes from the point to there at hand in the piece that ended the skip */
+		unsigned long long acked = jn_held(j);
+		if (acked < off || acked > piece_end)
+			acked = off;
+		if (restore[0] == ';' && acked > off)
+			acked = off;   /* the held command's end was not at hand (beyond the piece): no closer */
 		char *held = malloc((size_t)acked + rl + n - off + 2);
 		FUZZ_ASSERT(held, "out of memory");
 		memcpy(held, job, (size_t)acked);
