@@ -213,4 +213,16 @@ bad_case 64 "unknown option 'colour'" "unknown -O key" -O colour=red fixtures/me
 bad_case 64 "option rotate" "bad rotation" --rotate 45 fixtures/meta/f-test.meta
 bad_case 64 "pcl=yes frames HP-GL/2" "PCL framing on HP-GL" -O pcl=yes fixtures/meta/f-test.meta
 bad_case 64 "no paper" "paper the profile lacks" -O profile="$T/tiny.prof",paper=a3 fixtures/meta/f-test.meta
+# A failing run prints only its error, one line; warnings are for runs that succeed. A file
+# whose background warning comes before its error (a non-white clear, then a bad statement)
+# printed both; the same background on a good file still warns.
+printf 'LOCUS-META 1\npage 10 10\nclear #ff0000\nstroke\nmove 1 1\nfrobnicate 2 2\nend\nend-page\n' > "$T/warnbad.meta"
+"$P" "$T/warnbad.meta" -o "$T/warnbad.hpgl" 2> "$T/warnbad.err"; rc=$?
+[ $rc = 65 ] && [ "$(wc -l < "$T/warnbad.err")" = 1 ] && grep -q "warnbad.meta:6:1: expected a statement keyword" "$T/warnbad.err" \
+	&& [ ! -e "$T/warnbad.hpgl" ] && ok "a failing run with a warning before its error: exit 65, only the error: $(cat "$T/warnbad.err")" \
+	|| notok "warning before error: exit $rc: $(cat "$T/warnbad.err")"
+printf 'LOCUS-META 1\npage 10 10\nclear #ff0000\nstroke\nmove 1 1\ndraw 2 2\nend\nend-page\n' > "$T/warnok.meta"
+"$P" "$T/warnok.meta" -o "$T/warnok.hpgl" 2> "$T/warnok.err"; rc=$?
+[ $rc = 0 ] && grep -q "^locus-hpgl: warning: a non-white page background" "$T/warnok.err" \
+	&& ok "the same background on a file that succeeds still warns: $(cat "$T/warnok.err")" || notok "warning on success: exit $rc: $(cat "$T/warnok.err")"
 done_tests

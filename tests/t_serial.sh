@@ -106,6 +106,31 @@ isafe=$(sed -n 's/^safe //p' "$T/ji")
 [ "$(word child "$T/i2.r")" = 0 ] && grep -q "^state done" "$T/ji" && ok "after SIGINT, --resume completes the job" || notok "SIGINT resume: $(cat "$T/i2.r" "$T/ji")"
 parts_whole "SIGINT then --resume" "$T/job.hpgl" "$isafe" "$T/i1" "$T/i2"
 
+# The sender killed (SIGKILL: no handler runs) mid-job at 9600 baud, most likely mid-number: the
+# plotter keeps the unfinished command ("...,-11,-1,-"). The resumed job first ends it (the
+# job's own next bytes up to where the command may end, then ';'), then restores the state: the
+# bytes the plotter had plus the resumed bytes read cleanly with the HP-GL reader (strict: no
+# malformed number, no odd coordinate count), and draw every segment (none missing).
+rm -f "$T/jk"
+cat > "$T/kill.sh" <<EOF
+"$H" --no-optimize "$T/big.meta" -o "serial:\$1?baud=9600&flow=xonxoff" --journal "$T/jk" 2> /dev/null & pid=\$!
+sleep 1.2; kill -KILL \$pid; wait \$pid; echo \$? > "$T/kill.rc"
+EOF
+"$EMU" --pen-scale 1000 --record "$T/k1" -- sh "$T/kill.sh" @TTY@ > "$T/k1.r" 2>&1
+kacked=$(sed -n 's/^acked //p' "$T/jk") ksafe=$(sed -n 's/^safe //p' "$T/jk")
+"$EMU" --pen-scale 1000 --record "$T/k2" -- "$H" --no-optimize "$T/big.meta" -o "serial:@TTY@?baud=115200&flow=xonxoff" --resume "$T/jk" > "$T/k2.r" 2>&1
+head -c "$kacked" "$T/k1" > "$T/k1.held"
+cat "$T/k1.held" "$T/k2" > "$T/kjoin"
+"$SEG" "$T/kjoin" > "$T/kjoin.seg" 2> "$T/kjoin.err"; krc=$?
+sort "$T/kjoin.seg" > "$T/kjoin.sorted"
+"$H" --no-optimize "$T/big.meta" -o "$T/big.hpgl" 2>/dev/null
+"$SEG" "$T/big.hpgl" | sort > "$T/kjob.sorted"
+kmiss=$(comm -23 "$T/kjob.sorted" "$T/kjoin.sorted" | wc -l)
+[ "$(cat "$T/kill.rc")" = 137 ] && [ "$(word child "$T/k2.r")" = 0 ] && [ $krc = 0 ] && [ "$kmiss" = 0 ] \
+	&& [ "$(wc -c < "$T/k1")" -ge "$kacked" ] \
+	&& ok "SIGKILL mid-job (the plotter held '$(tail -c 12 "$T/k1.held" | tr -d '\n')' past the point $ksafe; it got $(wc -c < "$T/k1") bytes, the journal knew $kacked), resumed: the joined bytes read cleanly (strict), no segment missing ($(wc -l < "$T/kjoin.seg") drawn for $(wc -l < "$T/kjob.sorted"); resumed bytes begin '$(head -c 24 "$T/k2")')" \
+	|| notok "SIGKILL then --resume: kill rc $(cat "$T/kill.rc"), resume $(cat "$T/k2.r"), held $(wc -c < "$T/k1")/$kacked: $(cat "$T/kjoin.err") $kmiss missing; seam: $(tail -c 20 "$T/k1.held")|$(head -c 40 "$T/k2")"
+
 # Bad names, absent devices, no terminal, no permission: one line that says what to do.
 bad 74 "unknown setting" "serial:$T/tty?speed=9600" "unknown setting 'speed'"
 bad 74 "bad baud" "serial:$T/tty?baud=9601" "no standard rate"

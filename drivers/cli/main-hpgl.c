@@ -63,6 +63,11 @@ typedef struct {
 	double length;              /* --length MM, 0 = as is */
 	char profile[1024];
 	FILE *est;                  /* where the estimate goes */
+	/* what goes to stderr while the job runs (warnings, --stats, an --estimate on stderr),
+	 * held until it succeeds: a failing run prints only its one line of error */
+	FILE *held;
+	char *heldbuf;
+	size_t heldlen;
 } prog_t;
 
 static void list_profiles(void)
@@ -160,6 +165,8 @@ static int on_option(cli_t *c, int key, const char *arg)
 
 static void fmt_time(char *s, size_t n, double t)
 {
+	if (!(t < 1e9))
+		t = 1e9;   /* a time beyond int (or NaN) would be undefined when cast: say 31 years */
 	if (t >= 3600)
 		snprintf(s, n, "%dh%02dm%02ds", (int)(t / 3600), (int)(t / 60) % 60, (int)t % 60);
 	else if (t >= 60)
@@ -171,19 +178,21 @@ static void fmt_time(char *s, size_t n, double t)
 static void report(void *user, const hpgl_report_t *r)
 {
 	prog_t *p = user;
+	FILE *err = p->held ? p->held : stderr;
+	FILE *est = p->est == stderr ? err : p->est;
 	if (r->warning) {
-		fprintf(stderr, "locus-hpgl: warning: %s\n", r->warning);
+		fprintf(err, "locus-hpgl: warning: %s\n", r->warning);
 		return;
 	}
 	if (p->stats) {
-		fprintf(stderr, "locus-hpgl: page %u (%s): pen-up travel %.1f mm -> %.1f mm (greedy %.1f mm, "
+		fprintf(err, "locus-hpgl: page %u (%s): pen-up travel %.1f mm -> %.1f mm (greedy %.1f mm, "
 			"%.1fx less), %llu pen lifts, %llu pen changes, optimiser %.3f s, %llu bytes, box %.0f,%.0f,%.0f,%.0f\n",
 			r->page + 1, r->profile, r->travel_before_mm, r->travel_after_mm, r->travel_greedy_mm,
 			r->travel_after_mm > 0 ? r->travel_before_mm / r->travel_after_mm : 1.0,
 			(unsigned long long)r->pen_lifts, (unsigned long long)r->pen_changes, r->optimise_s,
 			(unsigned long long)r->bytes, r->box[0], r->box[1], r->box[2], r->box[3]);
 		for (size_t k = 0; k < r->npens; k++)
-			fprintf(stderr, "locus-hpgl:   pen %d: %zu paths -> %zu, travel %.1f mm -> %.1f mm\n",
+			fprintf(err, "locus-hpgl:   pen %d: %zu paths -> %zu, travel %.1f mm -> %.1f mm\n",
 				r->pen[k].slot, r->pen[k].paths_in, r->pen[k].paths_out, r->pen[k].travel_before_mm,
 				r->pen[k].travel_after_mm);
 	}
@@ -192,12 +201,12 @@ static void report(void *user, const hpgl_report_t *r)
 		for (size_t k = 0; k < r->npens; k++) {
 			const hpgl_time_t *q = &r->pen[k].time;
 			fmt_time(t, sizeof t, q->down_s + q->up_s + q->lift_s);
-			fprintf(p->est, "estimate page %u pen %d: %s (drawing %.0f mm in %.1f s, travel %.0f mm in %.1f s, "
+			fprintf(est, "estimate page %u pen %d: %s (drawing %.0f mm in %.1f s, travel %.0f mm in %.1f s, "
 				"%llu lifts in %.1f s)\n", r->page + 1, r->pen[k].slot, t, q->down_mm, q->down_s, q->up_mm,
 				q->up_s, (unsigned long long)q->lifts, q->lift_s);
 		}
 		fmt_time(t, sizeof t, r->plot_s);
-		fprintf(p->est, "estimate page %u total: %s (%.1f s, %llu pen changes)\n", r->page + 1, t, r->plot_s,
+		fprintf(est, "estimate page %u total: %s (%.1f s, %llu pen changes)\n", r->page + 1, t, r->plot_s,
 			(unsigned long long)r->pen_changes);
 	}
 }
@@ -288,9 +297,17 @@ int main(int argc, char **argv)
 	if (p.estimate && !c.out)
 		p.est = stdout;
 	hpgl_set_reporter(report, &p);   /* warnings always; figures with --stats/--estimate */
+	p.held = open_memstream(&p.heldbuf, &p.heldlen);   /* NULL: printed as they come */
 	dev_job_t job = { c.in[0], out, &dev_hpgl_ops, 0, 0, c.options };
 	char err[600];
 	st = dev_run(&job, err, sizeof err);
+	if (p.held) {
+		fclose(p.held);
+		p.held = NULL;
+		if (st == 0)
+			fwrite(p.heldbuf, 1, p.heldlen, stderr);   /* warnings are for runs that succeed */
+		free(p.heldbuf);
+	}
 	if (st == 65)
 		fprintf(stderr, "%s\n", err);
 	else if (st)

@@ -92,7 +92,15 @@ int devvec_stroke(dev_device_t *d, devvec_t *v, const scan_path_t *path, const d
 	dev_state_t s = *st;
 	if (s.ndash && !(caps & DEV_CAP_DASH)) {
 		scan_path_reset(&v->dashed);
-		if (scan_dash_path(path, s.dash, s.ndash, &v->dashed))
+		/* pieces only where the page can show them (with the stroke's reach: half the width,
+		 * times the miter limit, and a margin), as the raster path makes them: a dash pattern
+		 * on a line that runs far off the page costs what the page shows, not its length */
+		double lim = (double)s.miter_limit / 1000.0;
+		double reach = (double)(s.line_width < 1000 ? 1000 : s.line_width) / 2.0 * (lim > 1.5 ? lim : 1.5) + 2000.0;
+		int64_t ext = reach > 1e15 ? (int64_t)1e15 : (int64_t)reach;
+		int64_t pw = d->page ? (int64_t)d->page->width * 1000 : INT64_C(32768000);
+		int64_t ph = d->page ? (int64_t)d->page->height * 1000 : INT64_C(32768000);
+		if (scan_dash_path_box(path, s.dash, s.ndash, -ext, -ext, pw + ext, ph + ext, &v->dashed))
 			return dev_fail(d, META_ENOMEM, "out of memory");
 		path = &v->dashed;
 		elems = NULL;

@@ -1,5 +1,6 @@
 /* dash.c: the §5.3 dash walk in closed form: boundaries found by arithmetic, pieces made only
  * where they can be seen, so the work is bounded by what a band or page can show. */
+#include <string.h>
 #include "geom/scan_int.h"
 
 /* The pattern, with its prefix sums for the closed form. */
@@ -180,11 +181,79 @@ static int copy_sub(scan_path_t *out, const scan_path_t *p, const scan_subpath_t
 	return 0;
 }
 
+/* The part of p -> q inside the box (Liang-Barsky), widened by a few thousandths for the
+ * rounding of the pieces' ends. */
+static int in_box(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, double *tb)
+{
+	const double *box = user;   /* lo x, lo y, hi x, hi y */
+	double a[2] = { (double)p.x, (double)p.y }, d[2] = { (double)(q.x - p.x), (double)(q.y - p.y) };
+	double u0 = 0, u1 = 1;
+	for (int k = 0; k < 2; k++) {
+		if (d[k] == 0) {
+			if (a[k] < box[k] || a[k] > box[2 + k])
+				return 0;
+			continue;
+		}
+		double e0 = (box[k] - a[k]) / d[k], e1 = (box[2 + k] - a[k]) / d[k];
+		if (e0 > e1) {
+			double t = e0; e0 = e1; e1 = t;
+		}
+		if (e0 > u0)
+			u0 = e0;
+		if (e1 < u1)
+			u1 = e1;
+	}
+	if (u0 > u1)
+		return 0;
+	*ta = u0 * len - 16.0;
+	*tb = u1 * len + 16.0;
+	if (*ta < 0)
+		*ta = 0;
+	if (*tb > len)
+		*tb = len;
+	return 1;
+}
+
+typedef struct {
+	double box[4];
+	scan_path_t *out;
+} boxed_t;
+
+static int boxed_window(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, double *tb)
+{
+	return in_box(((boxed_t *)user)->box, p, q, len, ta, tb);
+}
+
+static int boxed_append(void *user, scan_path_t *piece)
+{
+	return append(((boxed_t *)user)->out, piece);
+}
+
+static int dash_path(const scan_path_t *p, const int64_t *dash, size_t ndash, scan_path_t *out,
+		const double *box);
+
 int scan_dash_path(const scan_path_t *p, const int64_t *dash, size_t ndash, scan_path_t *out)
+{
+	return dash_path(p, dash, ndash, out, NULL);
+}
+
+int scan_dash_path_box(const scan_path_t *p, const int64_t *dash, size_t ndash, int64_t x0, int64_t y0,
+		int64_t x1, int64_t y1, scan_path_t *out)
+{
+	double box[4] = { (double)x0, (double)y0, (double)x1, (double)y1 };
+	return dash_path(p, dash, ndash, out, box);
+}
+
+/* Every piece of p's dashes (within box when it is not NULL) appended to out. */
+static int dash_path(const scan_path_t *p, const int64_t *dash, size_t ndash, scan_path_t *out,
+		const double *box)
 {
 	int solid = !dash || ndash == 0 || scan_dash_period(dash, ndash) < SCAN_DASH_MIN_PERIOD;
 	scan_path_t dp = { 0 };
-	scan_dasher_t w = { whole, append, out };
+	boxed_t bx = { { 0, 0, 0, 0 }, out };
+	if (box)
+		memcpy(bx.box, box, sizeof bx.box);
+	scan_dasher_t w = box ? (scan_dasher_t){ boxed_window, boxed_append, &bx } : (scan_dasher_t){ whole, append, out };
 	int rc = 0;
 	for (size_t k = 0; k < p->nsubs && rc == 0; k++) {
 		const scan_subpath_t *sub = &p->subs[k];

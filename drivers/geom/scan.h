@@ -77,6 +77,10 @@ int scan_stroke_pieces(scan_ctx_t *c, const scan_path_t *p, const scan_style_t *
  * points are all equal is copied as it is: it is a dot). Stroking out solid paints what
  * stroking p dashed paints. dash: the even list in thousandths, ndash > 0. */
 int scan_dash_path(const scan_path_t *p, const int64_t *dash, size_t ndash, scan_path_t *out);
+/* scan_dash_path with the pieces made only where they meet the box x0..x1, y0..y1
+ * (thousandths; dash.c): a dashed line that runs far off the page costs what the page shows. */
+int scan_dash_path_box(const scan_path_t *p, const int64_t *dash, size_t ndash, int64_t x0, int64_t y0,
+		int64_t x1, int64_t y1, scan_path_t *out);
 /* The polygon p (subpaths implicitly closed) as horizontal hatch lines y = y0 + k * step
  * (thousandths): on each line, the intervals whose points the §5.1 rule covers, appended to out
  * as open two-point subpaths from crossing to crossing. With y0 = 500 and step = 1000 the lines

@@ -187,9 +187,8 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	double pen = h->pens.pen[h->cur_pen].width_mm * HPGL_PU_PER_MM;
 	if (!h->passes || h->line_width_pu <= pen * 1.5 || n < 2)
 		return hpgl_clip_poly(pts, n, closed, h->map.clip, add_piece, d);
-	int k = (int)ceil(h->line_width_pu / pen);
-	if (k > 64)
-		k = 64;
+	double kd = ceil(h->line_width_pu / pen);
+	int k = kd > 64 ? 64 : (int)kd;   /* compared first: a huge width is no int */
 	hpgl_dpt_t *off = malloc(2 * n * sizeof *off);
 	if (!off)
 		return -1;
@@ -224,6 +223,56 @@ static long pen_for(hpgl_dev_t *h, meta_rgb_t rgb)
 	return hpgl_pens_pick(&h->pens, rgb);
 }
 
+/* How far a stroke reaches past its line, thousandths: half the width, a margin. */
+static int64_t reach_of(const dev_state_t *st)
+{
+	return (st->line_width < 1000 ? 1000 : st->line_width) / 2 + 2000;
+}
+
+/* 1 when subpath sp of f leaves the page (with the stroke's reach). */
+static int off_page(const scan_path_t *f, const scan_subpath_t *sp, const dev_page_t *pg, const dev_state_t *st)
+{
+	int64_t r = reach_of(st), w = (int64_t)pg->width * 1000, hh = (int64_t)pg->height * 1000;
+	for (size_t i = 0; i < sp->n; i++) {
+		const scan_pt_t *q = &f->pts[sp->start + i];
+		if (q->x < -r || q->y < -r || q->x > w + r || q->y > hh + r)
+			return 1;
+	}
+	return 0;
+}
+
+/* A dashed subpath that leaves the page: its pieces made only where the page can show them
+ * (dash.c's closed-form walk, windowed), each drawn solid, so that a pattern along a line
+ * running far off the page costs what the page shows, not the line's length. */
+static int dash_on_page(dev_device_t *d, const scan_path_t *f, const scan_subpath_t *sp, const dev_state_t *st)
+{
+	hpgl_dev_t *h = d->priv;
+	scan_path_t one = { 0 }, pieces = { 0 };
+	int64_t r = reach_of(st), w = (int64_t)d->page->width * 1000, hh = (int64_t)d->page->height * 1000;
+	int rc = 0;
+	for (size_t i = 0; i < sp->n && !rc; i++) {
+		const scan_pt_t *q = &f->pts[sp->start + i];
+		rc = i ? scan_path_draw(&one, q->x, q->y) : scan_path_move(&one, q->x, q->y);
+	}
+	if (!rc && sp->closed)
+		rc = scan_path_close(&one);
+	if (!rc)
+		rc = scan_dash_path_box(&one, st->dash, st->ndash, -r, -r, w + r, hh + r, &pieces);
+	for (size_t k = 0; k < pieces.nsubs && !rc; k++) {
+		const scan_subpath_t *ps = &pieces.subs[k];
+		if (hpgl_dev_need_tmp(h, ps->n + 1)) {
+			rc = -1;
+			break;
+		}
+		for (size_t i = 0; i < ps->n; i++)
+			h->tmp[i] = (hpgl_dpt_t){ (double)pieces.pts[ps->start + i].x, (double)pieces.pts[ps->start + i].y };
+		rc = add_model(d, h->tmp, ps->n, 0);
+	}
+	scan_path_free(&one);
+	scan_path_free(&pieces);
+	return rc;
+}
+
 static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t *st, int solid)
 {
 	hpgl_dev_t *h = d->priv;
@@ -248,6 +297,8 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		int rc;
 		if (sp->n == 1)   /* a dot */
 			rc = add_model(d, (hpgl_dpt_t[]){ h->tmp[0], h->tmp[0] }, 2, 0);
+		else if (npat && d->page && off_page(f, sp, d->page, st))
+			rc = dash_on_page(d, f, sp, st);
 		else
 			rc = hpgl_dash_poly(h->tmp, sp->n, sp->closed, pat, npat, add_model, d);
 		if (rc)
@@ -422,9 +473,10 @@ static int h_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 		return 0;
 	h->cur_pen = pen;
 	double px = h->map.pu_per_px, pw = h->pens.pen[pen].width_mm * HPGL_PU_PER_MM;
-	unsigned lines = (unsigned)lround(px / pw), step = 1;
+	double lr = px / pw < 1e6 ? round(px / pw) : 1e6, sr = pw / px < 1e6 ? round(pw / px) : 1e6;
+	unsigned lines = (unsigned)lr, step = 1;
 	if (lines == 0) {
-		step = (unsigned)lround(pw / px);
+		step = (unsigned)sr;
 		lines = 1;
 		if (y % step)
 			return 0;

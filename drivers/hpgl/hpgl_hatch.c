@@ -40,7 +40,10 @@ int hatch_polygon(const double *pts, const size_t *starts, size_t ncont, int eve
 			int dir = v1 > v0 ? 1 : -1;
 			double lo = v0 < v1 ? v0 : v1, hi = v0 < v1 ? v1 : v0;
 			/* lines v = phase + m * spacing with lo <= v < hi */
-			long m0 = (long)ceil((lo - phase) / spacing), m1 = (long)ceil((hi - phase) / spacing) - 1;
+			double c0 = ceil((lo - phase) / spacing), c1 = ceil((hi - phase) / spacing) - 1;
+			if (!(c0 > -1e15 && c1 < 1e15))
+				continue;   /* no such edge on a page; a cast beyond long would be undefined */
+			long m0 = (long)c0, m1 = (long)c1;
 			for (long m = m0; m <= m1; m++) {
 				double v = phase + m * spacing;
 				if (v < lo || v >= hi)
@@ -53,7 +56,8 @@ int hatch_polygon(const double *pts, const size_t *starts, size_t ncont, int eve
 			}
 		}
 	}
-	qsort(cr, nc, sizeof *cr, cross_cmp);
+	if (nc)
+		qsort(cr, nc, sizeof *cr, cross_cmp);   /* (qsort of NULL is undefined, even for 0) */
 	int rc = 0, flip = 0;
 	for (size_t i = 0; i < nc && !rc;) {
 		size_t j = i;

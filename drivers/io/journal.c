@@ -13,7 +13,8 @@ static const char *const modal_cmds[] = { "IP", "SC", "IW", "VS", "LT", "PW", "S
 #define NMODAL (sizeof modal_cmds / sizeof modal_cmds[0])
 
 typedef struct {
-	int pen, pendown, relative, pos_known;
+	double pen;                 /* SP's number as sent (a double: any number the job gives) */
+	int pendown, relative, pos_known;
 	double x, y;
 	char modal[NMODAL][64];
 	char cmd[3];                /* the command a mid-command boundary lies in */
@@ -39,6 +40,11 @@ struct jn {
 	unsigned long long skip_to;
 	uint64_t want_hash;
 	char restore[768];
+	unsigned long long held_to;   /* resuming: the device had the job up to here (acked) */
+	char closer[4096 + 800];      /* resuming: what ends the device's partial command, + restore */
+	/* the job's language: 0 not looked at yet, 1 HP-GL, -1 refused */
+	int lang;
+	int created;                /* jn_create made the file (removed again when refused) */
 };
 
 static int positional(const char *m)
@@ -66,7 +72,7 @@ static int end_number(jn_t *j)
 	double v = strtod(j->num, NULL);
 	j->nnum = 0;
 	if (!strcmp(j->mn, "SP")) {
-		j->st.pen = (int)v;
+		j->st.pen = v;   /* no cast: an SP parameter out of int's range was undefined behaviour */
 		return 0;
 	}
 	if (!positional(j->mn))
@@ -172,16 +178,31 @@ static void feed(jn_t *j, unsigned char c)
 		boundary(j, at + 1, 1);   /* within PU/PD/PA/PR, after a whole pair */
 }
 
+/* A number as HP-GL writes it: no exponent (an 'e' would be read as a mnemonic). */
+static const char *hnum(char *b, size_t n, double v)
+{
+	if (v != v || v > 1e38 || v < -1e38)
+		snprintf(b, n, "%.0f", v != v ? 0.0 : v > 0 ? 1e38 : -1e38);   /* (no such number is read) */
+	else if (v >= 1e9 || v <= -1e9)
+		snprintf(b, n, "%.0f", v);
+	else if (v < 1e-4 && v > -1e-4)
+		snprintf(b, n, "%.6f", v);
+	else
+		snprintf(b, n, "%.10g", v);   /* no exponent between 1e-4 and 1e9 */
+	return b;
+}
+
 static void make_restore(const hstate_t *s, char *buf, size_t len)
 {
+	char a[48], b[48];
 	size_t n = 0;
 #define PUT(...) do { int w_ = snprintf(buf + n, n < len ? len - n : 0, __VA_ARGS__); if (w_ > 0) n += (size_t)w_; } while (0)
 	if (s->pen > 0)
-		PUT("SP%d;", s->pen);
+		PUT("SP%s;", hnum(a, sizeof a, s->pen));
 	for (size_t k = 0; k < NMODAL; k++)
 		if (s->modal[k][0])
 			PUT("%s;", s->modal[k]);
-	PUT("PU;PA%.10g,%.10g;", s->x, s->y);
+	PUT("PU;PA%s,%s;", hnum(a, sizeof a, s->x), hnum(b, sizeof b, s->y));
 	if (s->relative)
 		PUT("PR;");
 	if (s->pendown)
@@ -235,6 +256,8 @@ static jn_t *alloc(const char *path, const char *name, char *err, size_t errlen)
 jn_t *jn_create(const char *path, const char *name, char *err, size_t errlen)
 {
 	jn_t *j = alloc(path, name, err, errlen);
+	if (j)
+		j->created = 1;
 	if (j && save(j, "running")) {
 		snprintf(err, errlen, "%s: cannot write the job journal: %s", path, strerror(errno));
 		jn_close(j, 0);
@@ -258,6 +281,8 @@ jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen)
 		line[strcspn(line, "\n")] = 0;
 		if (lineno == 1)
 			bad |= strcmp(line, "LOCUS-JOURNAL 1") != 0;
+		else if (!strncmp(line, "acked ", 6))
+			sscanf(line + 6, "%llu", &j->held_to);
 		else if (!strncmp(line, "safe ", 5))
 			have |= (sscanf(line + 5, "%llu", &j->skip_to) == 1) << 0;
 		else if (!strncmp(line, "hash ", 5))
@@ -286,6 +311,83 @@ jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen)
 	return j;
 }
 
+int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen)
+{
+	const unsigned char *b = p;
+	size_t k = 0;
+	if (j->lang)
+		return j->lang > 0 ? 0 : -1;
+	while (k < n && (b[k] == ' ' || b[k] == '\t' || b[k] == '\r' || b[k] == '\n'))
+		k++;
+	if (k == n)
+		return 0;   /* nothing but blanks yet */
+	unsigned c = b[k], d = k + 1 < n ? b[k + 1] : 0;
+	/* HP-GL begins with a mnemonic, a ';', or a device-control escape ESC . */
+	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == ';' || (c == 27 && (d == '.' || d == 0))) {
+		j->lang = 1;
+		return 0;
+	}
+	const char *what = n - k >= 5 && !memcmp(b + k, "%PDF-", 5) ? "a PDF document"
+		: n - k >= 2 && !memcmp(b + k, "%!", 2) ? "a PostScript document"
+		: c == 27 ? "a printer-language job (PCL or an escape sequence)" : "not HP-GL (a raster or binary job)";
+	j->lang = -1;
+	snprintf(err, errlen, "%s: a job journal keeps HP-GL jobs only, and this job is %s: it cannot be "
+		"resumed mid-document; nothing was sent: send it again without --journal (a failed job is "
+		"then sent again whole)", j->name, what);
+	return -1;
+}
+
+/* The restore, led by what ends the command the device may hold unfinished. The device had the
+ * job up to held_to (the journal's acked count), past the safe point where the job goes on: a
+ * number, a coordinate pair, a mnemonic or a label may be half there ("PD...,-11,-1,-"). A lone
+ * terminator would leave a malformed number or an odd coordinate count, which a plotter reports
+ * as an error or completes into a stroke to a wrong point; ESC.K would discard its buffer (what
+ * it has not drawn yet), and IN would throw away state the restore does not replay. So the
+ * partial command is finished with the job's own next bytes, up to where the command may end
+ * (after a whole pair, the end of a label, before the next mnemonic), then ';': the device draws
+ * what the job would have drawn there, and the restore brings it back to the safe point (those
+ * few strokes are drawn twice, never a wrong one). rest (len bytes) is the job from the safe
+ * point. With nothing held past the safe point the closer is the ';' alone (harmless after a
+ * command or a whole pair); when the job's bytes at hand do not reach an end within 4096 bytes
+ * (a longer label), the ';' too. */
+static void make_closer(jn_t *j, const unsigned char *rest, size_t len)
+{
+	size_t held = j->held_to > j->off ? (size_t)(j->held_to - j->off) : 0, k = 0, end = 0;
+	int found = 0;
+	jn_t *c = malloc(sizeof *c);
+	if (c && held <= len) {
+		*c = *j;
+		for (k = 0; k < held; k++)
+			feed(c, rest[k]);
+		for (; k <= len && k < held + 4096; k++) {
+			int letter = k < len && ((rest[k] >= 'A' && rest[k] <= 'Z') || (rest[k] >= 'a' && rest[k] <= 'z'));
+			/* the command may end here: nothing half-read, a positional command's pairs whole */
+			if (!c->in_label && c->nnum == 0
+				&& (c->nmn == 0 || (c->nmn == 2 && (letter || (positional(c->mn) && c->nargs == 0
+					&& (k == held || rest[k - 1] == ',')))))) {
+				found = 1;
+				end = k;
+				break;
+			}
+			if (k == len)
+				break;
+			feed(c, rest[k]);
+		}
+	}
+	free(c);
+	size_t n = 0;
+	if (found && end > held && end - held < sizeof j->closer - sizeof j->restore - 2) {
+		memcpy(j->closer, rest + held, end - held);
+		n = end - held;
+	}
+	snprintf(j->closer + n, sizeof j->closer - n, ";%s", j->restore);
+}
+
+unsigned long long jn_held(const jn_t *j)
+{
+	return j->held_to;
+}
+
 int jn_skipping(const jn_t *j)
 {
 	return j->skipping;
@@ -304,8 +406,17 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 				"the same input and options", j->skip_to);
 			return -1;
 		}
+		if (j->safe != j->skip_to) {
+			snprintf(err, errlen, "the journal's point, byte %llu, is not a point where this job can go on "
+				"(after a command or a whole coordinate pair): not this job's journal", j->skip_to);
+			return -1;
+		}
+		/* the restore is the job's own state at the point (the tracker has just read the job up
+		 * to it), not the file's line: a journal edited or damaged cannot send other HP-GL */
+		make_restore(&j->safe_st, j->restore, sizeof j->restore);
 		j->skipping = 0;
-		*restore = j->restore;
+		make_closer(j, b + k, n - k);
+		*restore = j->closer;
 	}
 	return (long)k;
 }
@@ -348,10 +459,13 @@ int jn_close(jn_t *j, int done)
 	int rc = 0;
 	if (!j)
 		return 0;
-	if (done)
+	if (j->lang < 0) {
+		if (j->created)
+			remove(j->path);   /* refused before a byte went: no journal to resume */
+	} else if (done)
 		rc = save(j, "done");
-	else if (!j->skipping && j->off)
-		rc = save(j, "interrupted");
+	else if (!j->skipping)
+		rc = save(j, "interrupted");   /* even at 0: a failed job is never left "running" */
 	free(j->path);
 	free(j->name);
 	free(j);

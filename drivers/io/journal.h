@@ -24,6 +24,14 @@ jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen);
  * skip ends, *restore points to the state-restoring HP-GL to send first (else NULL). -1 when
  * the job differs from the journaled one (message in err). */
 long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, size_t errlen);
+/* The job's first bytes p (n of them; called before any is sent): 0 when they are HP-GL (or
+ * only blanks so far), -1 with one line in err when the job is another language (PostScript,
+ * PDF, PCL, raster): a journal resumes HP-GL only, and refuses the others before a byte goes.
+ * A journal refused so is removed at jn_close when this run created it. */
+int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen);
+/* Resume mode: the journal's acked count (how far the device had the job: the restore's closer
+ * is made from the job's bytes between the point and there). */
+unsigned long long jn_held(const jn_t *j);
 /* 1 while bytes are still to be skipped. */
 int jn_skipping(const jn_t *j);
 /* The device acknowledged the job's next n bytes p. 0, or -1 when the file cannot be written. */

@@ -49,12 +49,17 @@ static void sleep_ms(long ms)
 }
 
 /* Write all n bytes, waiting while the line is held (XOFF, CTS) up to the timeout. */
-static int put_all(io_transport_t *t, serial_t *s, const void *buf, size_t n)
+/* Write n bytes: all of them (0), or with once, those of the first write the line took (the
+ * count): the job's bytes then reach the journal as the kernel takes them, so a sender killed
+ * mid-job leaves a journal that knows what the device holds, to the byte. -1 (message set). */
+static long put_n(io_transport_t *t, serial_t *s, const void *buf, size_t n, int once)
 {
 	const unsigned char *p = buf;
 	long long last = tr_now_ms();
 	while (n > 0) {
 		ssize_t w = write(s->fd, p, n);
+		if (w > 0 && once)
+			return (long)w;
 		if (w > 0) {
 			p += w;
 			n -= (size_t)w;
@@ -77,6 +82,11 @@ static int put_all(io_transport_t *t, serial_t *s, const void *buf, size_t n)
 		poll(&pf, 1, left < 200 ? (int)left : 200);
 	}
 	return 0;
+}
+
+static int put_all(io_transport_t *t, serial_t *s, const void *buf, size_t n)
+{
+	return (int)put_n(t, s, buf, n, 0);
 }
 
 /* Read one reply terminated by CR (or LF) into buf, within ms. 0, or -1 (message set). */
@@ -335,7 +345,7 @@ long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 {
 	serial_t *s = t->link_state;
 	if (s->flow != FLOW_ESCB)
-		return put_all(t, s, buf, n) ? -1 : (long)n;
+		return put_n(t, s, buf, n, 1);
 	/* ESC.B before each chunk of at most half the buffer (link_escb.c) */
 	tr_escb_t e = { escb_put, escb_ask, s->bufsize, s->timeout_ms };
 	return tr_escb_write(t, &e, &s->space, buf, n);

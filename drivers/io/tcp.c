@@ -3,9 +3,10 @@
 #include <fcntl.h>
 #include <netdb.h>
 #include <netinet/in.h>
-#include <netinet/tcp.h>
+#include <linux/tcp.h>   /* its tcp_info has tcpi_snd_wnd (glibc's does not) */
 #include <poll.h>
 #include <signal.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +23,39 @@ typedef struct {
 	long long sent;
 	int fin;              /* the half-close went out (its FIN counts in the send queue) */
 	long long acked;      /* the last count the peer had acknowledged */
+	long long maxwnd;     /* the largest receive window the peer advertised */
+	int consumed_all;     /* the peer closed cleanly having acknowledged every byte: read it all */
 } tcp_t;
+
+/* What the peer's TCP acknowledged: sent less what waits in the send queue (SIOCOUTQ, readable
+ * after a reset too; the half-close's FIN counted out). */
+static long long tcp_acked(tcp_t *s)
+{
+	int q = 0;
+	if (ioctl(s->fd, SIOCOUTQ, &q) < 0 || q < 0)
+		return s->acked;
+	long long a = s->sent - q + s->fin;
+	if (a > s->sent)
+		a = s->sent;
+	if (a > s->acked)
+		s->acked = a;
+	return s->acked;
+}
+
+/* The peer's advertised receive window now (TCP_INFO tcpi_snd_wnd), -1 when the kernel does not
+ * say; the largest one seen is kept in maxwnd. */
+static long long tcp_window(tcp_t *s)
+{
+	struct tcp_info ti;
+	socklen_t tl = sizeof ti;
+	memset(&ti, 0, sizeof ti);
+	if (getsockopt(s->fd, IPPROTO_TCP, TCP_INFO, &ti, &tl) < 0
+		|| tl < offsetof(struct tcp_info, tcpi_snd_wnd) + sizeof ti.tcpi_snd_wnd)
+		return -1;
+	if ((long long)ti.tcpi_snd_wnd > s->maxwnd)
+		s->maxwnd = ti.tcpi_snd_wnd;
+	return ti.tcpi_snd_wnd;
+}
 
 /* Connect to one address within ms: the descriptor, or -1 with errno. */
 static int connect_one(const struct addrinfo *a, long ms)
@@ -153,7 +186,7 @@ long tr_tcp_write(io_transport_t *t, const void *buf, size_t n)
 		if (w < 0 && errno != EAGAIN && errno != EINTR) {
 			if (errno == EPIPE || errno == ECONNRESET)
 				return io_link_tempfail(t, "the printer dropped the connection having taken %lld of "
-					"%lld bytes sent", tr_tcp_acked(t), s->sent);
+					"%lld bytes sent", tcp_acked(s), s->sent);
 			return io_link_fail(t, "send failed: %s", strerror(errno));
 		}
 		if (tr_check_interrupt(t))
@@ -167,7 +200,7 @@ long tr_tcp_write(io_transport_t *t, const void *buf, size_t n)
 			g = recv(s->fd, &c, 1, MSG_PEEK | MSG_DONTWAIT);
 		if (g == 0 || (g < 0 && errno != EAGAIN && errno != EINTR))
 			return io_link_tempfail(t, "the printer closed the connection having taken %lld of %lld "
-				"bytes sent", tr_tcp_acked(t), s->sent);
+				"bytes sent", tcp_acked(s), s->sent);
 		if (r > 0 && !(pf.revents & POLLOUT))
 			sleep_brief();   /* a reply waits unread: no busy loop while the queue is full */
 		if (r == 0)
@@ -186,42 +219,48 @@ long tr_tcp_read(io_transport_t *t, void *buf, size_t n)
 	return r < 0 && errno == EAGAIN ? 0 : (long)r;
 }
 
+/* Acknowledged is not consumed: bytes the peer's TCP acknowledged may still sit unread in its
+ * receive buffer, and a printer that drops the connection (or is switched off) throws them
+ * away. What the journal may count is the conservative point: the acknowledged bytes less what
+ * the peer's receive buffer can hold. That buffer is bounded by twice the largest window the
+ * peer advertised (Linux advertises at most the buffer's free space, and keeps at least half
+ * the buffer's memory for its own overhead); when the kernel does not say, 256 KiB. Once the
+ * peer closed cleanly after acknowledging everything (a socket closed with unread data resets
+ * instead), it has read it all. */
 long long tr_tcp_acked(io_transport_t *t)
 {
 	tcp_t *s = t->link_state;
-	int q = 0;
-	/* SIOCOUTQ: what the peer has not acknowledged (after the half-close, the FIN too); it stays
-	 * readable after a reset, so the count is known after a drop as well */
-	if (ioctl(s->fd, SIOCOUTQ, &q) < 0 || q < 0)
-		return s->acked;
-	long long a = s->sent - q + s->fin;
-	if (a > s->sent)
-		a = s->sent;
-	if (a > s->acked)
-		s->acked = a;
-	return s->acked;
+	long long a = tcp_acked(s);
+	if (s->consumed_all)
+		return a;
+	long long w = tcp_window(s);
+	long long back = w < 0 && s->maxwnd == 0 ? 262144 : 2 * s->maxwnd;
+	return a > back ? a - back : 0;
 }
 
 int tr_tcp_drain(io_transport_t *t)
 {
 	tcp_t *s = t->link_state;
-	/* Half-close, then wait for the printer's close: a printer that closes has read everything
-	 * it acknowledged. A reset, or a close before the last byte was acknowledged, is a drop. */
+	/* Half-close, then wait for the printer's close: a printer that closes cleanly has read
+	 * everything (a socket closed with unread data answers with a reset). A reset or an error at
+	 * any point, even after every byte was acknowledged, is a drop: the printer may have thrown
+	 * away what waited in its buffer. */
 	if (shutdown(s->fd, SHUT_WR) == 0)
 		s->fin = 1;
 	char tmp[512];
-	int reset = 0, closed = 0;
-	long long last = tr_now_ms(), had = tr_tcp_acked(t);
+	int closed = 0, err = 0;
+	long long last = tr_now_ms(), had = tcp_acked(s);
 	for (;;) {
 		if (tr_check_interrupt(t))
 			return -1;
-		long long a = tr_tcp_acked(t);
+		long long a = tcp_acked(s);
+		tcp_window(s);
 		if (a > had)
 			had = a, last = tr_now_ms();   /* progress: the wait starts again */
 		long left = (long)(last + s->timeout_ms - tr_now_ms());
 		struct pollfd pf = { s->fd, POLLIN, 0 };
 		if (left <= 0)
-			break;   /* a printer that keeps the connection open, having it all, is no error */
+			break;
 		int r = poll(&pf, 1, left < 200 ? (int)left : 200);
 		if (r <= 0)
 			continue;
@@ -231,20 +270,33 @@ int tr_tcp_drain(io_transport_t *t)
 			break;
 		}
 		if (g < 0 && errno != EAGAIN && errno != EINTR) {
-			reset = errno == ECONNRESET || errno == EPIPE;
-			if (!reset)
-				return io_link_tempfail(t, "waiting for the printer to confirm the job: %s", strerror(errno));
+			err = errno;
 			break;
 		}
 	}
-	long long a = tr_tcp_acked(t);
-	if (a < s->sent && (reset || closed))
-		return io_link_tempfail(t, "the printer %s the connection having taken %lld of %lld "
-			"bytes sent", reset ? "dropped" : "closed", a, s->sent);
+	long long a = tcp_acked(s);
+	if (err == ECONNRESET || err == EPIPE)
+		return io_link_tempfail(t, "the printer dropped the connection having taken %lld of %lld "
+			"bytes sent%s", a, s->sent, a == s->sent ? " (a reset after the last byte: what it had "
+			"not read yet is lost)" : "");
+	if (err)
+		return io_link_tempfail(t, "waiting for the printer to confirm the job: %s", strerror(err));
 	if (a < s->sent)
-		return io_link_tempfail(t, "the printer acknowledged only %lld of %lld bytes within %ld s",
-			a, s->sent, s->timeout_ms / 1000);
-	return 0;
+		return io_link_tempfail(t, "the printer %s having taken %lld of %lld bytes sent",
+			closed ? "closed the connection" : "stopped acknowledging", a, s->sent);
+	if (closed) {
+		s->consumed_all = 1;
+		return 0;
+	}
+	/* acknowledged all, still open: taken only when its receive buffer is empty again, that is,
+	 * its window is back to the largest it advertised */
+	long long w = tcp_window(s);
+	if (w >= 0 && w >= s->maxwnd) {
+		s->consumed_all = 1;
+		return 0;
+	}
+	return io_link_tempfail(t, "the printer acknowledged all %lld bytes but did not read them "
+		"(or close the connection) within %ld s", s->sent, s->timeout_ms / 1000);
 }
 
 int tr_tcp_close(io_transport_t *t)

@@ -295,6 +295,10 @@ int io_flush(io_transport_t *t)
 	while (off < t->nbuf) {
 		if (t->link && tr_check_interrupt(t))
 			return tr_journal_where(t);
+		if (t->journal && jn_language(t->journal, t->buf + off, t->nbuf - off, t->err, sizeof t->err)) {
+			t->failed = 1;
+			return -1;
+		}
 		if (t->journal && jn_skipping(t->journal)) {
 			/* resuming: the device has these bytes; then the state is restored */
 			const char *restore;

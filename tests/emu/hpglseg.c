@@ -2,7 +2,10 @@
  * the ends in a fixed order), through the HP-GL reader, for multiset comparisons with sort:
  * pieces of a job delivered in parts must give the segments of the whole, none twice, none
  * missing. A file may end mid-command (a part cut at a journal's boundary): a trailing comma is
- * dropped and the command closed.   hpgl-segments FILE...   (exit 65 on a read error) */
+ * dropped and the command closed. A part that does not begin with a command (a resumed job
+ * begins by ending the command the plotter held unfinished: the job's next bytes up to where
+ * that command may end, then ';') is read from after its first ';', as a fresh plotter would
+ * draw it.   hpgl-segments FILE...   (exit 65 on a read error) */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,6 +30,19 @@ static int one(const char *path)
 	fclose(f);
 	if (!buf)
 		return 70;
+	size_t from = 0;
+	while (from < n && (buf[from] == ' ' || buf[from] == '\r' || buf[from] == '\n'))
+		from++;
+	int cmd = from + 1 < n && ((buf[from] | 0x20) >= 'a' && (buf[from] | 0x20) <= 'z')
+		&& ((buf[from + 1] | 0x20) >= 'a' && (buf[from + 1] | 0x20) <= 'z');
+	if (from < n && !cmd && buf[from] != 27) {
+		char *semi = memchr(buf + from, ';', n - from);
+		if (semi) {
+			from = (size_t)(semi + 1 - buf);
+			memmove(buf, buf + from, n - from);
+			n -= from;
+		}
+	}
 	while (n > 0 && buf[n - 1] == ',')
 		n--;
 	buf[n++] = ';';

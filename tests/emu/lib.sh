@@ -46,3 +46,21 @@ parts_whole() {
 		notok "$1: $(diff "$T/pw.whole" "$T/pw.parts" | head -3)"
 	fi
 }
+# parts_cover DESC WHOLE SAFE PART1 PART2: like parts_whole, for a link whose journal point is
+# conservative (tcp:): the parts draw every segment of WHOLE (none missing, compared segment by
+# segment), and what they draw twice is only the repeated window (each extra one a segment of
+# WHOLE, at most MAXREP of them: $6)
+parts_cover() {
+	safe=$3 maxrep=$6
+	head -c "$safe" "$4" > "$T/pw.cut"
+	"$SEG" "$2" | sort > "$T/pw.whole"
+	"$SEG" "$T/pw.cut" "$5" 2>/dev/null | sort > "$T/pw.parts"
+	missing=$(comm -23 "$T/pw.whole" "$T/pw.parts" | wc -l)
+	extra=$(comm -13 "$T/pw.whole" "$T/pw.parts" | wc -l)
+	foreign=$(comm -13 "$T/pw.whole" "$T/pw.parts" | sort -u | comm -23 - "$T/pw.whole" | wc -l)
+	if [ -s "$T/pw.whole" ] && [ "$missing" = 0 ] && [ "$foreign" = 0 ] && [ "$extra" -le "$maxrep" ]; then
+		ok "$1: cut at byte $safe, the parts draw all $(wc -l < "$T/pw.whole") segments, none missing; $extra drawn again (the unconfirmed window)"
+	else
+		notok "$1: $missing segments missing, $extra extra ($foreign not in the job): $(comm -3 "$T/pw.whole" "$T/pw.parts" | head -3)"
+	fi
+}

@@ -16,7 +16,9 @@
  *                   after N bytes (what its TCP already acknowledged is still taken: the
  *                   printer has it; the rest is refused with a reset); --rate B/S: the
  *                   network's byte rate; --rcvbuf N: the socket's receive buffer (4096; 0: the
- *                   system's)
+ *                   system's); --reset-after N: after reading N bytes of the first
+ *                   connection, close it at once with a reset (SO_LINGER 0), as a printer
+ *                   switched off does: what waited unread in its receive buffer is lost
  *   --hangup-after N  the line goes away (the pseudo-terminal closes) after N accepted bytes
  *   --record FILE   the HP-GL received (escapes and output instructions left out)
  *   --expect FILE   compare with this HP-GL: bytes, and strokes through the HP-GL reader
@@ -357,7 +359,7 @@ int main(int argc, char **argv)
 	e.speed = e.top = 15240;   /* 38.1 cm/s, the 7475A's top speed */
 	const char *rec_path = NULL, *expect = NULL;
 	int tcp = 0;
-	long long drop_after = -1, hangup_after = -1;
+	long long drop_after = -1, hangup_after = -1, reset_after = -1;
 	int rcvbuf = 4096;
 	double deadline = 60;
 	int i;
@@ -371,6 +373,7 @@ int main(int argc, char **argv)
 		else if (!strcmp(a, "--record")) rec_path = v, i++;
 		else if (!strcmp(a, "--expect")) expect = v, i++;
 		else if (!strcmp(a, "--drop-after")) drop_after = atoll(v), i++;
+		else if (!strcmp(a, "--reset-after")) reset_after = atoll(v), i++;
 		else if (!strcmp(a, "--hangup-after")) hangup_after = atoll(v), i++;
 		else if (!strcmp(a, "--pen-change")) e.pen_change = atof(v), i++;
 		else if (!strcmp(a, "--mute")) e.mute = 1;
@@ -499,6 +502,15 @@ int main(int argc, char **argv)
 					waitpid(pid, &status, 0);
 					exited = 1;
 					break;
+				}
+				if (tcp && reset_after >= 0 && connections == 1 && conn_bytes >= reset_after) {
+					/* switched off: the unread bytes in the socket are gone, the peer gets a reset */
+					struct linger lg = { 1, 0 };
+					setsockopt(conn, SOL_SOCKET, SO_LINGER, &lg, sizeof lg);
+					close(conn);
+					conn = -1;
+					first_bytes = conn_bytes;
+					continue;
 				}
 				if (tcp && drop_after >= 0 && connections == 1 && conn_bytes >= drop_after) {
 					/* The printer drops the first job once. Shut down first: from then on its TCP

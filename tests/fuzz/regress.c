@@ -14,6 +14,9 @@ int fuzz_entry_hpgl(const uint8_t *data, size_t size);
 int fuzz_entry_plotmeta(const uint8_t *data, size_t size);
 int fuzz_entry_imgread(const uint8_t *data, size_t size);
 int fuzz_entry_vector(const uint8_t *data, size_t size);
+int fuzz_entry_vecdash(const uint8_t *data, size_t size);
+int fuzz_entry_resume(const uint8_t *data, size_t size);
+int fuzz_entry_journal(const uint8_t *data, size_t size);
 
 static const struct {
 	const char *name;          /* harness name; regression files are named NAME-... */
@@ -29,6 +32,9 @@ static const struct {
 	{ "plotmeta", fuzz_entry_plotmeta, { "fixtures/fuzz/plotmeta", "fixtures/import", NULL } },
 	{ "imgread", fuzz_entry_imgread, { "fixtures/fuzz/imgread", NULL } },
 	{ "vector", fuzz_entry_vector, { "fixtures/meta", "fixtures/fuzz/raster", NULL } },
+	{ "vecdash", fuzz_entry_vecdash, { "fixtures/dash", "fixtures/fuzz/vecdash", NULL } },
+	{ "resume", fuzz_entry_resume, { "fixtures/fuzz/resume", NULL } },
+	{ "journal", fuzz_entry_journal, { "fixtures/fuzz/journal", NULL } },
 };
 #define NH (sizeof harness / sizeof harness[0])
 

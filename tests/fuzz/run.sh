@@ -17,6 +17,9 @@ seeds() {
 	plotmeta) echo fixtures/fuzz/plotmeta fixtures/import ;;
 	imgread) echo fixtures/fuzz/imgread ;;
 	vector) echo fixtures/meta fixtures/fuzz/raster fixtures/raster/inputs ;;
+	vecdash) echo fixtures/dash fixtures/fuzz/vecdash fixtures/meta ;;
+	resume) echo fixtures/fuzz/resume ;;
+	journal) echo fixtures/fuzz/journal ;;
 	esac
 }
 # libFuzzer reads every regular file of a corpus directory: give it only the inputs
@@ -27,7 +30,7 @@ corpus_of() {
 		for f in "$s"/*; do
 			[ -f "$f" ] || continue
 			case $1 in
-			hpgl|plotmeta|imgread)   # every input file (the corpus is copied into build/ only)
+			hpgl|plotmeta|imgread|resume|journal)   # every input file (the corpus is copied into build/ only)
 				case $f in *.md|*/goldens.txt|*.meta) continue ;; esac
 				cp "$f" "$d/$(echo "$s" | tr /. __)_$(basename "$f")"; continue ;;
 			esac
@@ -38,7 +41,7 @@ corpus_of() {
 	echo "$d"
 }
 status=0
-for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector; do
+for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector vecdash resume journal; do
 	[ -z "$FUZZ_ONLY" ] || [ "$FUZZ_ONLY" = "$h" ] || continue
 	mkdir -p "$B/corpus/$h" "$B/crash"
 	s=$(corpus_of "$h")

@@ -1,6 +1,6 @@
 # tests/mk/fuzz.mk: the libFuzzer harnesses of tests/fuzz/ (clang, `make fuzz`) and the replay of
 # their seeds and regression inputs through the normal build (test_fuzz_regress in make check).
-FUZZ_HARNESSES := meta_text meta_binary raster scene image hpgl plotmeta imgread vector
+FUZZ_HARNESSES := meta_text meta_binary raster scene image hpgl plotmeta imgread vector vecdash resume journal
 FUZZ_CC     ?= clang
 FUZZ_B      := build/fuzz
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
@@ -21,6 +21,9 @@ fuzz_src_hpgl := tests/fuzz/fuzz_hpgl.c
 fuzz_src_plotmeta := tests/fuzz/fuzz_plotmeta.c
 fuzz_src_imgread := tests/fuzz/fuzz_imgread.c
 fuzz_src_vector := tests/fuzz/fuzz_vector.c
+fuzz_src_vecdash := tests/fuzz/fuzz_vecdash.c
+fuzz_src_resume := tests/fuzz/fuzz_resume.c
+fuzz_src_journal := tests/fuzz/fuzz_journal.c
 
 .PHONY: fuzz-programs
 fuzz-programs: $(FUZZ_PROGS)
