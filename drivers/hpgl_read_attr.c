@@ -49,6 +49,9 @@ void hpgl_rd_attr_defaults(hpgl_rd_t *r, int in)
 	r->at.ft_shade = 100;
 	r->at.nonzero = 0;
 	r->at.iw = 0;
+	r->at.cs = r->at.ca = 0;   /* CS0, CA0 (DF and IN) */
+	if (in)
+		r->at.ro = 0;          /* RO0 (IN only) */
 	r->lsize = r->ldir = 0;
 	r->lsw = 0.19, r->lsh = 0.27;   /* SI defaults, cm */
 	r->ldx = 1, r->ldy = 0;
@@ -341,6 +344,9 @@ int hpgl_rd_label(hpgl_rd_t *r, const unsigned char *text, size_t len, int symbo
 	l.text = t;
 	l.len = len;
 	l.offset = r->cmd_off;
+	l.page = r->page;
+	r->page_used = 1;
+	r->rotated |= r->at.ro != 0;
 	d->labels[d->nlabels++] = l;
 	if (!symbol) {
 		/* the pen at the next character's origin; each LF moves the CR point down a line */
