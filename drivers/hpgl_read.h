@@ -92,7 +92,9 @@ typedef struct {
 /* Lay label l out as the plotter does: a fixed-pitch cell of 1.5 character widths (plus ES) per
  * character, lines 2 cap heights apart (plus ES), each portion up to a CR or LF placed by LO by
  * its own length; CR returns to the carriage-return point, LF goes a line down (the
- * carriage-return point too), BS a cell back. Calls fn (when not NULL) with each printable character and the origin
+ * carriage-return point too), BS a cell back, SO and SI select the alternate (CA) and standard
+ * (CS) character set. Calls fn (when not NULL) with each printable byte (plus 0x100 while SO is in
+ * force) and the origin
  * of its cell (plotter units); the first non-zero fn returns ends the walk and is returned.
  * *px, *py: where the pen is after the label (the next character's origin). Used by the reader
  * for the pen after LB and by the import for drawing. */

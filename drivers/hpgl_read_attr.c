@@ -294,9 +294,12 @@ int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double
 	double ex = l->crx - l->x, ey = l->cry - l->y;
 	double cu = ex * l->dx + ey * l->dy, cw = -ex * l->dy + ey * l->dx;   /* the CR point */
 	int fresh = 1;                          /* the next character starts a portion */
+	int alt = 0;                            /* SO (0x0e) selected the alternate set, SI back */
 	for (size_t i = 0; i < l->len; i++) {
 		unsigned char c = t[i];
-		if (c == '\r') {
+		if (c == 0x0e || c == 0x0f) {
+			alt = c == 0x0e;
+		} else if (c == '\r') {
 			u = cu, w = cw, ou = ow = 0, fresh = 1;
 		} else if (c == '\n') {
 			w -= lh, cw -= lh;
@@ -311,7 +314,7 @@ int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double
 				fresh = 0;
 			}
 			double a = u + ou, b = w + ow;
-			int rc = fn ? fn(user, c, l->x + a * l->dx - b * l->dy, l->y + a * l->dy + b * l->dx) : 0;
+			int rc = fn ? fn(user, c | (alt ? 0x100 : 0), l->x + a * l->dx - b * l->dy, l->y + a * l->dy + b * l->dx) : 0;
 			if (rc)
 				return rc;
 			u += cell;

@@ -89,6 +89,28 @@ imp 'IN;SP1;PU0,0;PM0;PD1000,0,1000,1000,0,1000,0,0;PM2;EP;'
 imp 'IN;SP1;PU0,0;PM0;PD1000,0,1000,1000,0,1000;PM2;FP;'
 grep -q '^fill$' "$T/t.meta" && grep -q '^close$' "$T/t.meta" && ok "FP: the same contour filled closed" || notok "FP: $(tr '\n' ' ' < "$T/t.meta")"
 
+# ---- character sets: CS / CA and SO / SI in labels --------------------------------------------
+# CA7 (the Roman extension set, Roman-8's upper half on 0x21-0x7e): "A", SO "A" (0xc1 of Roman-8,
+# e circumflex), SI "A" draws A, e, A (base letter, one warning); before, "AAA".
+lb() { printf 'IN;SP1;PU0,0;%s' "$1" > "$T/l.hpgl"; "$M" import "$T/l.hpgl" -o "$T/$2.meta" 2> "$T/$2.err"; }
+lb "CA7;LBA$(printf '\016')A$(printf '\017')A$(printf '\003');" cs7
+lb "LBAeA$(printf '\003');" cs7ref
+lb "LBAAA$(printf '\003');" cs7ascii
+cmp -s "$T/cs7.meta" "$T/cs7ref.meta" && ! cmp -s "$T/cs7.meta" "$T/cs7ascii.meta" &&
+	grep -q 'l.hpgl: byte 17: character set 7: accented letters drawn as their base letters' "$T/cs7.err" &&
+	ok "CA7 + SO: Roman-8's e circumflex drawn as e, with a warning naming the label's byte" || notok "CA7: $(cat "$T/cs7.err")"
+# CS277 (HP-GL/2's number for Roman-8): 8-bit 0xc1 0xe2 (e circumflex, a tilde) as "ea"
+lb "CS277;LB$(printf '\301\342\003');" r8
+lb "LBea$(printf '\003');" r8ref
+cmp -s "$T/r8.meta" "$T/r8ref.meta" && ok "CS277 (Roman-8): 8-bit accented letters as their base letters" || notok "CS277"
+# a symbol the stroke font has no glyph for (Roman extension 0x3b, the pound sign): the box, warned
+lb "CS7;LB$(printf ';\003');" box
+grep -q 'character set 7: a character the stroke font cannot draw, drawn as the replacement box' "$T/box.err" &&
+	ok "CS7: the pound sign drawn as the replacement box, with a warning" || notok "CS7 box: $(cat "$T/box.err")"
+# a set the import does not know (5): drawn as ASCII, with a warning
+lb "CS5;LBABC$(printf '\003');" cs5
+grep -q 'character set 5: not a set the import knows' "$T/cs5.err" && ok "CS5: unknown set drawn as ASCII with a warning" || notok "CS5: $(cat "$T/cs5.err")"
+
 # ---- the shared corpus: tolerant and strict reads agree, without a warning -------------------
 if [ ! -d ../shared/corpus/hpgl ]; then
 	echo "SKIP corpus-tolerant: ../shared/corpus absent"
