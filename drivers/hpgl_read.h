@@ -104,7 +104,7 @@ int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double
 /* A warning of a tolerant read: what was skipped, and where. */
 typedef struct {
 	size_t offset;              /* byte offset of what was skipped */
-	char msg[200];              /* "NAME: byte N: ..." */
+	char msg[400];              /* "NAME: byte N: ..." */
 } hpgl_rwarn_t;
 
 #define HPGL_MAX_WARNS 100

@@ -35,7 +35,7 @@ void hpgl_rd_warn(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 	va_end(ap);
 	hpgl_rwarn_t *w = &d->warns[d->nwarns++];
 	w->offset = off;
-	snprintf(w->msg, sizeof w->msg, "%.30s: byte %zu: %s", r->name, off, m);
+	snprintf(w->msg, sizeof w->msg, "%.200s: byte %zu: %s", r->name, off, m);
 }
 
 int hpgl_rd_nomem(hpgl_rd_t *r)
