@@ -24,8 +24,9 @@ static const char usage_text[] =
 	"       locus-meta fmt [IN] [-o OUT]\n"
 	"       locus-meta info FILE\n"
 	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
-	"       locus-meta import [IN] [-o OUT] [--pens SPEC]   (HP-GL, HP-GL/2, plotutils\n"
-	"         metafiles; SPEC the pens a file sets no PC/PW for: \"1=black:0.5mm,2=red\")\n"
+	"       locus-meta import [IN] [-o OUT] [--pens SPEC] [--strict]   (HP-GL, HP-GL/2,\n"
+	"         plotutils metafiles; SPEC the pens a file sets no PC/PW for: \"1=black:0.5mm,2=red\";\n"
+	"         --strict refuses HP-GL junk that is otherwise skipped with a warning)\n"
 	"Check, canonically format, describe or convert a Locus meta-language file\n"
 	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
 	"file is written to a new temporary beside it and renamed only when the whole\n"
@@ -336,6 +337,7 @@ static int cmd_info(const char *path)
 int main(int argc, char **argv)
 {
 	const char *in = NULL, *out = NULL, *pens = NULL, *sub;
+	int strict = 0;
 	int enc = -1, c;
 	static const struct option longopts[] = {
 		{ "help", no_argument, NULL, 'h' },
@@ -343,6 +345,7 @@ int main(int argc, char **argv)
 		{ "text", no_argument, NULL, 't' },
 		{ "binary", no_argument, NULL, 'b' },
 		{ "pens", required_argument, NULL, 'p' },
+		{ "strict", no_argument, NULL, 's' },
 		{ NULL, 0, NULL, 0 }
 	};
 	if (argc >= 2 && strcmp(argv[1], "--help") == 0) {
@@ -382,6 +385,11 @@ int main(int argc, char **argv)
 				return usage("--pens belongs to 'import'");
 			pens = optarg;
 			break;
+		case 's':   /* issue 22: import refuses what it would skip with a warning */
+			if (strcmp(sub, "import") != 0)
+				return usage("--strict belongs to 'import'");
+			strict = 1;
+			break;
 		case ':':
 			fprintf(stderr, "locus-meta: option '%s' needs an argument\n", argv[optind]);
 			return usage(NULL);
@@ -405,7 +413,7 @@ int main(int argc, char **argv)
 	if (strcmp(sub, "convert") == 0)
 		return cmd_copy(in ? in : "-", out, enc);
 	if (strcmp(sub, "import") == 0)
-		return mimp_run(in ? in : "-", out, pens);   /* drivers/import.c */
+		return mimp_run_strict(in ? in : "-", out, pens, strict);   /* drivers/import.c */
 	fprintf(stderr, "locus-meta: unknown subcommand '%s'\n", sub);
 	return usage(NULL);
 }

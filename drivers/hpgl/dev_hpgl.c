@@ -196,6 +196,8 @@ static int add_mapped(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	for (int i = 0; i < k && !rc; i++) {
 		double dist = (h->line_width_pu - pen) * (i / (double)(k - 1) - 0.5);
 		size_t m = hpgl_offset_poly(pts, n, closed, dist, off);
+		if (!closed)   /* issue 22: the passes cover round and square caps */
+			hpgl_cap_pass(off, m, h->line_cap, h->line_width_pu / 2, pen, dist);
 		rc = hpgl_clip_poly(off, m, closed, h->map.clip, add_piece, d);
 	}
 	free(off);
@@ -282,6 +284,7 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 	h->cur_pen = (size_t)pen;
 	/* width 1 (the default, and the minimum of spec 4) is a hairline: one pass of the pen */
 	h->line_width_pu = st->width <= 1000 ? 0 : st->width / 1000.0 * h->map.pu_per_px;
+	h->line_cap = st->cap;
 	double pat[2 * META_MAX_DASH];
 	size_t npat = solid || !h->dash_split ? 0 : st->ndash;
 	for (size_t k = 0; k < npat; k++)

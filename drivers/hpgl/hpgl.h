@@ -136,6 +136,12 @@ int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pa
 /* Offset a polyline sideways by dist (left positive): mitred joins (at most 4 x dist), bevelled
  * on the outer side of turns sharper than 120 degrees. Writes up to 2n points to out and returns the count. */
 size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out);
+/* The caps of one parallel pass of an open wide line: the pass at dist from the centre line
+ * (of a line of half width r, drawn by a pen of width pen, round-tipped) is lengthened at both
+ * ends along its end segments so that the pen's ink reaches the cap as the model raster draws
+ * it: square caps r beyond the ends, round caps to the circle of radius r about them
+ * (sqrt(r^2 - dist^2)), less the pen's own half width; butt caps (META_CAP_BUTT) leave it. */
+void hpgl_cap_pass(hpgl_dpt_t *pts, size_t n, int cap, double r, double pen, double dist);
 /* Drag-knife compensation: the tool path that makes a blade trailing offset behind the tool
  * cut the polyline: each segment is shifted forward along its direction by offset, and each
  * corner is swung as an arc of radius offset about the corner; a closed path is cut on for

@@ -53,6 +53,7 @@ typedef struct {
 	size_t cur_pen;             /* the pen the current primitive goes to */
 	size_t total_paths;         /* paths of the page, all pens */
 	double line_width_pu;       /* the current stroke's width, 0 = a hairline */
+	int line_cap;               /* the current stroke's cap (META_CAP_*): ends of wide passes */
 	int warned, warned_bg;
 	unsigned page_w, page_h;
 	popt_pt_t at;               /* the pen's position while writing */

@@ -5,6 +5,7 @@
 #include <string.h>
 #include "util/grow.h"
 #include "hpgl/hpgl.h"
+#include "locus_meta.h"
 
 /* A growing point buffer. */
 typedef struct {
@@ -178,6 +179,36 @@ size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist
 		}
 	}
 	return m;
+}
+
+/* Move end e of a pass (0: first point, 1: last) outward by ext along its end segment. */
+static void extend_end(hpgl_dpt_t *pts, size_t n, int e, double ext)
+{
+	hpgl_dpt_t *a = &pts[e ? n - 1 : 0];
+	for (size_t k = 1; k < n; k++) {   /* the nearest point that differs gives the direction */
+		const hpgl_dpt_t *b = &pts[e ? n - 1 - k : k];
+		double dx = a->x - b->x, dy = a->y - b->y, L = hypot(dx, dy);
+		if (L > 0) {
+			a->x += ext * dx / L;
+			a->y += ext * dy / L;
+			return;
+		}
+	}
+}
+
+void hpgl_cap_pass(hpgl_dpt_t *pts, size_t n, int cap, double r, double pen, double dist)
+{
+	double ext;
+	if (n < 2 || cap == META_CAP_BUTT)
+		return;
+	if (cap == META_CAP_SQUARE)
+		ext = r - pen / 2;
+	else   /* the chord of the cap's half disc along the pass, less the pen tip's reach */
+		ext = (fabs(dist) < r ? sqrt(r * r - dist * dist) : 0) - pen / 2;
+	if (ext <= 0)
+		return;
+	extend_end(pts, n, 0, ext);
+	extend_end(pts, n, 1, ext);
 }
 
 /* Append an arc about c of radius r from direction a0 to a1 (radians), the shorter way. */

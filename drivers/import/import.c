@@ -14,6 +14,11 @@ static int out_write(void *user, const void *buf, size_t n)
 
 int mimp_run(const char *in, const char *out, const char *pens)
 {
+	return mimp_run_strict(in, out, pens, 0);
+}
+
+int mimp_run_strict(const char *in, const char *out, const char *pens, int strict)
+{
 	char err[700];
 	io_transport_t *t = io_open_read(in, err, sizeof err);
 	if (!t) {
@@ -63,7 +68,7 @@ int mimp_run(const char *in, const char *out, const char *pens)
 	} else if (w && plotmeta_is(buf, n))
 		rc = plotmeta_import(buf, n, name, w, err, sizeof err);
 	else if (w)
-		rc = mimp_hpgl_pens(buf, n, name, 4.0, pens, w, err, sizeof err);
+		rc = mimp_hpgl_read(buf, n, name, 4.0, pens, strict, stderr, w, err, sizeof err);
 	free(buf);
 	if (w) {
 		int c = meta_writer_close(w);

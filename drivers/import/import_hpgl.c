@@ -34,6 +34,10 @@ typedef struct {
 	double def_mm;              /* pen width where the file gives none */
 	int rc;
 	const hpgl_pens_t *pens;    /* a profile's carousel: colours and widths the file leaves open */
+	size_t page;                /* the file's page (PG) being drawn */
+	FILE *warn;                 /* where warnings go (NULL: none) */
+	const char *name;
+	int cs_told[4];             /* character sets: what was told (per *how of charset_char) */
 } out_t;
 
 /* The carousel's pen in slot pen, or NULL. */
@@ -376,6 +380,49 @@ static int line(out_t *o, const hpgl_rstroke_t *st)
 	return end_path(o);
 }
 
+
+/* ---- character sets (CS, CA; SO and SI in labels) ---- */
+
+/* The upper halves (0xa0 .. 0xff) of HP Roman-8 and ISO 8859-1 as what the stroke font can draw:
+ * the same character where ASCII has it (` ^ ~ in Roman-8, the spaces, the dash), the base letter
+ * of an accented one, 0 where neither exists (currency, fractions, ligatures, guillemets ...). */
+static const char roman8_hi[97] = " AAEEEII\0`^\0~UU\0\0Yy\0CcNn\0\0\0\0\0\0\0\0aeouaeouaeouaeouAiO\0aio\0AiOUEi\0OAAaD\0IIOOOoSsUYy\0\0\0\0\0\0-\0\0\0\0\0\0\0\0\0";
+static const char latin1_hi[97] = " \0\0\0\0\0\0\0\0\0\0\0\0-\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0AAAAAA\0CEEEEIIIIDNOOOOO\0OUUUUY\0\0aaaaaa\0ceeeeiiii\0nooooo\0ouuuuy\0y";
+
+/* HP-GL character sets the import knows: 0 ANSI ASCII; 7 the Roman extension set (Roman-8's upper
+ * half on 0x21 .. 0x7e); HP-GL/2's symbol-set numbers 21 (US ASCII), 277 (Roman-8) and 14
+ * (ISO 8859-1). Byte c of set s as an ASCII character for the stroke font, or -1 (the replacement
+ * box); *how: 0 exact, 1 the base letter of an accented one, 2 none (box), 3 the set unknown. */
+static int charset_char(int s, int c, int *how)
+{
+	const char *hi = NULL;
+	*how = 0;
+	if (s == 7) {   /* 7-bit: c + 0x80 in Roman-8 */
+		if (c == ' ')
+			return c;
+		if (c < 0x21 || c > 0x7e) {
+			*how = 2;
+			return -1;
+		}
+		c += 0x80;
+		hi = roman8_hi;
+	} else if (s == 0 || s == 21 || s == 277 || s == 14) {
+		if (c >= 0x20 && c <= 0x7e)
+			return c;
+		hi = s == 277 ? roman8_hi : s == 14 ? latin1_hi : NULL;
+	} else {
+		*how = 3;
+		return c >= 0x20 && c <= 0x7e ? c : -1;
+	}
+	if (!hi || c < 0xa0 || c > 0xff || !hi[c - 0xa0]) {
+		*how = 2;
+		return -1;
+	}
+	int exact = s == 14 ? (c == 0xa0 || c == 0xad) : (c == 0xa0 || c == 0xa9 || c == 0xaa || c == 0xac || c == 0xf6);
+	*how = exact ? 0 : 1;
+	return (unsigned char)hi[c - 0xa0];
+}
+
 /* ---- labels ---- */
 
 /* One character's glyph in the cell whose origin is (x, y), sized, turned and slanted as l. */
@@ -390,6 +437,15 @@ static int glyph(void *user, int ch, double x, double y)
 	glyph_t *g = user;
 	out_t *o = g->o;
 	const hpgl_rlabel_t *l = g->l;
+	int set = ch & 0x100 ? g->a->ca : g->a->cs, how;
+	ch = charset_char(set, ch & 0xff, &how);
+	if (how && o->w && o->warn && !o->cs_told[how]) {   /* once a file for each kind */
+		o->cs_told[how] = 1;
+		fprintf(o->warn, "locus-meta: warning: %s: byte %zu: character set %d: %s\n", o->name, l->offset, set,
+			how == 1 ? "accented letters drawn as their base letters (the stroke font has no accents)" :
+			how == 2 ? "a character the stroke font cannot draw, drawn as the replacement box" :
+			"not a set the import knows, its characters drawn as ASCII");
+	}
 	if (ch == ' ')
 		return 0;
 	const char *src = scan_glyph_source(ch, NULL);
@@ -440,6 +496,10 @@ static int draw(out_t *o)
 	for (size_t k = 0; k < d->nstrokes; ) {
 		const hpgl_rstroke_t *st = &d->strokes[k];
 		size_t e = k + 1;
+		if (st->page != o->page) {
+			k = e;
+			continue;
+		}
 		if (st->kind == HPGL_RS_FILL) {
 			while (st->group && e < d->nstrokes && d->strokes[e].group == st->group &&
 					d->strokes[e].kind == HPGL_RS_FILL)
@@ -451,7 +511,8 @@ static int draw(out_t *o)
 		k = e;
 	}
 	for (size_t k = 0; k < d->nlabels; k++)
-		CK(label(o, &d->labels[k]));
+		if (d->labels[k].page == o->page)
+			CK(label(o, &d->labels[k]));
 	return 0;
 }
 
@@ -463,6 +524,54 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 
 int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
 		meta_writer_t *w, char *err, size_t errlen)
+{
+	return mimp_hpgl_read(buf, n, name, px_per_mm, pens, 1, NULL, w, err, errlen);
+}
+
+/* One page of the file (o->page) as a meta page: its extent with a margin of 2 %. */
+static int one_page(out_t *o, double px_per_mm, meta_writer_t *w)
+{
+	o->w = NULL;
+	o->bx0 = o->by0 = INFINITY, o->bx1 = o->by1 = -INFINITY;
+	o->open = 0;
+	int rc = draw(o);   /* the extent, plotter units */
+	if (rc < 0)
+		return rc;
+	double x0 = o->bx0, y0 = o->by0, x1 = o->bx1, y1 = o->by1;
+	if (!(x0 <= x1)) {   /* nothing drawn: an empty A4 landscape sheet */
+		x0 = y0 = 0;
+		x1 = 297 * 40.0, y1 = 210 * 40.0;
+	}
+	double wu = x1 - x0, hu = y1 - y0, side = fmax(fmax(wu, hu), 40.0);
+	double margin = 0.02 * side;
+	wu += 2 * margin, hu += 2 * margin;
+	x0 -= margin, y0 -= margin;
+	double s = px_per_mm / 40.0;                          /* pixels per plotter unit */
+	if (fmax(wu, hu) * s > 8000)
+		s = 8000 / fmax(wu, hu);
+	unsigned wpx = (unsigned)ceil(fmax(wu * s, 1)), hpx = (unsigned)ceil(fmax(hu * s, 1));
+	o->w = w, o->s = s, o->x0 = x0, o->y0 = y0;
+	o->width = 0;
+	o->ndash = 0;
+	o->rule = META_RULE_EVEN_ODD, o->cap = META_CAP_ROUND, o->join = META_JOIN_ROUND;
+	/* a drawing more than a kilometre across (no plotter's) keeps its picture; its size is
+	 * given as the meta file's largest, 1000000 mm */
+	double wmm = fmin(wpx / (s * 40), 1e6), hmm = fmin(hpx / (s * 40), 1e6);
+	if ((rc = meta_page(w, wpx, hpx)) < 0 || (rc = meta_page_size_mm(w, wmm, hmm)) < 0 ||
+			(rc = meta_clear(w, 0xffffff)) < 0 || (rc = meta_cap(w, META_CAP_ROUND)) < 0 ||
+			(rc = meta_join(w, META_JOIN_ROUND)) < 0)
+		return rc;
+	hpgl_rattr_t none = { .width_mm = -1 };
+	if ((rc = set_width(o, &none, -1)) < 0 || (rc = meta_fill_rule(w, META_RULE_EVEN_ODD)) < 0)
+		return rc;
+	o->colour = -1;
+	if ((rc = draw(o)) < 0 || (rc = meta_end_page(w)) < 0)
+		return rc;
+	return 0;
+}
+
+int mimp_hpgl_read(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
+		int strict, FILE *warn, meta_writer_t *w, char *err, size_t errlen)
 {
 	hpgl_pens_t *car = NULL;
 	if (pens) {
@@ -476,43 +585,23 @@ int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm
 		}
 	}
 	hpgl_doc_t d;
-	if (hpgl_read_mem(buf, n, name, &d, err, errlen)) {
+	if (hpgl_read_mem_flags(buf, n, name, strict ? 0 : HPGL_READ_TOLERANT, &d, err, errlen)) {
 		hpgl_doc_free(&d);
 		free(car);
 		return -65;
 	}
+	for (size_t k = 0; warn && k < d.nwarns; k++)
+		fprintf(warn, "locus-meta: warning: %s\n", d.warns[k].msg);
+	if (warn && d.nwarns_more)
+		fprintf(warn, "locus-meta: warning: %s: %zu more warnings\n", name, d.nwarns_more);
 	out_t o = { NULL, &d, 1, 0, 0, INFINITY, INFINITY, -INFINITY, -INFINITY, 0, -1, -1, { 0 }, 0,
-		META_RULE_EVEN_ODD, META_CAP_ROUND, META_JOIN_ROUND, d.hpgl2 ? 0.35 : 0.3, 0, car };
-	int rc = draw(&o);   /* the extent, plotter units */
-	if (rc < 0)
-		goto fail;
-	double x0 = o.bx0, y0 = o.by0, x1 = o.bx1, y1 = o.by1;
-	if (!(x0 <= x1)) {   /* nothing drawn: an empty A4 landscape sheet */
-		x0 = y0 = 0;
-		x1 = 297 * 40.0, y1 = 210 * 40.0;
+		META_RULE_EVEN_ODD, META_CAP_ROUND, META_JOIN_ROUND, d.hpgl2 ? 0.35 : 0.3, 0, car, 0, warn, name, { 0 } };
+	int rc = 0;
+	for (size_t p = 0; p < d.npages && rc >= 0; p++) {   /* PG: one meta page per plotter page */
+		o.page = p;
+		rc = one_page(&o, px_per_mm, w);
 	}
-	double wu = x1 - x0, hu = y1 - y0, side = fmax(fmax(wu, hu), 40.0);
-	double margin = 0.02 * side;
-	wu += 2 * margin, hu += 2 * margin;
-	x0 -= margin, y0 -= margin;
-	double s = px_per_mm / 40.0;                          /* pixels per plotter unit */
-	if (fmax(wu, hu) * s > 8000)
-		s = 8000 / fmax(wu, hu);
-	unsigned wpx = (unsigned)ceil(fmax(wu * s, 1)), hpx = (unsigned)ceil(fmax(hu * s, 1));
-	o.w = w, o.s = s, o.x0 = x0, o.y0 = y0;
-	o.width = 0;
-	/* a drawing more than a kilometre across (no plotter's) keeps its picture; its size is
-	 * given as the meta file's largest, 1000000 mm */
-	double wmm = fmin(wpx / (s * 40), 1e6), hmm = fmin(hpx / (s * 40), 1e6);
-	if ((rc = meta_page(w, wpx, hpx)) < 0 || (rc = meta_page_size_mm(w, wmm, hmm)) < 0 ||
-			(rc = meta_clear(w, 0xffffff)) < 0 || (rc = meta_cap(w, META_CAP_ROUND)) < 0 ||
-			(rc = meta_join(w, META_JOIN_ROUND)) < 0)
-		goto fail;
-	hpgl_rattr_t none = { .width_mm = -1 };
-	if ((rc = set_width(&o, &none, -1)) < 0 || (rc = meta_fill_rule(w, META_RULE_EVEN_ODD)) < 0)
-		goto fail;
-	o.colour = -1;
-	if ((rc = draw(&o)) < 0 || (rc = meta_end_page(w)) < 0)
+	if (rc < 0)
 		goto fail;
 	hpgl_doc_free(&d);
 	free(car);

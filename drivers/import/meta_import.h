@@ -3,6 +3,7 @@
 #define LOCUS_META_IMPORT_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include "locus_meta.h"
 
 /* Write the HP-GL or HP-GL/2 drawing buf/n (name for messages) to w as one page: plotter units
@@ -22,10 +23,19 @@ int mimp_hpgl(const void *buf, size_t n, const char *name, double px_per_mm, met
 int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
 		meta_writer_t *w, char *err, size_t errlen);
 
+/* mimp_hpgl_pens, reading strictly (strict = 1: junk between commands, unreadable parameters or
+ * PE data refused) or tolerantly (0: skipped, each with a warning line naming the byte, printed
+ * to warn when not NULL). Each PG that follows drawing starts a new meta page. */
+int mimp_hpgl_read(const void *buf, size_t n, const char *name, double px_per_mm, const char *pens,
+		int strict, FILE *warn, meta_writer_t *w, char *err, size_t errlen);
+
 /* The subcommand: import the file in (HP-GL, or a GNU plotutils metafile, portable or binary:
  * told from its content) to out (NULL: stdout) in the text form; pens (NULL: none) as
  * mimp_hpgl_pens for HP-GL (refused for a plotutils metafile, which has no pens). Prints one
  * line on failure; returns the exit status (0, 64 bad pens, 65 bad input, 66 no input, 70, 74). */
 int mimp_run(const char *in, const char *out, const char *pens);
+/* mimp_run, HP-GL read strictly (strict = 1) or tolerantly with warnings on stderr (0, the
+ * default of mimp_run). */
+int mimp_run_strict(const char *in, const char *out, const char *pens, int strict);
 
 #endif

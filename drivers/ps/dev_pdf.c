@@ -27,6 +27,20 @@ static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st
 
 /* ---- rasters ---- */
 
+/* q and the page's matrix (one unit a grid step), which everything but images is drawn in. */
+static void grid_matrix(pdf_t *s)
+{
+	pse_puts(&s->p.out, "q ");
+	pse_real(&s->p.out, s->p.sx / PSD_GRID, 8);
+	pse_puts(&s->p.out, " 0 0 ");
+	pse_real(&s->p.out, s->p.sy / PSD_GRID, 8);
+	pse_puts(&s->p.out, " ");
+	pse_real(&s->p.out, s->p.ox, 4);
+	pse_puts(&s->p.out, " ");
+	pse_real(&s->p.out, s->p.oy, 4);
+	pse_puts(&s->p.out, " cm\n");
+}
+
 static int pdf_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, meta_rgb_t rgb)
 {
 	pdf_t *s = (pdf_t *)p;
@@ -63,6 +77,9 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 	if (nz < nbest)
 		best = z, nbest = nz, filter = " /Filter /FlateDecode";
 	int rows = s->rows;
+	pdf_end_group(s);
+	psd_newline(p);
+	pse_puts(&p->out, "Q\n");   /* the grid matrix: images are placed in points (below) */
 	if ((rc = pdf_close_stream(s)))
 		goto done;
 	unsigned obj = pdf_new_obj(s);
@@ -78,8 +95,21 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 	pse_puts(&p->out, "\nendstream\nendobj\n");
 	if ((rc = pdf_open_stream(s, rows)))
 		goto done;
-	pse_printf(&p->out, "q %lld 0 0 %lld %lld %lld cm /I%zu Do Q\n", (long long)w * PSD_GRID,
-		(long long)h * PSD_GRID, (long long)x * PSD_GRID, (long long)y * PSD_GRID, s->images.n);
+	/* The image's matrix in points, not through the page's grid matrix: a reader that
+	 * multiplies matrices in single precision (MuPDF) finds 0.075 x 160 a little off 12 and
+	 * then resamples the image across pixel rows; 12 0 0 12 6 30 lands each sample on one
+	 * pixel. */
+	pse_puts(&p->out, "q ");
+	pse_real(&p->out, w * p->sx, 6);
+	pse_puts(&p->out, " 0 0 ");
+	pse_real(&p->out, h * p->sy, 6);
+	pse_puts(&p->out, " ");
+	pse_real(&p->out, p->ox + x * p->sx, 6);
+	pse_puts(&p->out, " ");
+	pse_real(&p->out, p->oy + y * p->sy, 6);
+	pse_printf(&p->out, " cm /I%zu Do Q\n", s->images.n);
+	grid_matrix(s);
+	pdf_reset_state(s);   /* the Q undid colours and line state */
 	rc = pdf_failed(s);
 done:
 	free(sm.owned);
@@ -168,15 +198,17 @@ static int pdf_begin(dev_device_t *d, const dev_page_t *pg)
 	pdf_reset_state(s);
 	if (pdf_open_stream(s, 0))
 		return dev_fail(d, META_ENOMEM, "out of memory");
-	pse_real(&s->p.out, s->p.sx / PSD_GRID, 8);
-	pse_puts(&s->p.out, " 0 0 ");
-	pse_real(&s->p.out, s->p.sy / PSD_GRID, 8);
-	pse_puts(&s->p.out, " ");
+	/* the clip of the page in points, outside the grid matrix's q ... Q (images leave it) */
+	pse_puts(&s->p.out, "/G0 gs ");
 	pse_real(&s->p.out, s->p.ox, 4);
 	pse_puts(&s->p.out, " ");
 	pse_real(&s->p.out, s->p.oy, 4);
-	pse_printf(&s->p.out, " cm /G0 gs 0 0 %lld %lld re W n\n", (long long)pg->width * PSD_GRID,
-		(long long)pg->height * PSD_GRID);
+	pse_puts(&s->p.out, " ");
+	pse_real(&s->p.out, pg->width * s->p.sx, 6);
+	pse_puts(&s->p.out, " ");
+	pse_real(&s->p.out, pg->height * s->p.sy, 6);
+	pse_puts(&s->p.out, " re W n\n");
+	grid_matrix(s);
 	return pdf_failed(s);
 }
 
@@ -186,7 +218,12 @@ static int pdf_end(dev_device_t *d, const dev_page_t *pg)
 	pse_out_t *o = &s->p.out;
 	(void)pg;
 	int rc = psd_flush(&s->p);
-	if (rc || (rc = pdf_close_stream(s)))
+	if (rc)
+		return rc;
+	pdf_end_group(s);
+	psd_newline(&s->p);
+	pse_puts(o, "Q\n");   /* the grid matrix */
+	if ((rc = pdf_close_stream(s)))
 		return rc;
 	unsigned page = pdf_new_obj(s);
 	if (!page || pdf_list_add(&s->p, &s->kids, page))

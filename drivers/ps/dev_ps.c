@@ -118,7 +118,9 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 	} else if (pick == HEX) {
 		pse_printf(o, "/picstr %zu string def\n%u %u %d [%u 0 0 -%u 0 %u]\n"
 			"{currentfile picstr readhexstring pop} %s\n", n / ih, iw, ih, sm.bpc, iw, ih, ih,
-			sm.comps == 1 ? "image" : "false 3 colorimage");
+			sm.comps == 1 ? "image" : "CI");
+		if (sm.comps == 3)
+			s->colorimage = 1;
 		pse_hex_write(o, data, n);
 	} else {
 		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
@@ -173,6 +175,12 @@ static void comments(ps_t *s, const double *box, int have)
 		pse_printf(o, "%%%%CreationDate: (%s)\n", b);
 	}
 	pse_printf(o, "%%%%LanguageLevel: %d\n", p->level);
+	/* colorimage is Level 1's CMYK extension: CI falls back to grey where it is missing, which
+	 * is no full emulation, so the document says it wants it (EPSF 3.0, section 2.2). EPS
+	 * knows whether it drew a colour image when its header is written; PostScript's header
+	 * comes first, so a colour Level 1 document declares it always. */
+	if (p->level == 1 && !p->grey && (eps ? s->colorimage : 1))
+		pse_puts(o, "%%Extensions: CMYK\n");
 	if (eps)
 		pse_puts(o, "%%Pages: 1\n");
 	if (!eps && p->media)
@@ -195,6 +203,13 @@ static void prolog_section(ps_t *s)
 	pse_printf(o, "/K {{255 div} forall %s} bind def /G {255 div setgray} bind def\n",
 		s->p.level >= 2 ? "setcolor" : "setrgbcolor");
 	pse_puts(o, prolog_tail);
+	/* CI: a colour image through colorimage, which a Level 1 interpreter has only with the CMYK
+	 * extension; without it each row of RGB samples is turned into luminance (BT.601, as
+	 * --grey) and drawn by image */
+	if (s->p.level == 1 && !s->p.grey)
+		pse_puts(o, "/CI {/colorimage where {pop false 3 colorimage} {/Lp exch def /Lg 4 index string def\n"
+			"{Lp dup length 3 idiv 0 1 3 -1 roll 1 sub {2 copy 3 mul 3 getinterval {} forall .114 mul exch\n"
+			".587 mul add exch .299 mul add round cvi Lg 3 1 roll put} for pop Lg} image} ifelse} bind def\n");
 	if (s->p.level >= 3)   /* H: draws from a binary number array (pspath.c) */
 		pse_puts(o, "/H {aload length 2 idiv {rlineto} repeat} bind def\n");
 	pse_puts(o, eps ? "%%EndProlog\n" : "end\n%%EndProlog\n");
@@ -287,6 +302,7 @@ static int ps_begin(dev_device_t *d, const dev_page_t *pg)
 		pse_set_transport(&p->out, d->out);
 		p->doc_open = 1;
 		p->doc_pages = 0;
+		s->colorimage = 0;
 		p->ddrawn = 0;
 		/* EPS: prolog and page go to a spool; the header with the box is written at the end */
 		if (p->form == PSD_EPS && pse_spool(&p->out))

@@ -17,6 +17,7 @@ typedef struct {
 	int64_t dash[2 * META_MAX_DASH];
 	size_t ndash;
 	int packed;            /* level 3: the page body is Flate-compressed and executed */
+	int colorimage;        /* level 1: a colour image was written (CI: colorimage, or grey) */
 	void *spool;           /* EPS: the body while its box is not known */
 	long long *dx;         /* pending relative draws, grid units */
 	size_t ndx, capdx;

@@ -572,10 +572,27 @@ void psd_unit(unsigned v, char *buf, size_t n)
 		snprintf(buf, n, "%s", v ? "1" : "0");
 		return;
 	}
-	snprintf(buf, n, ".%03u", (v * 1000 + 127) / 255);
-	size_t k = strlen(buf);
-	while (k > 1 && buf[k - 1] == '0')
-		buf[--k] = 0;
+	/* Readers turn the number d into a byte three ways: rounding d x 255 (Ghostscript,
+	 * poppler's splash), truncating it (MuPDF), and cairo's floor(d x 65535 + 1/2) >> 8
+	 * (pdftocairo), which truncates d x 255 x 257/256. All three give v back when
+	 * d x 255 lies in [v, v + w), w = min(1/2, (255.5 - v) / 257): 1/2 up to 127, then down
+	 * to 0.006 for 254. v/255 to three places (.188 for 48: 47.94) missed a third of the
+	 * bytes in MuPDF. Written: the fewest decimals that put a value inside the middle four
+	 * fifths of that range (a margin for readers in single precision), the one nearest its
+	 * middle. */
+	double w = fmin(0.5, (255.5 - v) / 257.0), lo = v + 0.1 * w, hi = v + 0.9 * w;
+	unsigned scale = 10;
+	for (int digits = 1; digits <= 6; digits++, scale *= 10) {
+		unsigned m = (unsigned)((v + 0.5 * w) * scale / 255 + 0.5);
+		double back = (double)m * 255 / scale;
+		if ((back >= lo && back <= hi) || digits == 6) {
+			snprintf(buf, n, ".%0*u", digits, m);
+			size_t k = strlen(buf);
+			while (k > 1 && buf[k - 1] == '0')
+				buf[--k] = 0;
+			return;
+		}
+	}
 }
 
 long long psd_grid(int64_t t)

@@ -151,7 +151,9 @@ int psd_samples(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const 
 
 /* Luminance of a colour, 0..255: (299 R + 587 G + 114 B) / 1000 rounded (ITU-R BT.601). */
 unsigned psd_luma(meta_rgb_t rgb);
-/* A colour component v/255 as the shortest decimal of three places (0, 1, .502) into buf. */
+/* A colour component v (0..255) as the shortest decimal of at most three places whose
+ * product with 255 lies in [v, v + 1/2), so that readers that round and readers that truncate
+ * both recover v (0, 1, .189 for 48) into buf. */
 void psd_unit(unsigned v, char *buf, size_t n);
 /* Round thousandths of a pixel to the grid (ties away from zero). */
 long long psd_grid(int64_t thousandths);

@@ -273,7 +273,7 @@ int main(void)
 
 	char u[16];
 	psd_unit(128, u, sizeof u);
-	CHECK_STR(u, ".502", "colour component 128 is .502");
+	CHECK_STR(u, ".503", "colour component 128 is .503 (128.27 / 255)");
 	psd_unit(255, u, sizeof u);
 	CHECK_STR(u, "1", "colour component 255 is 1");
 	int exact = 1;
@@ -283,6 +283,23 @@ int main(void)
 		exact &= (unsigned)(d + 0.5) == v;
 	}
 	CHECK(exact, "every colour component maps back to its 8-bit value");
+	/* issue 22: MuPDF truncates d x 255 (in single precision); .188 gave it 47 for 48 */
+	int trunc = 1, trunc_f = 1, cairo = 1;
+	unsigned worst = 0, worst_c = 0;
+	for (unsigned v = 0; v < 256; v++) {
+		psd_unit(v, u, sizeof u);
+		trunc &= (unsigned)(atof(u) * 255) == v;
+		float f = strtof(u, NULL) * 255.0f;
+		if ((unsigned)f != v)
+			trunc_f = 0, worst = v;
+		/* cairo (pdftocairo): a 16-bit component floor(d x 65535 + 1/2), its high byte */
+		if (((unsigned)(atof(u) * 65535 + 0.5) >> 8) != v)
+			cairo = 0, worst_c = v;
+	}
+	CHECK(trunc && trunc_f, "every colour component survives a truncating reader, double and float (fails at %u)", worst);
+	CHECK(cairo, "every colour component survives cairo's 16-bit conversion (fails at %u)", worst_c);
+	psd_unit(48, u, sizeof u);
+	CHECK(strcmp(u, ".188") && (unsigned)(atof(u) * 255) == 48, "48 is not .188 (47.94 truncated): %s", u);
 	CHECK(psd_luma(0xffffff) == 255 && psd_luma(0) == 0 && psd_luma(0xff0000) == 76 && psd_luma(0x00ff00) == 150 &&
 		psd_luma(0x0000ff) == 29, "luminance by BT.601");
 	CHECK(psd_grid(-150) == -2 && psd_grid(149) == 1 && psd_grid(150) == 2, "grid rounding, ties away from zero");

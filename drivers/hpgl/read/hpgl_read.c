@@ -303,6 +303,8 @@ static void note_unknown(hpgl_rd_t *r, const char *mn)
 	for (const char *p = d->unknown; (p = strstr(p, pat)); p += 2)
 		if ((p == d->unknown || p[-1] == ' ') && (p[2] == ' ' || p[2] == 0))
 			return;
+	if (r->tolerant)   /* the first of each mnemonic */
+		hpgl_rd_warn(r, r->cmd_off, "unknown command %s skipped with its parameters", pat);
 	size_t n = strlen(d->unknown);
 	if (n + 4 < sizeof d->unknown)
 		snprintf(d->unknown + n, sizeof d->unknown - n, "%s%s", n ? " " : "", pat);
@@ -363,7 +365,10 @@ static int command(hpgl_rd_t *r, const char mn[3])
 		r->pen = nv ? hpgl_rd_int(v[0]) : 0;
 		r->doc->pen_selects++;
 	} else if (!strcmp(mn, "IP")) {
+		r->ip_set = nv >= 2;
 		if (nv >= 2) {
+			/* only P1 given: P2 keeps its offset from P1 (the HP-GL/2 reference; hp2xx
+			 * leaves P2 where it was, which turns a circle in user units into an ellipse) */
 			double dx = r->p2x - r->p1x, dy = r->p2y - r->p1y;
 			r->p1x = v[0];
 			r->p1y = v[1];
@@ -376,12 +381,40 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			hpgl_rd_set_scaling(r, r->sc_v, r->sc_nv);
 	} else if (!strcmp(mn, "SC")) {
 		hpgl_rd_set_scaling(r, v, nv);
+	} else if (!strcmp(mn, "RO")) {
+		/* the coordinate system turned counter-clockwise on the paper (applied to what is drawn
+		 * at the end of the read); P1 and P2 not set by IP turn with the paper's sides */
+		int ro = nv ? hpgl_rd_int(v[0]) : 0;
+		ro = ((ro % 360) + 360) % 360 / 90 * 90;
+		hpgl_rd_end_stroke(r);
+		if (!r->ip_set && (ro / 90 % 2) != (r->at.ro / 90 % 2)) {
+			double t;
+			t = r->p1x, r->p1x = r->p1y, r->p1y = t;
+			t = r->p2x, r->p2x = r->p2y, r->p2y = t;
+			if (r->sc)
+				hpgl_rd_set_scaling(r, r->sc_v, r->sc_nv);
+		}
+		r->at.ro = ro;
+	} else if (!strcmp(mn, "PG")) {   /* advance the page: what follows is drawn on the next */
+		hpgl_rd_end_stroke(r);
+		r->down = 0;   /* the sheet changes under a lifted pen */
+		if (r->page_used)
+			r->page++, r->page_used = 0;
+	} else if (!strcmp(mn, "CS") || !strcmp(mn, "CA")) {
+		int set = nv ? hpgl_rd_int(v[0]) : 0;
+		if (mn[1] == 'S')
+			r->at.cs = set;
+		else
+			r->at.ca = set;
 	} else if (!strcmp(mn, "CI")) {
 		if (nv < 1)
 			return hpgl_rd_fail(r, r->cmd_off, "CI needs a radius");
-		double rad, dummy;
+		/* the radius in user units along each axis: anisotropic scaling draws an ellipse
+		 * ("anisotropic scaling may produce an ellipse", HP's PCL 5 / HP-GL/2 reference, CI) */
+		double rad, rady, dummy;
 		hpgl_rd_user_len(r, v[0], 0, &rad, &dummy);
-		return hpgl_rd_circle(r, fabs(rad), nv > 1 ? v[1] : 5, HPGL_RS_LINE);
+		hpgl_rd_user_len(r, 0, v[0], &dummy, &rady);
+		return hpgl_rd_circle(r, fabs(rad), fabs(rady), nv > 1 ? v[1] : 5, HPGL_RS_LINE);
 	} else if (!strcmp(mn, "AA") || !strcmp(mn, "AR")) {
 		if (nv < 3)
 			return hpgl_rd_fail(r, r->cmd_off, "%s needs a centre and a sweep", mn);
@@ -428,11 +461,11 @@ static int command(hpgl_rd_t *r, const char mn[3])
 	} else if (!strcmp(mn, "PW") || !strcmp(mn, "WU") || !strcmp(mn, "NP") || !strcmp(mn, "PC") ||
 			!strcmp(mn, "BP") || !strcmp(mn, "PS") || !strcmp(mn, "MC") || !strcmp(mn, "LA") ||
 			!strcmp(mn, "RF") || !strcmp(mn, "SV") || !strcmp(mn, "TR") || !strcmp(mn, "SD") ||
-			!strcmp(mn, "AD") || !strcmp(mn, "SB") || !strcmp(mn, "RO") || !strcmp(mn, "PG")) {
-		r->doc->hpgl2 |= strcmp(mn, "RO") && strcmp(mn, "PG");
+			!strcmp(mn, "AD") || !strcmp(mn, "SB")) {
+		r->doc->hpgl2 = 1;
 	} else if (!strcmp(mn, "FT") || !strcmp(mn, "PT") || !strcmp(mn, "LT") || !strcmp(mn, "IW") ||
 			!strcmp(mn, "SI") || !strcmp(mn, "SR") || !strcmp(mn, "DI") || !strcmp(mn, "DR") ||
-			!strcmp(mn, "VS") || !strcmp(mn, "LO") || !strcmp(mn, "CA") || !strcmp(mn, "CS") ||
+			!strcmp(mn, "VS") || !strcmp(mn, "LO") ||
 			!strcmp(mn, "SA") || !strcmp(mn, "SS") || !strcmp(mn, "UL") ||
 			!strcmp(mn, "FS") || !strcmp(mn, "EC") || !strcmp(mn, "OI") || !strcmp(mn, "OS") ||
 			!strcmp(mn, "OA") || !strcmp(mn, "OE") || !strcmp(mn, "OP") || !strcmp(mn, "OW") ||
@@ -449,12 +482,72 @@ static int command(hpgl_rd_t *r, const char mn[3])
 	return 0;
 }
 
+/* Quote up to 16 bytes of s[a, b) printably into q. */
+static void quote(const unsigned char *s, size_t a, size_t b, char *q, size_t n)
+{
+	size_t k = 0;
+	for (size_t i = a; i < b && i < a + 16 && k + 5 < n; i++)
+		k += (size_t)snprintf(q + k, n - k, s[i] >= 0x20 && s[i] < 0x7f && s[i] != '\\' ? "%c" : "\\x%02x", s[i]);
+	if (b > a + 16 && k + 4 < n)
+		k += (size_t)snprintf(q + k, n - k, "...");
+	q[k] = 0;
+}
+
+/* Turn a point by ro degrees counter-clockwise (a multiple of 90). */
+static void turn(int ro, double *x, double *y)
+{
+	double a = *x, b = *y;
+	if (ro == 90)
+		*x = -b, *y = a;
+	else if (ro == 180)
+		*x = -a, *y = -b;
+	else if (ro == 270)
+		*x = b, *y = -a;
+}
+
+/* RO: everything drawn under a rotation onto the paper's axes (each by the RO it was drawn with). */
+static void apply_ro(hpgl_doc_t *d)
+{
+	for (size_t k = 0; k < d->nstrokes; k++) {
+		int ro = d->attrs[d->strokes[k].attr].ro;
+		for (size_t i = 0; ro && i < d->strokes[k].n; i++)
+			turn(ro, &d->pts[d->strokes[k].start + i].x, &d->pts[d->strokes[k].start + i].y);
+	}
+	for (size_t k = 0; k < d->nlabels; k++) {
+		hpgl_rlabel_t *l = &d->labels[k];
+		int ro = d->attrs[l->attr].ro;
+		turn(ro, &l->x, &l->y);
+		turn(ro, &l->dx, &l->dy);
+		turn(ro, &l->crx, &l->cry);
+	}
+	for (size_t k = 0; k < d->nattrs; k++) {
+		hpgl_rattr_t *a = &d->attrs[k];
+		if (!a->ro)
+			continue;
+		a->ft_angle += a->ro;
+		if (a->iw) {
+			double x0 = a->iw_x0, y0 = a->iw_y0, x1 = a->iw_x1, y1 = a->iw_y1;
+			turn(a->ro, &x0, &y0);
+			turn(a->ro, &x1, &y1);
+			a->iw_x0 = fmin(x0, x1), a->iw_x1 = fmax(x0, x1);
+			a->iw_y0 = fmin(y0, y1), a->iw_y1 = fmax(y0, y1);
+		}
+	}
+}
+
 int hpgl_read_mem(const void *buf, size_t len, const char *name, hpgl_doc_t *doc, char *err,
 		size_t errlen)
+{
+	return hpgl_read_mem_flags(buf, len, name, 0, doc, err, errlen);
+}
+
+int hpgl_read_mem_flags(const void *buf, size_t len, const char *name, int flags, hpgl_doc_t *doc,
+		char *err, size_t errlen)
 {
 	memset(doc, 0, sizeof *doc);
 	hpgl_rd_t r;
 	memset(&r, 0, sizeof r);
+	r.tolerant = (flags & HPGL_READ_TOLERANT) != 0;
 	r.s = buf;
 	r.n = len;
 	r.name = name;
@@ -480,18 +573,46 @@ int hpgl_read_mem(const void *buf, size_t len, const char *name, hpgl_doc_t *doc
 			r.i++;
 			continue;
 		}
-		if (stray != SIZE_MAX) {
+		if (stray != SIZE_MAX && !r.tolerant) {
 			rc = hpgl_rd_fail(&r, stray, "expected a two-letter HP-GL command, got byte 0x%02x", r.s[stray]);
 			break;
+		}
+		if (stray != SIZE_MAX) {   /* tolerant: junk between commands, skipped */
+			char q[80];
+			quote(r.s, stray, r.i, q, sizeof q);
+			hpgl_rd_warn(&r, stray, "skipped %zu bytes that are no HP-GL command (%s)", r.i - stray, q);
+			stray = SIZE_MAX;
 		}
 		char mn[3] = { (char)toupper(c), (char)toupper(r.s[r.i + 1]), 0 };
 		r.cmd = doc->ncmds++;
 		r.cmd_off = r.i;
 		r.i += 2;
 		rc = command(&r, mn);
+		if (rc && r.tolerant && !r.nomem) {
+			/* a command that cannot be read is skipped to its ';', as a plotter goes on
+			 * at the next command */
+			size_t j = r.fail_off > r.cmd_off ? r.fail_off : r.cmd_off + 2;
+			while (j < r.n && r.s[j] != ';')
+				j++;
+			r.i = j < r.n ? j + 1 : r.n;
+			hpgl_rd_warn(&r, r.fail_off, "%s; skipped to byte %zu", r.fail_msg, r.i);
+			if (errlen)
+				err[0] = 0;
+			hpgl_rd_end_stroke(&r);
+			rc = 0;
+		}
 	}
-	if (rc == 0 && stray != SIZE_MAX)
+	if (rc == 0 && stray != SIZE_MAX) {
 		doc->trailing = r.n - stray;
+		if (r.tolerant) {
+			char q[80];
+			quote(r.s, stray, r.n, q, sizeof q);
+			hpgl_rd_warn(&r, stray, "skipped %zu trailing bytes after the last command (%s)", r.n - stray, q);
+		}
+	}
+	doc->npages = r.page + (r.page_used || !r.page);
+	if (rc == 0 && r.rotated)
+		apply_ro(doc);
 	doc->p1x = r.p1x, doc->p1y = r.p1y, doc->p2x = r.p2x, doc->p2y = r.p2y;
 	hpgl_rd_end_stroke(&r);
 	free(r.bl);

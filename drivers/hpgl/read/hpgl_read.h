@@ -51,6 +51,10 @@ typedef struct {
 	int nonzero;                /* FP's fill rule: 0 even-odd, 1 non-zero winding */
 	int iw;                     /* 1: IW clips to the window below */
 	double iw_x0, iw_y0, iw_x1, iw_y1;
+	/* added for issue 22 */
+	int ro;                     /* RO in force: 0 90 180 270 (already applied to the doc's points,
+	                             * labels, window and hatch angle: they are on the paper's axes) */
+	int cs, ca;                 /* CS / CA: the standard and alternate character sets */
 } hpgl_rattr_t;
 
 /* One stroke: a polyline of n >= 2 points drawn with one pen. */
@@ -63,6 +67,7 @@ typedef struct {
 	/* added in round 2 (the fields above are unchanged) */
 	size_t attr;                /* its attributes: doc.attrs[attr] */
 	size_t group;               /* > 0: the contours of one FP/EP polygon share it (holes) */
+	size_t page;                /* issue 22: the page (PG advances it), 0 first */
 } hpgl_rstroke_t;
 
 /* One label (LB): its text and where it starts. */
@@ -81,17 +86,28 @@ typedef struct {
 	int origin;                 /* LO: 1 .. 9, 11 .. 19 */
 	int symbol;                 /* 1: an SM symbol, centred on the point */
 	double crx, cry;            /* the carriage-return point when it began (CR goes back there) */
+	size_t page;                /* issue 22: the page (PG advances it) */
 } hpgl_rlabel_t;
 
 /* Lay label l out as the plotter does: a fixed-pitch cell of 1.5 character widths (plus ES) per
  * character, lines 2 cap heights apart (plus ES), each portion up to a CR or LF placed by LO by
  * its own length; CR returns to the carriage-return point, LF goes a line down (the
- * carriage-return point too), BS a cell back. Calls fn (when not NULL) with each printable character and the origin
+ * carriage-return point too), BS a cell back, SO and SI select the alternate (CA) and standard
+ * (CS) character set. Calls fn (when not NULL) with each printable byte (plus 0x100 while SO is in
+ * force) and the origin
  * of its cell (plotter units); the first non-zero fn returns ends the walk and is returned.
  * *px, *py: where the pen is after the label (the next character's origin). Used by the reader
  * for the pen after LB and by the import for drawing. */
 int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double x, double y),
 		void *user, double *px, double *py);
+
+/* A warning of a tolerant read: what was skipped, and where. */
+typedef struct {
+	size_t offset;              /* byte offset of what was skipped */
+	char msg[400];              /* "NAME: byte N: ..." */
+} hpgl_rwarn_t;
+
+#define HPGL_MAX_WARNS 100
 
 /* The result of a read. Read-only for the caller; free with hpgl_doc_free. */
 typedef struct {
@@ -114,6 +130,11 @@ typedef struct {
 	hpgl_rattr_t *attrs;        /* attribute sets, referred to by strokes and labels */
 	size_t nattrs, capattrs;
 	double p1x, p1y, p2x, p2y;  /* P1 and P2 at the end of the file */
+	/* added for issue 22 */
+	size_t npages;              /* pages drawn on (PG after drawing starts the next one); >= 1 */
+	hpgl_rwarn_t *warns;        /* tolerant reads: what was skipped, in file order */
+	size_t nwarns, capwarns;
+	size_t nwarns_more;         /* warnings beyond HPGL_MAX_WARNS, counted only */
 } hpgl_doc_t;
 
 /* Read len bytes of HP-GL. name is used in messages ("NAME: byte 123: ..."). Returns 0, or -1
@@ -121,6 +142,14 @@ typedef struct {
  * to the error) and must be freed. */
 int hpgl_read_mem(const void *buf, size_t len, const char *name, hpgl_doc_t *doc, char *err,
 		size_t errlen);
+/* Flags of hpgl_read_mem_flags. */
+#define HPGL_READ_TOLERANT 1   /* skip what a plotter would skip, with a warning in doc->warns:
+                                * junk between commands, a command whose parameters or PE data
+                                * cannot be read (to its ';'), trailing bytes; and warn of each
+                                * unknown mnemonic. Without it (hpgl_read_mem) those are refused. */
+/* hpgl_read_mem with flags. */
+int hpgl_read_mem_flags(const void *buf, size_t len, const char *name, int flags, hpgl_doc_t *doc,
+		char *err, size_t errlen);
 /* Read a whole stream (it is read into memory first), as hpgl_read_mem. */
 int hpgl_read_stream(FILE *f, const char *name, hpgl_doc_t *doc, char *err, size_t errlen);
 /* Free what a read allocated (the struct itself is the caller's). */

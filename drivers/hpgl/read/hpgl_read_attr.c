@@ -49,6 +49,9 @@ void hpgl_rd_attr_defaults(hpgl_rd_t *r, int in)
 	r->at.ft_shade = 100;
 	r->at.nonzero = 0;
 	r->at.iw = 0;
+	r->at.cs = r->at.ca = 0;   /* CS0, CA0 (DF and IN) */
+	if (in)
+		r->at.ro = 0;          /* RO0 (IN only) */
 	r->lsize = r->ldir = 0;
 	r->lsw = 0.19, r->lsh = 0.27;   /* SI defaults, cm */
 	r->ldx = 1, r->ldy = 0;
@@ -291,9 +294,12 @@ int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double
 	double ex = l->crx - l->x, ey = l->cry - l->y;
 	double cu = ex * l->dx + ey * l->dy, cw = -ex * l->dy + ey * l->dx;   /* the CR point */
 	int fresh = 1;                          /* the next character starts a portion */
+	int alt = 0;                            /* SO (0x0e) selected the alternate set, SI back */
 	for (size_t i = 0; i < l->len; i++) {
 		unsigned char c = t[i];
-		if (c == '\r') {
+		if (c == 0x0e || c == 0x0f) {
+			alt = c == 0x0e;
+		} else if (c == '\r') {
 			u = cu, w = cw, ou = ow = 0, fresh = 1;
 		} else if (c == '\n') {
 			w -= lh, cw -= lh;
@@ -308,7 +314,7 @@ int hpgl_label_walk(const hpgl_rlabel_t *l, int (*fn)(void *user, int ch, double
 				fresh = 0;
 			}
 			double a = u + ou, b = w + ow;
-			int rc = fn ? fn(user, c, l->x + a * l->dx - b * l->dy, l->y + a * l->dy + b * l->dx) : 0;
+			int rc = fn ? fn(user, c | (alt ? 0x100 : 0), l->x + a * l->dx - b * l->dy, l->y + a * l->dy + b * l->dx) : 0;
 			if (rc)
 				return rc;
 			u += cell;
@@ -341,6 +347,9 @@ int hpgl_rd_label(hpgl_rd_t *r, const unsigned char *text, size_t len, int symbo
 	l.text = t;
 	l.len = len;
 	l.offset = r->cmd_off;
+	l.page = r->page;
+	r->page_used = 1;
+	r->rotated |= r->at.ro != 0;
 	d->labels[d->nlabels++] = l;
 	if (!symbol) {
 		/* the pen at the next character's origin; each LF moves the CR point down a line */

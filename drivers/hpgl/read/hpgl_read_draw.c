@@ -37,7 +37,9 @@ int hpgl_rd_begin_stroke(hpgl_rd_t *r, int kind)
 	size_t a = hpgl_rd_attr(r);
 	if (a == (size_t)-1)
 		return -1;
-	d->strokes[d->nstrokes++] = (hpgl_rstroke_t){ r->pen, kind, d->npts, 0, r->cmd, r->cmd_off, a, r->group };
+	d->strokes[d->nstrokes++] = (hpgl_rstroke_t){ r->pen, kind, d->npts, 0, r->cmd, r->cmd_off, a, r->group, r->page };
+	r->page_used = 1;
+	r->rotated |= r->at.ro != 0;
 	r->open = 1;
 	return hpgl_rd_add_pt(r, r->x, r->y);
 }
@@ -130,15 +132,30 @@ int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0
 	chord = hpgl_rd_chord(chord);
 	double steps = ceil(fabs(sweep) / chord);
 	int n = steps > 100000 ? 100000 : steps < 1 ? 1 : (int)steps;
+	/* the arc is round in user units: under anisotropic scaling (SC) it is an ellipse in
+	 * plotter units, as HP's manuals say of CI; a0 and rad are then taken in user units */
+	double kx = 1, ky = 1;
+	if (r->sc) {
+		double t;
+		hpgl_rd_user_len(r, 1, 0, &kx, &t);
+		hpgl_rd_user_len(r, 0, 1, &t, &ky);
+		if (kx != 0 && ky != 0 && fabs(kx) != fabs(ky)) {
+			double u = (r->x - cx) / kx, v = (r->y - cy) / ky;
+			rad = hypot(u, v);
+			a0 = atan2(v, u);
+		} else {
+			kx = ky = 1;
+		}
+	}
 	for (int k = 1; k <= n; k++) {
 		double a = a0 + sweep * M_PI / 180 * k / n;
-		if (hpgl_rd_move_to(r, cx + rad * cos(a), cy + rad * sin(a)))
+		if (hpgl_rd_move_to(r, cx + kx * rad * cos(a), cy + ky * rad * sin(a)))
 			return -1;
 	}
 	return 0;
 }
 
-int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind)
+int hpgl_rd_circle(hpgl_rd_t *r, double rad, double rady, double chord, int kind)
 {
 	chord = hpgl_rd_chord(chord);
 	int n = (int)ceil(360 / chord);
@@ -146,7 +163,7 @@ int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind)
 	if (!p)
 		return hpgl_rd_nomem(r);
 	for (int k = 0; k <= n; k++)
-		p[k] = (hpgl_rpt_t){ r->x + rad * cos(2 * M_PI * k / n), r->y + rad * sin(2 * M_PI * k / n) };
+		p[k] = (hpgl_rpt_t){ r->x + rad * cos(2 * M_PI * k / n), r->y + rady * sin(2 * M_PI * k / n) };
 	int rc = 0;
 	if (r->poly) {   /* a circle in polygon mode is a contour of its own */
 		rc = hpgl_rd_start_contour(r, p[0].x, p[0].y);
@@ -213,6 +230,7 @@ void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 	r->term = 3;
 	if (in) {
 		r->down = 0;
+		r->ip_set = 0;
 		hpgl_rd_default_p1p2(r);
 	}
 	hpgl_rd_attr_defaults(r, in);
@@ -246,7 +264,8 @@ static int contour_out(hpgl_rd_t *r, size_t k, int kind)
 		return hpgl_rd_nomem(r);
 	memcpy(p, r->pb + a, (b - a) * sizeof *p);
 	size_t n = b - a;
-	if (p[n - 1].x != p[0].x || p[n - 1].y != p[0].y)
+	/* a fill closes every contour; an edge (EP) only what the file closed, as plotters draw it */
+	if (kind != HPGL_RS_EDGE && (p[n - 1].x != p[0].x || p[n - 1].y != p[0].y))
 		p[n++] = p[0];
 	int rc = hpgl_rd_figure(r, p, n, kind);
 	free(p);

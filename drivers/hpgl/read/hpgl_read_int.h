@@ -52,6 +52,15 @@ typedef struct {
 	size_t npb, cappb;
 	size_t *pbs;                /* contour starts */
 	size_t npbs, cappbs;
+	/* issue 22 */
+	int tolerant;               /* HPGL_READ_TOLERANT */
+	size_t fail_off;            /* the byte of the last hpgl_rd_fail, and its message */
+	char fail_msg[160];
+	int nomem;                  /* the failure was out of memory */
+	size_t page;                /* the page being drawn (PG) */
+	int page_used;              /* something was drawn on it */
+	int ip_set;                 /* IP gave P1 (and P2) since IN: RO leaves them */
+	int rotated;                /* an RO other than 0 was in force for something drawn */
 } hpgl_rd_t;
 
 
@@ -64,6 +73,12 @@ static inline int hpgl_rd_int(double v)
 
 /* Record "NAME: byte OFF: message" in r->err; returns -1. */
 int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 3, 4)))
+#endif
+	;
+/* A warning of a tolerant read at byte off (kept in doc->warns). */
+void hpgl_rd_warn(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 #ifdef __GNUC__
 	__attribute__((format(printf, 3, 4)))
 #endif
@@ -95,8 +110,9 @@ void hpgl_rd_user_len(const hpgl_rd_t *r, double u, double v, double *x, double 
 double hpgl_rd_chord(double chord);
 /* An arc about (cx, cy) from angle a0 (radians) through sweep degrees in chord-degree steps. */
 int hpgl_rd_arc_points(hpgl_rd_t *r, double cx, double cy, double rad, double a0, double sweep, double chord);
-/* CI: a circle about the current position (a contour of its own in polygon mode). */
-int hpgl_rd_circle(hpgl_rd_t *r, double rad, double chord, int kind);
+/* CI: a circle about the current position (a contour of its own in polygon mode), of radius rad
+ * along x and rady along y (different under anisotropic scaling). */
+int hpgl_rd_circle(hpgl_rd_t *r, double rad, double rady, double chord, int kind);
 /* SC with nv parameters (none: scaling off). */
 void hpgl_rd_set_scaling(hpgl_rd_t *r, const double *v, int nv);
 /* P1 and P2 where IN (and IP without parameters) put them: the 7475A's A4 defaults. */

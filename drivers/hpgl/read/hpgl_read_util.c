@@ -12,11 +12,31 @@ int hpgl_rd_fail(hpgl_rd_t *r, size_t off, const char *fmt, ...)
 	vsnprintf(m, sizeof m, fmt, ap);
 	va_end(ap);
 	snprintf(r->err, r->errlen, "%s: byte %zu: %s", r->name, off, m);
+	r->fail_off = off;
+	snprintf(r->fail_msg, sizeof r->fail_msg, "%.150s", m);
 	return -1;
+}
+
+void hpgl_rd_warn(hpgl_rd_t *r, size_t off, const char *fmt, ...)
+{
+	hpgl_doc_t *d = r->doc;
+	if (d->nwarns >= HPGL_MAX_WARNS || hpgl_rd_grow((void **)&d->warns, &d->capwarns, d->nwarns + 1, sizeof *d->warns)) {
+		d->nwarns_more++;
+		return;
+	}
+	char m[160];
+	va_list ap;
+	va_start(ap, fmt);
+	vsnprintf(m, sizeof m, fmt, ap);
+	va_end(ap);
+	hpgl_rwarn_t *w = &d->warns[d->nwarns++];
+	w->offset = off;
+	snprintf(w->msg, sizeof w->msg, "%.200s: byte %zu: %s", r->name, off, m);
 }
 
 int hpgl_rd_nomem(hpgl_rd_t *r)
 {
+	r->nomem = 1;
 	return hpgl_rd_fail(r, r->i, "out of memory");
 }
 
