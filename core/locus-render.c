@@ -153,67 +153,6 @@ static int write_mesh(scene_t *sc, const char *out, int fmt, int stats, double t
 }
 
 
-/* ---- Frame patterns: OUT with one %d or %0Nd (N 1..9) and any %% ---------------------------- */
-
-/* 1 when out is a frame pattern, 0 when it holds no '%', -1 (message in err) when it is malformed */
-static int pattern_check(const char *out, char *err, size_t errlen)
-{
-	int conv = 0;
-	for (const char *p = out; *p; p++) {
-		if (*p != '%')
-			continue;
-		if (p[1] == '%') {
-			p++;
-			continue;
-		}
-		const char *q = p + 1;
-		if (*q == '0')
-			q++;
-		if (*q >= '1' && *q <= '9')
-			q++;
-		if (*q != 'd') {
-			snprintf(err, errlen, "locus-render: -o '%s': expected a frame pattern %%d or %%0Nd (N 1 to 9), or %%%% for a"
-				" percent sign, found '%.*s'", out, (int)(q - p + (*q != 0)), p);
-			return -1;
-		}
-		if (conv++) {
-			snprintf(err, errlen, "locus-render: -o '%s': expected one frame number in the pattern, found two", out);
-			return -1;
-		}
-		p = q;
-	}
-	return conv;
-}
-
-/* The file name of frame fr (malloc'd), or NULL when out of memory. */
-static char *pattern_name(const char *pat, long fr)
-{
-	size_t n = strlen(pat) + 16;
-	char *s = malloc(n), *o = s;
-	if (!s)
-		return NULL;
-	for (const char *p = pat; *p; p++) {
-		if (*p != '%') {
-			*o++ = *p;
-			continue;
-		}
-		if (p[1] == '%') {
-			*o++ = '%';
-			p++;
-			continue;
-		}
-		int zero = 0, width = 0;
-		p++;
-		if (*p == '0')
-			zero = 1, p++;
-		if (*p >= '1' && *p <= '9')
-			width = *p++ - '0';
-		o += sprintf(o, zero ? "%0*ld" : "%*ld", width, fr);
-	}
-	*o = 0;
-	return s;
-}
-
 /* ---- Is a frame's file there and complete? ------------------------------------------------ */
 
 /* 1 complete, 0 there but not complete (why says so), -1 not there */
@@ -442,7 +381,7 @@ static int run_per_frame(job_t *j, const long *frames, size_t nframes)
 	}
 	for (k = 0; k < nframes; k++) {
 		long fr = frames[k];
-		char *path = pattern_name(j->out, fr);
+		char *path = meta_frame_pattern_name(j->out, fr);
 		int status = 0;
 		if (!path) {
 			fprintf(stderr, "locus-render: out of memory\n");
@@ -606,7 +545,8 @@ int main(int argc, char **argv)
 		return EX_USAGE;
 	}
 	char err[1024];
-	if ((j.pattern = pattern_check(j.out, err, sizeof err)) < 0) {
+	if ((j.pattern = meta_frame_pattern_check(j.out, err, sizeof err)) < 0) {
+		fprintf(stderr, "locus-render: ");
 		say(err);
 		return EX_USAGE;
 	}

@@ -84,6 +84,7 @@ int meta_frames_scan(const char *path, meta_frames_t *out, char *err, size_t err
 		const char *where = meta_reader_is_binary(r) ? "byte" : "line";
 		if (c.op == META_PAGE) {
 			pages++, pages_in++;
+			out->pages++;
 			if (open < 0 && out->records) {
 				say(err, errlen, "%s: %s %llu: expected a frame record '# frame N' before the page, found none",
 					path, where, (unsigned long long)at);
@@ -275,4 +276,65 @@ int meta_frame_list_parse(const char *spec, size_t max_frames, long **list, size
 		}
 	*n = total;
 	return 0;
+}
+
+/* ---- Frame patterns: OUT with one %d or %0Nd (N 1..9) and any %% */
+
+/* 1 when out is a frame pattern, 0 when it holds no '%', -1 (message in err) when it is malformed */
+int meta_frame_pattern_check(const char *out, char *err, size_t errlen)
+{
+	int conv = 0;
+	for (const char *p = out; *p; p++) {
+		if (*p != '%')
+			continue;
+		if (p[1] == '%') {
+			p++;
+			continue;
+		}
+		const char *q = p + 1;
+		if (*q == '0')
+			q++;
+		if (*q >= '1' && *q <= '9')
+			q++;
+		if (*q != 'd') {
+			say(err, errlen, "-o '%s': expected a frame pattern %%d or %%0Nd (N 1 to 9), or %%%% for a"
+				" percent sign, found '%.*s'", out, (int)(q - p + (*q != 0)), p);
+			return -1;
+		}
+		if (conv++) {
+			say(err, errlen, "-o '%s': expected one frame number in the pattern, found two", out);
+			return -1;
+		}
+		p = q;
+	}
+	return conv;
+}
+
+/* The file name of frame fr (malloc'd), or NULL when out of memory. */
+char *meta_frame_pattern_name(const char *pat, long fr)
+{
+	size_t n = strlen(pat) + 16;
+	char *s = malloc(n), *o = s;
+	if (!s)
+		return NULL;
+	for (const char *p = pat; *p; p++) {
+		if (*p != '%') {
+			*o++ = *p;
+			continue;
+		}
+		if (p[1] == '%') {
+			*o++ = '%';
+			p++;
+			continue;
+		}
+		int zero = 0, width = 0;
+		p++;
+		if (*p == '0')
+			zero = 1, p++;
+		if (*p >= '1' && *p <= '9')
+			width = *p++ - '0';
+		o += sprintf(o, zero ? "%0*ld" : "%*ld", width, fr);
+	}
+	*o = 0;
+	return s;
 }

@@ -28,6 +28,7 @@ typedef struct {
 	size_t n, cap;
 	int binary;        /* the file's encoding */
 	int records;       /* 1 when the file holds frame records at all */
+	unsigned long pages;   /* pages in the file */
 } meta_frames_t;
 
 /* Read the whole file path and check it: valid meta-language to its end, and either no frame
@@ -44,5 +45,12 @@ void meta_frames_free(meta_frames_t *f);
  * or -1 with a one-line reason in err (-3: out of memory). At most max_frames frames. */
 int meta_frame_list_parse(const char *spec, size_t max_frames, long **list, size_t *n, char *err,
 		size_t errlen);
+
+/* Output names with a frame number: OUT holding one %d or %0Nd (N 1..9), and %% for a percent
+ * sign. Returns 1 for such a pattern, 0 for a name without '%', -1 (reason in err: "-o 'OUT':
+ * expected ...") for a malformed one. */
+int meta_frame_pattern_check(const char *out, char *err, size_t errlen);
+/* The name of frame fr in a checked pattern (malloc'd), NULL when out of memory. */
+char *meta_frame_pattern_name(const char *pat, long fr);
 
 #endif
