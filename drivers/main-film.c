@@ -146,12 +146,13 @@ static int report(int st, const char *err)
 
 /* The frame numbers of the input's pages from its frame records (locus-render --frames): the
  * first and the step between pages, and the page count (-1 when not known: stdin, no records).
+ * A file with records is read here once more in full (their numbers and its page count).
  * Pages are numbered 1, 2, ... when the input says nothing. 0, or an exit status with err. */
 static int frame_numbers(const char *in, long *first, long *step, long *npages, char *err, size_t errlen)
 {
 	*first = 1, *step = 1, *npages = -1;
-	if (!strcmp(in, "-"))
-		return 0;
+	if (!strcmp(in, "-") || !meta_frames_probe(in))
+		return 0;   /* no records: no second reading of a large file */
 	meta_frames_t fs;
 	if (meta_frames_scan(in, &fs, err, errlen))
 		return 0;   /* a bad input is refused by the replay, with the message the other programs give */

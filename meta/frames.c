@@ -165,6 +165,23 @@ int meta_frames_scan(const char *path, meta_frames_t *out, char *err, size_t err
 	return status;
 }
 
+int meta_frames_probe(const char *path)
+{
+	meta_reader_t *r = meta_reader_open(path, NULL, 0);
+	if (!r)
+		return 0;
+	meta_cmd_t c;
+	long n;
+	int found = 0;
+	while (meta_read(r, &c) > 0 && c.op == META_COMMENT)
+		if (record_of(c.str, &n) == 1) {
+			found = 1;
+			break;
+		}
+	meta_reader_free(r);
+	return found;
+}
+
 void meta_frames_free(meta_frames_t *f)
 {
 	free(f->frames);

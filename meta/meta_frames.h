@@ -38,6 +38,9 @@ typedef struct {
  * -66 (cannot open), -70 (out of memory), -74 (read error). */
 int meta_frames_scan(const char *path, meta_frames_t *out, char *err, size_t errlen);
 void meta_frames_free(meta_frames_t *f);
+/* 1 when path opens with a frame record before its first page (what locus-render --frames
+ * writes), reading no further; 0 otherwise (also when it cannot be read). */
+int meta_frames_probe(const char *path);
 
 /* A frame list: "N" alone is frames 0..N-1; otherwise a comma list of items "A" (frame A),
  * "A-B" (A..B) and "A-BxS" (A, A+S, ... up to B). Frames are 0..META_FRAME_MAX. The result is
