@@ -403,7 +403,9 @@ static int plan(part_t *parts, size_t nparts, const char *spec, size_t *nframes)
 	int status = 0;
 	for (k = 1; k < total && !status; k++)
 		if (w[k].frame == w[k - 1].frame) {
-			if (w[k].part == w[k - 1].part)
+			if (w[k].part != w[k - 1].part && !strcmp(parts[w[k].part].path, parts[w[k - 1].part].path))
+				fprintf(stderr, "locus-meta: frame %ld is duplicated: %s is given twice\n", w[k].frame, parts[w[k].part].path);
+			else if (w[k].part == w[k - 1].part)
 				fprintf(stderr, "locus-meta: frame %ld is duplicated: twice in %s\n", w[k].frame, parts[w[k].part].path);
 			else
 				fprintf(stderr, "locus-meta: frame %ld is duplicated: in %s and in %s\n", w[k].frame,
