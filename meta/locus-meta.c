@@ -11,6 +11,7 @@
 #include "transport.h"
 #include "meta_import.h"
 #include "run.h"
+#include "meta_frames.h"
 
 #define EX_USAGE 64
 #define EX_DATAERR 65
@@ -27,6 +28,10 @@ static const char usage_text[] =
 	"       locus-meta import [IN] [-o OUT] [--pens SPEC] [--strict]   (HP-GL, HP-GL/2,\n"
 	"         plotutils metafiles; SPEC the pens a file sets no PC/PW for: \"1=black:0.5mm,2=red\";\n"
 	"         --strict refuses HP-GL junk that is otherwise skipped with a warning)\n"
+"       locus-meta cat FILES... [-o OUT] [--frames LIST] [--text|--binary]\n"
+	"         join an animation's per-frame files (locus-render --frames -o NAME-%04d.meta)\n"
+	"         into the file one run writes; every frame of LIST (default: the first found to\n"
+	"         the last) there once and complete, else 65 naming it and no output (docs/farm.md)\n"
 	"Check, canonically format, describe or convert a Locus meta-language file\n"
 	"(docs/meta-language.md). IN and OUT default to '-' (stdin, stdout); an OUT\n"
 	"file is written to a new temporary beside it and renamed only when the whole\n"
@@ -334,9 +339,211 @@ static int cmd_info(const char *path)
 	return out_close(o, 0);
 }
 
+/* ---- cat: an animation's per-frame (or per-chunk) files joined into the file one locus-render
+ * --frames run writes, byte for byte; every frame checked to be there once and whole before any
+ * output is opened (docs/farm.md, "Joining") -------------------------------------------- */
+
+typedef struct {
+	const char *path;
+	meta_frames_t fr;
+} part_t;
+
+typedef struct {
+	long frame;
+	size_t part;
+} where_t;
+
+static int cmp_where(const void *a, const void *b)
+{
+	const where_t *x = a, *y = b;
+	if (x->frame != y->frame)
+		return x->frame < y->frame ? -1 : 1;
+	return x->part < y->part ? -1 : x->part > y->part;
+}
+
+static int cmp_part(const void *a, const void *b)
+{
+	const part_t *x = a, *y = b;
+	return x->fr.frames[0] < y->fr.frames[0] ? -1 : x->fr.frames[0] > y->fr.frames[0];
+}
+
+static int scan_status(int rc)
+{
+	return rc == -66 ? EX_NOINPUT : rc == -70 ? EX_SOFTWARE : rc == -74 ? EX_IOERR : EX_DATAERR;
+}
+
+/* Pass 1: every file whole, with frame records; the frames there once each and, with a list,
+ * exactly the list; the files ordered by their first frame, each continuing the one before. */
+static int plan(part_t *parts, size_t nparts, const char *spec, size_t *nframes)
+{
+	char err[800];
+	size_t total = 0;
+	for (size_t i = 0; i < nparts; i++) {
+		int rc = meta_frames_scan(parts[i].path, &parts[i].fr, err, sizeof err);
+		if (rc) {
+			fprintf(stderr, "%s\n", err);
+			return scan_status(rc);
+		}
+		if (!parts[i].fr.records) {
+			fprintf(stderr, "%s: expected frame records ('# frame N' before a frame's pages, as locus-render"
+				" --frames writes them), found none\n", parts[i].path);
+			return EX_DATAERR;
+		}
+		total += parts[i].fr.n;
+	}
+	where_t *w = malloc(total * sizeof *w);
+	if (!w) {
+		fprintf(stderr, "locus-meta: out of memory for %zu frames\n", total);
+		return EX_SOFTWARE;
+	}
+	size_t k = 0;
+	for (size_t i = 0; i < nparts; i++)
+		for (size_t f = 0; f < parts[i].fr.n; f++)
+			w[k].frame = parts[i].fr.frames[f], w[k++].part = i;
+	qsort(w, total, sizeof *w, cmp_where);
+	int status = 0;
+	for (k = 1; k < total && !status; k++)
+		if (w[k].frame == w[k - 1].frame) {
+			if (w[k].part != w[k - 1].part && !strcmp(parts[w[k].part].path, parts[w[k - 1].part].path))
+				fprintf(stderr, "locus-meta: frame %ld is duplicated: %s is given twice\n", w[k].frame, parts[w[k].part].path);
+			else if (w[k].part == w[k - 1].part)
+				fprintf(stderr, "locus-meta: frame %ld is duplicated: twice in %s\n", w[k].frame, parts[w[k].part].path);
+			else
+				fprintf(stderr, "locus-meta: frame %ld is duplicated: in %s and in %s\n", w[k].frame,
+					parts[w[k - 1].part].path, parts[w[k].part].path);
+			status = EX_DATAERR;
+		}
+	/* the frames expected: the list, else every one from the first to the last */
+	long *want = NULL;
+	size_t nwant = 0;
+	if (!status && spec) {
+		int rc = meta_frame_list_parse(spec, (size_t)META_FRAME_MAX + 1, &want, &nwant, err, sizeof err);
+		if (rc) {
+			fprintf(stderr, "locus-meta: --frames: %s\n", err);
+			status = rc == -3 ? EX_SOFTWARE : EX_USAGE;
+		}
+	}
+	if (!status) {
+		size_t a = 0, b = 0;   /* merge the sorted found (w) and wanted lists */
+		long next = w[0].frame;
+		while (!status && (a < total || (spec ? b < nwant : 0))) {
+			long found = a < total ? w[a].frame : -1;
+			long expect = spec ? (b < nwant ? want[b] : -1) : next;
+			if (found == expect) {
+				a++, b++, next++;
+			} else if (expect >= 0 && (found < 0 || found > expect)) {
+				if (spec)
+					fprintf(stderr, "locus-meta: frame %ld is missing (--frames %s)\n", expect, spec);
+				else
+					fprintf(stderr, "locus-meta: frame %ld is missing (between frames %ld and %ld)\n", expect,
+						w[0].frame, w[total - 1].frame);
+				status = EX_DATAERR;
+			} else {
+				fprintf(stderr, "locus-meta: frame %ld in %s is not in --frames %s\n", found, parts[w[a].part].path, spec);
+				status = EX_DATAERR;
+			}
+		}
+	}
+	free(want);
+	free(w);
+	if (status)
+		return status;
+	qsort(parts, nparts, sizeof *parts, cmp_part);
+	for (size_t i = 1; i < nparts; i++) {
+		const meta_frames_t *p = &parts[i - 1].fr;
+		if (p->frames[p->n - 1] > parts[i].fr.frames[0]) {
+			fprintf(stderr, "locus-meta: the frames of %s and %s interleave (frame %ld comes before %ld):"
+				" join files that each hold a run of frames\n", parts[i - 1].path, parts[i].path,
+				parts[i].fr.frames[0], p->frames[p->n - 1]);
+			return EX_DATAERR;
+		}
+		for (size_t f = 1; f < parts[i].fr.n; f++)
+			if (parts[i].fr.frames[f] < parts[i].fr.frames[f - 1]) {
+				fprintf(stderr, "%s: frame %ld comes after frame %ld: expected the frames in order\n", parts[i].path,
+					parts[i].fr.frames[f], parts[i].fr.frames[f - 1]);
+				return EX_DATAERR;
+			}
+	}
+	*nframes = total;
+	return 0;
+}
+
+static int cmd_cat(char *const *files, size_t nfiles, const char *spec, const char *out, int enc)
+{
+	part_t *parts = calloc(nfiles, sizeof *parts);
+	if (!parts) {
+		fprintf(stderr, "locus-meta: out of memory\n");
+		return EX_SOFTWARE;
+	}
+	for (size_t i = 0; i < nfiles; i++)
+		parts[i].path = files[i];
+	size_t nframes = 0;
+	int status = plan(parts, nfiles, spec, &nframes);
+	io_transport_t *o = NULL;
+	meta_writer_t *w = NULL;
+	if (!status && !(o = out_open(out, &status)))
+		status = status ? status : EX_IOERR;
+	if (!status && !(w = meta_writer_new(out_write, o, enc >= 0 ? enc : parts[0].fr.binary ? META_ENC_BINARY
+			: META_ENC_TEXT))) {
+		fprintf(stderr, "locus-meta: out of memory\n");
+		status = EX_SOFTWARE;
+	}
+	/* Pass 2: the statements of every file, in order; the records checked again as they pass (a
+	 * file that changed in between is refused, not joined) */
+	for (size_t i = 0; i < nfiles && !status; i++) {
+		char err[600];
+		meta_reader_t *r = meta_reader_open(parts[i].path, err, sizeof err);
+		if (!r) {
+			fprintf(stderr, "%s\n", err);
+			status = errno == ENOMEM ? EX_SOFTWARE : EX_NOINPUT;
+			break;
+		}
+		meta_cmd_t c;
+		int rc;
+		size_t f = 0;
+		while ((rc = meta_read(r, &c)) > 0) {
+			if (c.op == META_COMMENT && !strncmp(c.str, "frame ", 6) && c.str[6] >= '0' && c.str[6] <= '9') {
+				if (f >= parts[i].fr.n || strtol(c.str + 6, NULL, 10) != parts[i].fr.frames[f]) {
+					fprintf(stderr, "%s: changed while it was being joined\n", parts[i].path);
+					status = EX_DATAERR;
+					break;
+				}
+				f++;
+			}
+			if ((rc = meta_write(w, &c)) < 0) {
+				if (io_failed(o))
+					fprintf(stderr, "%s\n", io_error(o));
+				else
+					fprintf(stderr, "%s: %s\n", io_is_std(o) ? "<stdout>" : io_name(o), meta_writer_error(w));
+				status = io_failed(o) ? io_status(io_error(o)) : status_of(rc);
+				break;
+			}
+		}
+		if (rc < 0 && !status) {
+			fprintf(stderr, "%s\n", meta_reader_error(r));
+			status = status_of(rc);
+		}
+		if (!status && f != parts[i].fr.n) {
+			fprintf(stderr, "%s: changed while it was being joined\n", parts[i].path);
+			status = EX_DATAERR;
+		}
+		meta_reader_free(r);
+	}
+	if (w && meta_writer_close(w) < 0 && !status) {
+		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : "locus-meta: write error");
+		status = io_failed(o) ? io_status(io_error(o)) : EX_IOERR;
+	}
+	if (o)
+		status = out_close(o, status);
+	for (size_t i = 0; i < nfiles; i++)
+		meta_frames_free(&parts[i].fr);
+	free(parts);
+	return status;
+}
+
 int main(int argc, char **argv)
 {
-	const char *in = NULL, *out = NULL, *pens = NULL, *sub;
+	const char *in = NULL, *out = NULL, *pens = NULL, *frames = NULL, *sub;
 	int strict = 0;
 	int enc = -1, c;
 	static const struct option longopts[] = {
@@ -346,6 +553,7 @@ int main(int argc, char **argv)
 		{ "binary", no_argument, NULL, 'b' },
 		{ "pens", required_argument, NULL, 'p' },
 		{ "strict", no_argument, NULL, 's' },
+		{ "frames", required_argument, NULL, 'F' },
 		{ NULL, 0, NULL, 0 }
 	};
 	if (argc >= 2 && strcmp(argv[1], "--help") == 0) {
@@ -376,8 +584,8 @@ int main(int argc, char **argv)
 			out = optarg;
 			break;
 		case 't': case 'b':
-			if (strcmp(sub, "convert") != 0)
-				return usage("--text and --binary belong to 'convert'");
+			if (strcmp(sub, "convert") != 0 && strcmp(sub, "cat") != 0)
+				return usage("--text and --binary belong to 'convert' and 'cat'");
 			enc = c == 't' ? META_ENC_TEXT : META_ENC_BINARY;
 			break;
 		case 'p':
@@ -390,6 +598,11 @@ int main(int argc, char **argv)
 				return usage("--strict belongs to 'import'");
 			strict = 1;
 			break;
+		case 'F':
+			if (strcmp(sub, "cat") != 0)
+				return usage("--frames belongs to 'cat'");
+			frames = optarg;
+			break;
 		case ':':
 			fprintf(stderr, "locus-meta: option '%s' needs an argument\n", argv[optind]);
 			return usage(NULL);
@@ -397,6 +610,11 @@ int main(int argc, char **argv)
 			fprintf(stderr, "locus-meta: unknown option '%s'\n", argv[optind]);
 			return usage(NULL);
 		}
+	}
+	if (strcmp(sub, "cat") == 0) {
+		if (optind + 1 >= argc)
+			return usage("cat: missing FILES");
+		return cmd_cat(argv + optind + 1, (size_t)(argc - optind - 1), frames, out, enc);
 	}
 	for (int i = optind + 1; i < argc; i++) {
 		if (in)

@@ -1,8 +1,11 @@
 /* main-film.c: locus-film, meta file to film-recorder frames (DPX, Cineon, RLE) at film size. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #include "cli/cli.h"
+#include "meta_frames.h"
 #include "device/device.h"
 #include "film/filmenc.h"
 #include "cli/run.h"
@@ -11,7 +14,8 @@ static const char usage_text[] =
 	"usage: locus-film [-o OUT] [-f dpx|dpx16|cineon|rle] [--preset NAME | --size WxH] [IN]\n"
 	"Replay a Locus meta file (IN, default stdin) into film-recorder frames at the film's own\n"
 	"resolution: the page is fitted with its aspect kept and scan-converted at frame size.\n"
-	"OUT defaults to stdout; with several pages, page k goes to OUT with -00k before its suffix.\n"
+	"OUT defaults to stdout; with several pages, page k goes to OUT with -00k before its suffix;\n"
+	"OUT as a frame pattern (NAME-%04d.dpx) names each file by its frame number.\n"
 	"  -f, --format F        dpx (DPX 2.0, 10-bit printing density, default), dpx16 (16-bit\n"
 	"                        linear DPX), cineon (Cineon 4.5, 10-bit log), rle; default: OUT's suffix\n"
 	"  --preset NAME         slide4k (4096x2730, default), slide8k, 2k, 4k, 6x7\n"
@@ -27,13 +31,16 @@ static const char usage_text[] =
 	"  --calibration FILE    per-channel calibration curve applied before encoding (docs/film.md)\n"
 	"  --separations[=files|planar]  red, green and blue exposures: three single-channel files\n"
 	"                        OUT-r, OUT-g, OUT-b (default), or one planar file\n"
+	"  --frame-rate R        frames a second in every header, with each frame's time code (24)\n"
+	"  --first-frame N       the frame number of the first page (default: the input's frame\n"
+	"                        records, as locus-render --frames writes them, else 1)\n"
 	"  -O KEY=VALUE[,...]    device options (the long options above, as locus-play -d film takes)\n"
 	"  --band-rows N, --mem-budget MIB   banding of the frame (default: an 8 MiB page buffer)\n"
 	"  --help, --version\n"
 	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
 
 enum { O_PRESET = 0x2000, O_LIST, O_SIZE, O_ENDIAN, O_FIT, O_LETTERBOX, O_WHITE, O_BLACK, O_DENSITY,
-	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA };
+	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA, O_RATE, O_FIRST };
 
 static const struct option film_long[] = {
 	{ "format", required_argument, NULL, 'f' },
@@ -50,6 +57,8 @@ static const struct option film_long[] = {
 	{ "display-gamma", required_argument, NULL, O_DGAMMA },
 	{ "calibration", required_argument, NULL, O_CAL },
 	{ "separations", optional_argument, NULL, O_SEP },
+	{ "frame-rate", required_argument, NULL, O_RATE },
+	{ "first-frame", required_argument, NULL, O_FIRST },
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -61,6 +70,7 @@ static const struct option film_long[] = {
 typedef struct {
 	const char *cal;
 	int separations;          /* 0 none, 1 three files, 2 planar */
+	int first_given;          /* --first-frame (or -O first-frame=) */
 } film_args_t;
 
 static int on_option(cli_t *c, int key, const char *arg)
@@ -89,6 +99,11 @@ static int on_option(cli_t *c, int key, const char *arg)
 	case O_CAL:
 		a->cal = arg;
 		return cli_set_option(c, "calibration", arg) ? 64 : CLI_RUN;
+	case O_RATE:
+		return cli_set_option(c, "frame-rate", arg) ? 64 : CLI_RUN;
+	case O_FIRST:
+		a->first_given = 1;
+		return cli_set_option(c, "first-frame", arg) ? 64 : CLI_RUN;
 	case O_SEP:
 		if (!arg || !strcmp(arg, "files"))
 			a->separations = 1;
@@ -129,9 +144,126 @@ static int report(int st, const char *err)
 	return st;
 }
 
+/* The frame numbers of the input's pages from its frame records (locus-render --frames): the
+ * first and the step between pages, and the page count (-1 when not known: stdin, no records).
+ * A file with records is read here once more in full (their numbers and its page count).
+ * Pages are numbered 1, 2, ... when the input says nothing. 0, or an exit status with err. */
+static int frame_numbers(const char *in, long *first, long *step, long *npages, char *err, size_t errlen)
+{
+	*first = 1, *step = 1, *npages = -1;
+	if (!strcmp(in, "-") || !meta_frames_probe(in))
+		return 0;   /* no records: no second reading of a large file */
+	meta_frames_t fs;
+	if (meta_frames_scan(in, &fs, err, errlen))
+		return 0;   /* a bad input is refused by the replay, with the message the other programs give */
+	*npages = (long)fs.pages;
+	int st = 0;
+	if (fs.records && fs.pages != fs.n) {
+		snprintf(err, errlen, "%s: %lu pages in %zu frames: a frame of several pages has no one frame number"
+			" (number the pages with --first-frame)", in, fs.pages, fs.n);
+		st = 65;
+	} else if (fs.records) {
+		*first = fs.frames[0];
+		*step = fs.n > 1 ? fs.frames[1] - fs.frames[0] : 1;
+		for (size_t k = 1; k < fs.n && !st; k++)
+			if (fs.frames[k] - fs.frames[k - 1] != *step || *step < 1) {
+				snprintf(err, errlen, "%s: frames %ld, %ld and %ld are not evenly spaced: split the file"
+					" where the step changes (or number the pages with --first-frame)", in,
+					fs.frames[k > 1 ? k - 2 : 0], fs.frames[k - 1], fs.frames[k]);
+				st = 65;
+			}
+	}
+	meta_frames_free(&fs);
+	return st;
+}
+
+/* first-frame=N of the device options, when given there. 0 or -1. */
+static int dev_first_frame(const char *opts, long *first)
+{
+	const char *p = strstr(opts, "first-frame=");
+	if (!p)
+		return 0;
+	char *e;
+	errno = 0;
+	long v = strtol(p + 12, &e, 10);
+	if (errno || v < 0 || v > 9999999 || (*e && *e != ','))
+		return -1;
+	*first = v;
+	return 0;
+}
+
+/* OUT a frame pattern: page k is frame first + k x step, in the file the pattern names. A single
+ * page (the usual file of one frame from a farm) is written straight to its name; several go to
+ * a private directory beside OUT and are renamed to their names when all replayed, each file
+ * whole. */
+static int run_pattern(cli_t *c, const char *out, long first, long step, long npages, char *err, size_t errlen)
+{
+	if (npages == 1) {
+		char *name = meta_frame_pattern_name(out, first);
+		if (!name) {
+			snprintf(err, errlen, "out of memory");
+			return 70;
+		}
+		dev_job_t job = { c->in[0], name, &dev_film_ops, c->band_rows, c->budget, c->options };
+		int st = dev_run(&job, err, errlen);
+		free(name);
+		return st;
+	}
+	const char *slash = strrchr(out, '/'), *dot = strrchr(out, '.');
+	if (dot && slash && dot < slash)
+		dot = NULL;
+	size_t n = strlen(out) + 64;
+	char *dir = malloc(n), *tmp = malloc(n);
+	if (!dir || !tmp) {
+		free(dir), free(tmp);
+		snprintf(err, errlen, "out of memory");
+		return 70;
+	}
+	snprintf(dir, n, "%.*s.locus-film.XXXXXX", slash ? (int)(slash - out + 1) : 0, out);
+	if (!mkdtemp(dir)) {
+		snprintf(err, errlen, "%s: cannot make a directory for the frames: %s", dir, strerror(errno));
+		free(dir), free(tmp);
+		return 74;
+	}
+	snprintf(tmp, n, "%s/frame%s", dir, dot ? dot : "");
+	dev_job_t job = { c->in[0], tmp, &dev_film_ops, c->band_rows, c->budget, c->options };
+	int st = dev_run(&job, err, errlen);
+	/* the pages written: tmp alone, or tmp-001 ... */
+	for (unsigned k = 1; st == 0; k++) {
+		char *from = k == 1 && access(tmp, F_OK) == 0 ? strdup(tmp) : dev_page_name(tmp, k);
+		char *to = meta_frame_pattern_name(out, first + (long)(k - 1) * step);
+		if (!from || !to) {
+			snprintf(err, errlen, "out of memory");
+			st = 70;
+		} else if (access(from, F_OK) != 0) {
+			free(from), free(to);
+			break;
+		} else if (rename(from, to)) {
+			snprintf(err, errlen, "%s: cannot rename into place: %s", to, strerror(errno));
+			st = 74;
+		}
+		int single = k == 1 && from && !strcmp(from, tmp);
+		free(from), free(to);
+		if (single)
+			break;
+	}
+	/* what a failure left behind */
+	for (unsigned k = 1; k < 100000; k++) {
+		char *f = dev_page_name(tmp, k);
+		int gone = !f || (unlink(f) && errno == ENOENT);
+		free(f);
+		if (gone)
+			break;
+	}
+	unlink(tmp);
+	rmdir(dir);
+	free(dir), free(tmp);
+	return st;
+}
+
 int main(int argc, char **argv)
 {
-	film_args_t a = { NULL, 0 };
+	film_args_t a = { NULL, 0, 0 };
 	cli_t c;
 	memset(&c, 0, sizeof c);
 	c.prog = "locus-film";
@@ -168,6 +300,29 @@ int main(int argc, char **argv)
 		return cli_fail(&c, 64, "%s", err);
 	if (a.separations == 2 && cli_set_option(&c, "separations", "planar"))
 		return 64;
+	int pattern = meta_frame_pattern_check(out, err, sizeof err);
+	if (pattern < 0)
+		return cli_fail(&c, 64, "%s", err);
+	if (pattern && a.separations == 1)
+		return cli_fail(&c, 64, "--separations=files and a frame pattern: give one of them (or "
+			"--separations=planar)");
+	long first = 1, step = 1, npages = -1;
+	if (!a.first_given && !strstr(c.options, "first-frame=")) {
+		st = frame_numbers(c.in[0], &first, &step, &npages, err, sizeof err);
+		if (st)
+			return report(st, err);
+		char v[24];
+		snprintf(v, sizeof v, "%ld", first);
+		if (cli_set_option(&c, "first-frame", v))
+			return 64;
+		snprintf(v, sizeof v, "%ld", step);
+		if (cli_set_option(&c, "frame-step", v))
+			return 64;
+	} else if (dev_first_frame(c.options, &first)) {
+		return cli_fail(&c, 64, "--first-frame needs a frame number 0 to 9999999");
+	}
+	if (pattern)
+		return report(run_pattern(&c, out, first, step, npages, err, sizeof err), err);
 	if (a.separations != 1) {
 		dev_job_t job = { c.in[0], out, &dev_film_ops, c.band_rows, c.budget, c.options };
 		return report(dev_run(&job, err, sizeof err), err);

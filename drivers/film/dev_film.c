@@ -23,6 +23,8 @@ typedef struct {
 	FILE *spool[2];             /* planar: the green and blue planes until the red one is out */
 	dev_imgw_t *rle;
 	unsigned rows;              /* rows written on this page */
+	double frame_rate;          /* fps, for the headers' rate and time code */
+	long first_frame, frame_step;   /* the frame number of page k: first_frame + k x frame_step */
 } film_t;
 
 static const dev_option_t film_options[] = {
@@ -39,6 +41,9 @@ static const dev_option_t film_options[] = {
 	{ "calibration", "FILE: per-channel calibration curve applied before encoding" },
 	{ "channel", "r, g or b: write that separation alone as a single-channel frame" },
 	{ "separations", "planar: the three separations as three image elements of one file" },
+	{ "frame-rate", "frames per second written into each header with the time code (24)" },
+	{ "first-frame", "frame number of the first page (default 1; locus-film: from the input's frame records)" },
+	{ "frame-step", "frame numbers between pages (default 1)" },
 	{ NULL, NULL }
 };
 
@@ -187,6 +192,24 @@ static int f_open(dev_device_t *d)
 	}
 	if (film_source_time(&f->time, err, sizeof err))
 		return dev_fail(d, DEV_EUSAGE, "%s", err);
+	f->frame_rate = 24;
+	if ((rc = real_option(d, "frame-rate", &f->frame_rate)))
+		return rc;
+	if (!(f->frame_rate > 0 && f->frame_rate <= 1000))
+		return dev_fail(d, DEV_EUSAGE, "frame-rate must be above 0 and at most 1000 frames a second, not %g",
+			f->frame_rate);
+	double v = 1;
+	if ((rc = real_option(d, "first-frame", &v)))
+		return rc;
+	if (v < 0 || v > 9999999 || v != floor(v))
+		return dev_fail(d, DEV_EUSAGE, "first-frame must be a frame number 0 to 9999999, not %g", v);
+	f->first_frame = (long)v;
+	v = 1;
+	if ((rc = real_option(d, "frame-step", &v)))
+		return rc;
+	if (v < 1 || v > 9999999 || v != floor(v))
+		return dev_fail(d, DEV_EUSAGE, "frame-step must be 1 to 9999999, not %g", v);
+	f->frame_step = (long)v;
 	return 0;
 }
 
@@ -223,7 +246,8 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 	fr->log = f->log;
 	fr->creator = "Locus film recorder driver (locus-film)";
 	fr->time = f->time;
-	fr->frame = pg->index + 1;
+	fr->frame = (unsigned)(f->first_frame + (long)pg->index * f->frame_step);
+	fr->frame_rate = f->frame_rate;
 	if (pg->width == d->raster_width && pg->height == d->raster_height) {
 		fr->width_mm = f->width_mm;
 		fr->height_mm = f->height_mm;

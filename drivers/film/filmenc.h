@@ -77,7 +77,9 @@ typedef struct {
 	film_log_t log;         /* stored in the header as the reference codes */
 	const char *creator;    /* up to 99 bytes kept */
 	int64_t time;           /* creation time, seconds since 1970 (UTC) */
-	unsigned frame;         /* frame number (1 for the first page) */
+	unsigned frame;         /* frame number: the animation's (frame records), else 1 for the first page */
+	double frame_rate;      /* frames per second (24; 0: rate and time code undefined); the
+	                         * time code counts frame / rate from 00:00:00:00 */
 	double width_mm, height_mm;  /* physical size of the frame on film, 0 = unknown */
 } film_frame_t;
 
@@ -87,6 +89,9 @@ typedef struct {
 size_t film_row_bytes(const film_frame_t *f);
 /* Total file size, or 0 when the frame does not fit the 32-bit size fields (over 4 GiB). */
 uint64_t film_file_size(const film_frame_t *f);
+/* The SMPTE time code of frame at rate frames a second (rounded to whole frames a second, no drop
+ * frame; it wraps at 24 hours) as DPX stores it: BCD digits hh mm ss ff, hours in the top byte. */
+uint32_t film_timecode(unsigned frame, double rate);
 /* Write the FILM_HEADER_SIZE header bytes into buf. Returns 0, or -1 with a message in err when
  * the frame cannot be described (zero or too large a size, a bad combination). */
 int film_header(const film_frame_t *f, uint8_t *buf, char *err, size_t errlen);

@@ -78,6 +78,18 @@ static void stamp(int64_t t, const char *fmt, char *out, size_t n)
 		out[0] = 0;
 }
 
+uint32_t film_timecode(unsigned frame, double rate)
+{
+	unsigned fps = rate >= 1 ? (unsigned)(rate + 0.5) : 1;
+	unsigned long long f = frame % (24ull * 3600 * fps);
+	unsigned v[4] = { (unsigned)(f / fps / 3600), (unsigned)(f / fps / 60 % 60), (unsigned)(f / fps % 60),
+		(unsigned)(f % fps) };
+	uint32_t tc = 0;
+	for (int k = 0; k < 4; k++)
+		tc = tc << 8 | (uint32_t)(v[k] / 10 % 10) << 4 | (uint32_t)(v[k] % 10);
+	return tc;
+}
+
 static void dpx_element(hdr_t *h, const film_frame_t *f, size_t off, int ch, uint32_t data)
 {
 	static const unsigned desc_of[3] = { 1, 2, 3 };   /* red, green, blue */
@@ -169,10 +181,22 @@ static int dpx_header(const film_frame_t *f, uint8_t *buf)
 	str(&h, 1676, 4, "");
 	str(&h, 1680, 32, "");                            /* format */
 	u32(&h, 1712, f->frame);                          /* frame position in the sequence */
+	/* 1716 sequence length: not known to one node of a farm (undefined) */
+	u32(&h, 1720, 1);                                 /* held count: each frame shown once */
+	if (f->frame_rate > 0)
+		r32(&h, 1724, f->frame_rate);                 /* frame rate of the original, fps */
 	str(&h, 1732, 32, "");                            /* frame id */
 	str(&h, 1764, 100, "");                           /* slate */
 	memset(buf + 1864, 0, 56);
-	/* television header: the reference codes, where DPX readers look for them */
+	/* television header: the time code and rate of the sequence, and the reference codes, where DPX
+	 * readers look for them */
+	if (f->frame_rate > 0) {
+		u32(&h, 1920, film_timecode(f->frame, f->frame_rate));   /* SMPTE time code, BCD */
+		u32(&h, 1924, 0);                             /* user bits */
+		u8(&h, 1928, 0);                              /* interlace: none (progressive frames) */
+		u8(&h, 1929, 0);                              /* field number: none */
+		r32(&h, 1940, f->frame_rate);                 /* temporal sampling rate, Hz */
+	}
 	if (f->kind != FILM_DPX16) {
 		r32(&h, 1952, f->log.black);                  /* black level */
 		r32(&h, 1964, f->log.white);                  /* white level */
@@ -246,6 +270,8 @@ static int cineon_header(const film_frame_t *f, uint8_t *buf)
 	memset(buf + 984, 0, 40);
 	/* motion-picture industry header */
 	u32(&h, 1068, f->frame);                          /* frame position */
+	if (f->frame_rate > 0)
+		r32(&h, 1072, f->frame_rate);                 /* frame rate, fps (Cineon has no time code) */
 	str(&h, 1036, 32, "");
 	str(&h, 1076, 32, "");
 	str(&h, 1108, 200, "");
