@@ -495,6 +495,8 @@ int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st,
 	}
 	if (mesh_can_extract(s, err, errlen) < 0)
 		return -1;
+	if (!m->want_solid && !m->tetrahedra)
+		return mesh_extract_cubes(s, depth, m, st, err, errlen);
 	ext_t x;
 	memset(&x, 0, sizeof x);
 	x.s = s;

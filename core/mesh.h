@@ -59,6 +59,7 @@ typedef struct {
 	uint32_t *t;
 	size_t nt, tcap;
 	int want_solid;
+	int tetrahedra;          /* surface by marching tetrahedra (as the solid's) instead of cubes */
 	uint32_t *tet;
 	size_t ntet, tetcap;
 } mesh_t;

@@ -284,6 +284,14 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 			rc = yes_no(lx, &r->refine);
 		} else if (scene_tok_is(&t, "draw")) {
 			rc = yes_no(lx, &r->draw);
+		} else if (scene_tok_is(&t, "method") && kind == SCENE_MESH) {
+			scene_lex_tok(lx, &t);
+			if (scene_tok_is(&t, "cubes"))
+				r->tetrahedra = 0;
+			else if (scene_tok_is(&t, "tetrahedra"))
+				r->tetrahedra = 1;
+			else
+				rc = scene_lex_expected(lx, &t, "cubes or tetrahedra");
 		} else if (scene_tok_is(&t, "hidden") && kind == SCENE_MESH) {
 			rc = yes_no(lx, &r->hidden);
 		} else if (scene_tok_is(&t, "tolerance") && kind == SCENE_MESH) {
