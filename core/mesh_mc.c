@@ -168,6 +168,8 @@ typedef struct {
 	mesh_stats_t *st;
 	int depth;
 	double lo[3], cell, lip;
+	int batch;               /* children tested by the float kernel first (not for estimates) */
+	double span;             /* the root cube's largest coordinate */
 	uint16_t *leaf;          /* the finest cells kept: x, y, z */
 	size_t nleaf, leafcap;
 	int oom, too_many;
@@ -190,28 +192,82 @@ static void add_leaf(mc_t *x, const uint64_t g[3])
 		l[i] = (uint16_t)g[i];
 }
 
+/* The signed distance to the box b (negative inside), as mesh_field takes it. */
+static double box_dist(const double *b, const double p[3])
+{
+	double out = 0, in = -INFINITY;
+	for (int i = 0; i < 3; i++) {
+		double q = fabs(p[i] - (b[i] + b[3 + i]) / 2) - (b[3 + i] - b[i]) / 2;
+		if (q > 0)
+			out += q * q;
+		if (q > in)
+			in = q;
+	}
+	return out > 0 ? sqrt(out) : in < 0 ? in : 0;
+}
+
+/* Whether the cell of half-diagonal r around c may hold a zero of F (the test of mesh.c, on
+ * the double-precision F), given F there. */
+static int may_hold(const mc_t *x, double f, double r)
+{
+	return f == INFINITY || !(fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12);
+}
+
 /* The octree descent of mesh.c: a cell is split only when its circumscribed sphere may hold a
- * zero of F; the finest cells that pass are kept. */
+ * zero of F; the finest cells that pass are kept. The 8 children of a cell are tested together:
+ * f by the 8-lane float kernel (the ray tracer's), the box term in double; a child whose float
+ * F is within a guard band of the threshold (a thousandth of it, plus 4e-6 of |F| and of L
+ * times the root's largest coordinate: far above the float kernel's rounding) is tested again
+ * in double, so every decision is the double test's. `cell` passed the test already. */
 static void visit(mc_t *x, const uint64_t g[3], int level)
 {
-	uint64_t size = (uint64_t)1 << (x->depth - level);
-	double c[3];
-	for (int i = 0; i < 3; i++)
-		c[i] = x->lo[i] + ((double)g[i] + size / 2.0) * x->cell;
-	x->st->cells++;
-	x->st->evals++;
-	double f = mesh_field(x->s, c), r = sqrt(3.0) / 2 * (double)size * x->cell;
-	if (f != INFINITY && fabs(f) > x->lip * r * (1 + 1e-9) + 1e-12)
-		return;
 	if (level == x->depth) {
 		x->st->leaves++;
 		add_leaf(x, g);
 		return;
 	}
-	uint64_t h = size / 2;
-	for (int k = 0; k < 8 && !x->oom; k++) {
-		uint64_t q[3] = {g[0] + (k & 1 ? h : 0), g[1] + (k & 2 ? h : 0), g[2] + (k & 4 ? h : 0)};
-		visit(x, q, level + 1);
+	uint64_t h = (uint64_t)1 << (x->depth - level - 1);
+	double r = sqrt(3.0) / 2 * (double)h * x->cell;
+	uint64_t q[8][3];
+	double c[8][3], F[8];
+	float fx[8], fy[8], fz[8], fv[8];
+	for (int k = 0; k < 8; k++) {
+		q[k][0] = g[0] + (k & 1 ? h : 0);
+		q[k][1] = g[1] + (k & 2 ? h : 0);
+		q[k][2] = g[2] + (k & 4 ? h : 0);
+		for (int i = 0; i < 3; i++)
+			c[k][i] = x->lo[i] + ((double)q[k][i] + h / 2.0) * x->cell;
+		fx[k] = (float)c[k][0];
+		fy[k] = (float)c[k][1];
+		fz[k] = (float)c[k][2];
+	}
+	x->st->cells += 8;
+	if (x->batch) {
+		model_eval8(x->s, fx, fy, fz, fv);
+		x->st->evals += 8;
+	}
+	double thr = x->lip * r * (1 + 1e-9) + 1e-12;
+	for (int k = 0; k < 8; k++) {
+		int pass;
+		if (x->batch) {
+			double f = fv[k], bd = x->lip * box_dist(x->s->box, c[k]);
+			f = f > bd ? f : bd;
+			double band = 1e-3 * thr + 4e-6 * (fabs(f) + x->lip * x->span);
+			if (f == f && fabs(f) > thr + band)
+				pass = 0;
+			else if (f == f && fabs(f) < thr - band)
+				pass = 1;
+			else {
+				x->st->evals++;
+				pass = may_hold(x, mesh_field(x->s, c[k]), r);
+			}
+		} else {
+			x->st->evals++;
+			F[k] = mesh_field(x->s, c[k]);
+			pass = may_hold(x, F[k], r);
+		}
+		if (pass && !x->oom)
+			visit(x, q[k], level + 1);
 	}
 }
 
@@ -397,8 +453,16 @@ int mesh_extract_cubes(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_
 	x.lip = s->de ? 1 : s->lip;
 	x.cell = mesh_root_cube(s, x.lo) / (double)((uint64_t)1 << depth);
 	size_t nv0 = m->nv;
+	double side = x.cell * (double)((uint64_t)1 << depth);
+	for (int i = 0; i < 3; i++)
+		x.span = fmax(x.span, fmax(fabs(x.lo[i]), fabs(x.lo[i] + side)));
+	x.batch = !s->de;
 	uint64_t g0[3] = {0, 0, 0};
-	visit(&x, g0, 0);
+	double c0[3] = {x.lo[0] + side / 2, x.lo[1] + side / 2, x.lo[2] + side / 2};
+	st->cells++;
+	st->evals++;
+	if (may_hold(&x, mesh_field(s, c0), sqrt(3.0) / 2 * side))
+		visit(&x, g0, 0);
 	if (!x.oom && x.nleaf) {
 		uint64_t n1 = ((uint64_t)1 << depth) + 1;
 		planes_t pl;

@@ -3,7 +3,8 @@
 # coarsened within 1e-4, against
 # scikit-image's marching_cubes on the same grid (tests/bench/skimage_mc.py, Debian
 # python3-skimage run by /usr/bin/python3). One BENCH line per shape and tolerance: the in-process times of both
-# (field evaluation plus extraction; Locus' from --stats mesh_ms, medians), the whole commands'
+# (field evaluation plus extraction; Locus' from --stats mesh_ms; medians of rounds of one anchor
+# run and one run of each Locus variant), the whole commands'
 # wall times (locus-render writing the PLY; python3 starting, importing, evaluating, extracting),
 # triangle counts and the
 # Hausdorff distance of each mesh to the exact surface, measured by the same script
@@ -25,35 +26,59 @@ bench_mesh() {
   c 1"; else els="  point 0.8 0 0
   point -0.8 0 0
   c 2.4"; fi
-		# the anchor once (its own median of SLOW_RUNS runs), for both Locus lines
-		if ! measure 1 "$W/$n.anchor" "$MESH_PY" tests/bench/skimage_mc.py anchor "$shape" 7 -n "$SLOW_RUNS" ||
-			! own_line "$W/$n.anchor" "mesh-skimage-$shape"; then
-			fail "$n" "skimage_mc.py anchor: ${M_ERR:-no BENCH line}"; continue
-		fi
-		a_s=$(awk -v s="$O_S" 'BEGIN {printf "%.4f", s}')
-		a_kv=$(echo "$O_KV" | sed 's/\([a-z_]*\)=/anchor_\1=/g')
-		a_tri=$(echo "$O_KV" | sed -n 's/.*triangles=\([0-9]*\).*/\1/p')
-		a_h=$(echo "$O_KV" | sed -n 's/.*hausdorff=\([0-9.e+-]*\).*/\1/p')
-		a_mib=$M_MIB
-		# the whole command, as a user runs it: interpreter start-up, imports, field, extraction
-		if ! SKIMAGE_MC_ONCE=1 measure "$SLOW_RUNS" /dev/null "$MESH_PY" tests/bench/skimage_mc.py anchor "$shape" 7; then
-			fail "$n" "skimage_mc.py once: $M_ERR"; continue
-		fi
-		a_wall=$M_S
 		# Locus as extracted, and coarsened within 1e-4 (about the chord error of this grid)
 		for tol in 0 1e-4; do
 			ln=$n
 			[ "$tol" = 0 ] || ln=$n-tol$tol
 			printf 'object %s\n%s\n  bound -1.25 -1.25 -1.25 1.25 1.25 1.25\nend\nrender mesh\n  depth 7\n  tolerance %s\nend\n' \
 				"$shape" "$els" "$tol" > "$W/$ln.scene"
-			if ! measure "$SLOW_RUNS" /dev/null "$BIN/locus-render" "$W/$ln.scene" -o "$W/$ln.ply" --stats; then
-				fail "$ln" "$M_ERR"; continue
+			: > "$W/$ln.errs"
+			: > "$W/$ln.walls"
+			: > "$W/$ln.mibs"
+		done
+		# rounds of one anchor run (its in-process time) and one run of each Locus variant, so
+		# that a change of load on the shared machine hits both sides alike
+		: > "$W/$n.as"
+		: > "$W/$n.amibs"
+		ERR="" i=0
+		while [ "$i" -lt "$SLOW_RUNS" ] && [ -z "$ERR" ]; do
+			if ! measure 1 "$W/$n.anchor" "$MESH_PY" tests/bench/skimage_mc.py anchor "$shape" 7 -n 1 ||
+				! own_line "$W/$n.anchor" "mesh-skimage-$shape"; then
+				ERR="skimage_mc.py anchor: ${M_ERR:-no BENCH line}"; break
 			fi
-			l_wall=$M_S l_mib=$M_MIB
-			l_ms=$(stat_med mesh_ms "$W/errs")
+			echo "$O_S" >> "$W/$n.as"
+			echo "$M_MIB" >> "$W/$n.amibs"
+			for tol in 0 1e-4; do
+				ln=$n
+				[ "$tol" = 0 ] || ln=$n-tol$tol
+				if ! measure 1 /dev/null "$BIN/locus-render" "$W/$ln.scene" -o "$W/$ln.ply" --stats; then
+					ERR="$ln: $M_ERR"; break
+				fi
+				cat "$W/err" >> "$W/$ln.errs"
+				echo "$M_S" >> "$W/$ln.walls"
+				echo "$M_MIB" >> "$W/$ln.mibs"
+			done
+			i=$((i + 1))
+		done
+		if [ -n "$ERR" ]; then fail "$n" "$ERR"; continue; fi
+		a_s=$(awk -v s="$(median "$W/$n.as")" 'BEGIN {printf "%.4f", s}')
+		a_kv=$(echo "$O_KV" | sed 's/\([a-z_]*\)=/anchor_\1=/g')
+		a_tri=$(echo "$O_KV" | sed -n 's/.*triangles=\([0-9]*\).*/\1/p')
+		a_h=$(echo "$O_KV" | sed -n 's/.*hausdorff=\([0-9.e+-]*\).*/\1/p')
+		a_mib=$(median "$W/$n.amibs")
+		# the whole command, as a user runs it: interpreter start-up, imports, field, extraction
+		if ! SKIMAGE_MC_ONCE=1 measure "$SLOW_RUNS" /dev/null "$MESH_PY" tests/bench/skimage_mc.py anchor "$shape" 7; then
+			fail "$n" "skimage_mc.py once: $M_ERR"; continue
+		fi
+		a_wall=$M_S
+		for tol in 0 1e-4; do
+			ln=$n
+			[ "$tol" = 0 ] || ln=$n-tol$tol
+			l_wall=$(median "$W/$ln.walls") l_mib=$(median "$W/$ln.mibs")
+			l_ms=$(stat_med mesh_ms "$W/$ln.errs")
 			l_s=$(awk -v m="${l_ms:-0}" 'BEGIN {printf "%.4f", m / 1000}')
-			l_tri=$(stat triangles "$W/err")
-			l_evals=$(stat evals "$W/err")
+			l_tri=$(stat triangles "$W/$ln.errs")
+			l_evals=$(stat evals "$W/$ln.errs")
 			if ! "$MESH_PY" tests/bench/skimage_mc.py hausdorff "$shape" "$W/$ln.ply" > "$W/$ln.h" 2>&1; then
 				fail "$ln" "skimage_mc.py hausdorff: $(tail -1 "$W/$ln.h")"; continue
 			fi
