@@ -6,8 +6,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #define DEAD UINT32_MAX
+
+/* Zeroed memory for the pass's large arrays, populated in one system call (MAP_POPULATE) rather
+ * than faulted in a page at a time on first touch; NULL when it cannot be had. */
+static void *big_alloc(size_t bytes)
+{
+#ifdef MAP_POPULATE
+	void *q = mmap(NULL, bytes ? bytes : 1, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+#else
+	void *q = mmap(NULL, bytes ? bytes : 1, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+#endif
+	return q == MAP_FAILED ? NULL : q;
+}
+
+static void big_free(void *p, size_t bytes)
+{
+	if (p)
+		munmap(p, bytes ? bytes : 1);
+}
 
 /* The triangles around a vertex. */
 typedef struct {
@@ -260,18 +279,13 @@ static unsigned length_class(double len, double longest)
 }
 
 /* One pass over the edges, shortest first; the number of collapses, or -1 (out of memory). */
-static long pass(simp_t *x)
+static long pass(simp_t *x, edge_t *e, edge_t *o)
 {
 	mesh_t *m = x->m;
-	size_t n = 0, cap = 3 * (m->nt - x->t0) + 1;
-	edge_t *e = malloc(cap * sizeof *e), *o = malloc(cap * sizeof *o);
+	size_t n = 0;
 	size_t *start = calloc(LEN_CLASSES + 1, sizeof *start);
-	if (!e || !o || !start) {
-		free(e);
-		free(o);
-		free(start);
+	if (!start)
 		return -1;
-	}
 	double longest = 0;
 	for (size_t i = x->t0; i < m->nt; i++) {
 		const uint32_t *t = m->t + 3 * i;
@@ -294,13 +308,11 @@ static long pass(simp_t *x)
 		start[c + 1] += start[c];
 	for (size_t i = 0; i < n; i++)
 		o[start[length_class(e[i].len, longest)]++] = e[i];
-	free(e);
 	free(start);
 	long done = 0;
 	for (size_t i = 0; i < n && !x->oom; i++)
 		if (x->alive[o[i].a - x->v0] && x->alive[o[i].b - x->v0])
 			done += collapse(x, o[i].a, o[i].b);
-	free(o);
 	return x->oom ? -1 : done;
 }
 
@@ -325,7 +337,10 @@ int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, doubl
 	x.t0 = t0;
 	size_t nv = m->nv - v0;
 	x.ring = calloc(nv + 1, sizeof *x.ring);
-	uint32_t *pool = malloc((nv + 1) * RING0 * sizeof *pool);
+	size_t pool_bytes = (nv + 1) * RING0 * sizeof(uint32_t), ecap = 3 * (m->nt - t0) + 1;
+	size_t ebytes = ecap * sizeof(edge_t);
+	uint32_t *pool = big_alloc(pool_bytes);
+	edge_t *ebuf = big_alloc(ebytes), *obuf = big_alloc(ebytes);
 	for (size_t i = 0; pool && x.ring && i < nv; i++) {
 		x.ring[i].t = pool + i * RING0;
 		x.ring[i].cap = RING0;
@@ -336,7 +351,7 @@ int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, doubl
 	x.nok = calloc(nv + 1, 1);
 	uint32_t *map = NULL;
 	int rc = -1;
-	if (!x.ring || !pool || !x.alive || !x.mark || !x.nrm || !x.nok)
+	if (!x.ring || !pool || !ebuf || !obuf || !x.alive || !x.mark || !x.nrm || !x.nok)
 		goto done;
 	memset(x.alive, 1, nv);
 	for (size_t i = t0; i < m->nt; i++)
@@ -344,7 +359,7 @@ int mesh_simplify(mesh_t *m, const model_shape_t *s, size_t v0, size_t t0, doubl
 			if (ring_add(ring_of(&x, m->t[3 * i + j]), (uint32_t)i) < 0)
 				goto done;
 	for (int k = 0; k < 4; k++) {
-		long c = pass(&x);
+		long c = pass(&x, ebuf, obuf);
 		if (c < 0)
 			goto done;
 		if ((size_t)c * 20 < nv)
@@ -381,7 +396,9 @@ done:
 			if (x.ring[i].cap > RING0)
 				free(x.ring[i].t);
 	free(x.ring);
-	free(pool);
+	big_free(pool, pool_bytes);
+	big_free(ebuf, ebytes);
+	big_free(obuf, ebytes);
 	free(x.alive);
 	free(x.mark);
 	free(x.nrm);
