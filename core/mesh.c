@@ -482,19 +482,8 @@ void mesh_free(mesh_t *m)
 	mesh_init(m);
 }
 
-int mesh_extract(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen)
+int mesh_extract_tetra(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen)
 {
-	mesh_stats_t local;
-	if (!st) {
-		memset(&local, 0, sizeof local);
-		st = &local;
-	}
-	if (depth < 1 || depth > MESH_MAX_DEPTH) {
-		snprintf(err, errlen, "expected a mesh depth from 1 to %d", MESH_MAX_DEPTH);
-		return -1;
-	}
-	if (mesh_can_extract(s, err, errlen) < 0)
-		return -1;
 	ext_t x;
 	memset(&x, 0, sizeof x);
 	x.s = s;

@@ -1,6 +1,7 @@
 /* mesh.h: polygonisation of a shape into a closed, consistently oriented triangle mesh (thesis section 7.5), and its export.
  *
- * Method: marching tetrahedra over the cells of an octree (docs/mesh.md).
+ * Method: marching cubes (mesh_mc.c; marching tetrahedra with mesh_t.tetrahedra set, and for
+ * the solid) over the finest cells of an octree (docs/mesh.md).
  *   - The root cube is the shape's octree root (its `bound` box as given,
  *     else its clip box) made cubical, and is cut into 2^depth cells a side.
  *   - The solid is F(P) = max(f(P), L * b(P)) < 0, with f the shape, L its
@@ -11,7 +12,10 @@
  *     a zero of F (|F(centre)| <= L * sqrt(3)/2 * side): a cell whose corners
  *     differ in sign always passes, so every crossing is found, and the work
  *     grows with the area of the surface, not the volume of the box.
- *   - Each finest cell is split into the 6 tetrahedra of its Kuhn
+ *   - Marching cubes: F once per grid corner, the cells slab by slab; the cases from a table
+ *     made from a face rule (an ambiguous face cuts off its inside corners), so the cells that
+ *     share a face draw the same segments on it and every loop closes.
+ *   - Marching tetrahedra: each finest cell is split into the 6 tetrahedra of its Kuhn
  *     (Freudenthal) triangulation, which matches across the faces of
  *     neighbouring cells; a corner is inside when F < 0. Each tetrahedron
  *     with corners of both signs gives one triangle (one corner apart) or two
@@ -59,6 +63,7 @@ typedef struct {
 	uint32_t *t;
 	size_t nt, tcap;
 	int want_solid;
+	int tetrahedra;          /* surface by marching tetrahedra (as the solid's) instead of cubes */
 	uint32_t *tet;
 	size_t ntet, tetcap;
 } mesh_t;

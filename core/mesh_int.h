@@ -64,4 +64,10 @@ int mesh_extract_end(const mesh_t *m, size_t nv0, int oom, int too_many, char *e
 void mesh_refine_edge(const model_shape_t *s, double lip, mesh_stats_t *st, const double a[3], const double b[3],
                       double fa, double fb, double p[3]);
 
+/* Marching tetrahedra on the octree (mesh.c), the surface and with m->want_solid the solid:
+ * mesh_extract's other method, called by it (mesh_mc.c) after its checks; st not NULL. */
+int mesh_extract_tetra(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
+/* Marching cubes on the finest cells (mesh_mc.c): mesh_extract's surface without a solid. */
+int mesh_extract_cubes(const model_shape_t *s, int depth, mesh_t *m, mesh_stats_t *st, char *err, size_t errlen);
+
 #endif

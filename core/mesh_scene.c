@@ -12,6 +12,7 @@ static int extract(const scene_t *s, const scene_render_t *r, mesh_t *m, mesh_st
 {
 	int depth = r ? r->depth : 6, any = 0;
 	char e[400];
+	m->tetrahedra = r && r->tetrahedra;
 	for (size_t i = 0; i < s->nobjs; i++) {
 		const scene_obj_t *o = &s->objs[i];
 		if (!o->drawn)

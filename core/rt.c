@@ -324,9 +324,38 @@ static void cone_starts(const rt_params_t *p, const model_shape_t *s, unsigned j
 			dy[k] = (float)d[1];
 			dz[k] = (float)d[2];
 			double oc[3] = {o[0] - bc[0], o[1] - bc[1], o[2] - bc[2]};
-			tfar[k] = (float)(sqrt(oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + half);
+			double oc2 = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2];
+			tfar[k] = (float)(sqrt(oc2) + half);
 			t[k] = 0;
 			live[k] = g + k < npk && rt_bound(s) > 0 && !s->lip_local;
+			if (live[k] && s->de) {
+				/* a distance estimate steps a quarter of the way through empty space: the cone
+				 * starts where its axis enters the region's sphere and box grown by the cone's
+				 * widest radius (before that no ray of the packet is in the region), and a cone
+				 * that misses them skips the object (a Lipschitz bound gets there in a step
+				 * or two: its cones start at the eye, as their pictures were recorded) */
+				double R = half + (ortho ? rr : rr * (double)tfar[k]);
+				double bb = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2], disc = bb * bb - (oc2 - R * R);
+				if (!(disc >= 0) || -bb + sqrt(disc) < 0) {
+					out[g + k] = INFINITY;
+					live[k] = 0;
+					continue;
+				}
+				double t0 = fmax(0.0, -bb - sqrt(disc)), t1 = -bb + sqrt(disc), rc = R - half;
+				for (int i = 0; i < 3; i++) {   /* and the box grown by the same radius */
+					double a = (b[i] - rc - o[i]) / d[i], z = (b[3 + i] + rc - o[i]) / d[i];
+					if (a == a && z == z) {
+						t0 = fmax(t0, fmin(a, z));
+						t1 = fmin(t1, fmax(a, z));
+					}
+				}
+				if (!(t0 <= t1)) {
+					out[g + k] = INFINITY;
+					live[k] = 0;
+					continue;
+				}
+				t[k] = (float)t0;
+			}
 			n += live[k];
 			if (g + k < npk)
 				out[g + k] = 0;

@@ -49,6 +49,7 @@ typedef struct {
 	int hidden;                /* mesh: draw only the edges of faces turned to the eye (core/mesh.h) */
 	double tolerance;          /* mesh: coarsen within this distance of the surface (0: off) */
 	double adaptive;           /* mesh: adaptive extraction, cells flat within this distance (0: uniform) */
+	int tetrahedra;            /* mesh: `method tetrahedra` (marching tetrahedra) instead of cubes */
 	double line_width;
 	double line_colour[3];
 	/* contour */
