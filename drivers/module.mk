@@ -10,3 +10,4 @@ $(BINDIR)/locus-%: $(B)/drivers/main-%.o $(B)/libdrivers.a $(B)/libmeta.a
 # A driver that needs another library adds "PKGS += NAME" (a pkg-config name) below.
 PKGS += libusb-1.0
 PKGS += hidapi-libusb
+include drivers/printer/printer.mk

@@ -1,0 +1,216 @@
+/* lp_main.c: locus-printer, an IPP Everywhere printer application (PAPPL) for the Locus devices. */
+#include <errno.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include "lp.h"
+
+#ifndef LOCUS_VERSION
+#define LOCUS_VERSION "0.0.0"
+#endif
+
+static char spool_dir[1024];
+static char state_file[1100];
+static int is_server;
+static pthread_mutex_t replay_lock = PTHREAD_MUTEX_INITIALIZER;
+
+const char *lp_spool_dir(void)
+{
+	return spool_dir[0] ? spool_dir : papplGetTempDir();
+}
+
+void lp_lock(void)
+{
+	pthread_mutex_lock(&replay_lock);
+}
+
+void lp_unlock(void)
+{
+	pthread_mutex_unlock(&replay_lock);
+}
+
+static void usage(void *data)
+{
+	(void)data;
+	fputs("usage: locus-printer SUBCOMMAND [OPTIONS] [FILES]\n"
+		"An IPP Everywhere printer application for the Locus devices: HP-GL pen plotters and\n"
+		"cutters, PostScript and PDF printers, film recorders and raster files (docs/printer.md).\n"
+		"Subcommands (PAPPL's):\n"
+		"  server              run the server in the foreground\n"
+		"  add PRINTER         add a printer: -d DEVICE-URI -m DRIVER (locus-printer drivers)\n"
+		"  delete              delete a printer: -d PRINTER\n"
+		"  devices             list the devices found (usb:, socket:, serial:, hid:)\n"
+		"  drivers             list the drivers, one a line, name first\n"
+		"  printers            list the printers\n"
+		"  submit FILES        print files: -d PRINTER, -o NAME=VALUE job options\n"
+		"  jobs, cancel, status, shutdown, default, modify, options, autoadd\n"
+		"Server options (-o NAME=VALUE):\n"
+		"  server-port=PORT        the TCP port (default: the first free one from 8000)\n"
+		"  spool-directory=DIR     spool files, job journals and the state file (0700)\n"
+		"  log-file=FILE           the log ('-' standard error, 'syslog')\n"
+		"  log-level=LEVEL         fatal, error, warn (default), info, debug\n"
+		"  listen-hostname=NAME    where to listen (default localhost; '*' every address)\n"
+		"  admin-group=GROUP       who may add, change and delete printers (with auth-service)\n"
+		"  auth-service=SERVICE    the PAM service that checks administrators' passwords\n"
+		"  resume-wait=SECONDS     how long a serial:/hid: job waits for its device (600)\n"
+		"  server-options=LIST     PAPPL's: no-web-interface, web-security, no-tls, ...\n"
+		"Formats: application/vnd.locus-meta (text and binary), application/vnd.hp-HPGL,\n"
+		"image/pwg-raster and image/urf (IPP Everywhere), and each device's own format raw.\n"
+		"  --help, --version\n", stdout);
+}
+
+/* The server options PAPPL's default system takes, with localhost as the place to listen. */
+static pappl_soptions_t server_options(const char *value)
+{
+	pappl_soptions_t so = PAPPL_SOPTIONS_MULTI_QUEUE | PAPPL_SOPTIONS_WEB_INTERFACE;
+	static const struct {
+		const char *name;
+		pappl_soptions_t set, clear;
+	} opts[] = {
+		{ "none", 0, (pappl_soptions_t)~0u },
+		{ "no-multi-queue", 0, PAPPL_SOPTIONS_MULTI_QUEUE },
+		{ "no-web-interface", 0, PAPPL_SOPTIONS_WEB_INTERFACE },
+		{ "web-security", PAPPL_SOPTIONS_WEB_SECURITY, 0 },
+		{ "web-log", PAPPL_SOPTIONS_WEB_LOG, 0 },
+		{ "web-network", PAPPL_SOPTIONS_WEB_NETWORK, 0 },
+		{ "web-remote", PAPPL_SOPTIONS_WEB_REMOTE, 0 },
+		{ "raw-socket", PAPPL_SOPTIONS_RAW_SOCKET, 0 },
+		{ "no-tls", PAPPL_SOPTIONS_NO_TLS, 0 },
+		{ "dnssd-host", PAPPL_SOPTIONS_DNSSD_HOST, 0 },
+	};
+	for (const char *p = value; p && *p;) {
+		size_t n = strcspn(p, ",");
+		for (size_t k = 0; k < sizeof opts / sizeof opts[0]; k++)
+			if (strlen(opts[k].name) == n && !strncmp(p, opts[k].name, n))
+				so = (so & ~opts[k].clear) | opts[k].set;
+		p += n + (p[n] == ',');
+	}
+	return so;
+}
+
+static pappl_loglevel_t log_level(const char *v)
+{
+	if (!v) return PAPPL_LOGLEVEL_WARN;
+	if (!strcmp(v, "fatal")) return PAPPL_LOGLEVEL_FATAL;
+	if (!strcmp(v, "error")) return PAPPL_LOGLEVEL_ERROR;
+	if (!strcmp(v, "info")) return PAPPL_LOGLEVEL_INFO;
+	if (!strcmp(v, "debug")) return PAPPL_LOGLEVEL_DEBUG;
+	return PAPPL_LOGLEVEL_WARN;
+}
+
+/* The spool directory: the option, else $HOME/.config/locus-printer.d (root: PAPPL's own state
+ * directory is not assumed; /var/spool/locus-printer), made 0700 so job data is not readable by
+ * others. */
+static int make_spool(const char *opt)
+{
+	const char *home = getenv("HOME");
+	if (opt)
+		snprintf(spool_dir, sizeof spool_dir, "%s", opt);
+	else if (getuid() == 0)
+		snprintf(spool_dir, sizeof spool_dir, "/var/spool/locus-printer");
+	else if (home)
+		snprintf(spool_dir, sizeof spool_dir, "%s/.config/locus-printer.d", home);
+	else
+		snprintf(spool_dir, sizeof spool_dir, "%s/locus-printer%d.d", papplGetTempDir(), (int)getuid());
+	if (mkdir(spool_dir, 0700) && errno != EEXIST) {
+		fprintf(stderr, "locus-printer: spool-directory %s: %s\n", spool_dir, strerror(errno));
+		return -1;
+	}
+	chmod(spool_dir, 0700);
+	snprintf(state_file, sizeof state_file, "%s/locus-printer.state", spool_dir);
+	return 0;
+}
+
+/* PAPPL's system for every subcommand that needs one; the server also listens (localhost unless
+ * told otherwise) and keeps its state in the spool directory. */
+static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *data)
+{
+	(void)data;
+	const char *v;
+	int port = 0;
+	if ((v = cupsGetOption("server-port", num_options, options))) {
+		char *end;
+		errno = 0;
+		long p = strtol(v, &end, 10);
+		if (end == v || *end || p < 0 || p > 65535 || errno) {
+			fprintf(stderr, "locus-printer: server-port=%s: expected a port number 0-65535\n", v);
+			return NULL;
+		}
+		port = (int)p;
+	}
+	if (is_server && make_spool(cupsGetOption("spool-directory", num_options, options)))
+		return NULL;
+	if (!is_server)   /* a client subcommand: nothing is spooled here */
+		snprintf(spool_dir, sizeof spool_dir, "%s", papplGetTempDir());
+	pappl_system_t *sys = papplSystemCreate(server_options(cupsGetOption("server-options", num_options, options)),
+		"locus-printer", port, "_print,_universal", spool_dir,
+		cupsGetOption("log-file", num_options, options), log_level(cupsGetOption("log-level", num_options, options)),
+		cupsGetOption("auth-service", num_options, options), false);
+	if (!sys)
+		return NULL;
+	if ((v = cupsGetOption("resume-wait", num_options, options)))
+		lp_set_resume_wait(atoi(v));
+	if ((v = cupsGetOption("admin-group", num_options, options)))
+		papplSystemSetAdminGroup(sys, v);
+	if ((v = cupsGetOption("server-hostname", num_options, options)))
+		papplSystemSetHostName(sys, v);
+	pappl_version_t ver;
+	memset(&ver, 0, sizeof ver);
+	snprintf(ver.name, sizeof ver.name, "locus-printer");
+	snprintf(ver.sversion, sizeof ver.sversion, "%s", LOCUS_VERSION);
+	sscanf(LOCUS_VERSION, "%hu.%hu.%hu", ver.version, ver.version + 1, ver.version + 2);
+	papplSystemSetVersions(sys, 1, &ver);
+	papplSystemSetFooterHTML(sys, "Locus printer application " LOCUS_VERSION);
+	/* filters before drivers, drivers before the state: a printer's formats are fixed when it
+	 * is made, and the state makes the printers */
+	lp_filters_add(sys);
+	size_t n = lp_driver_count();
+	pappl_pr_driver_t *drv = calloc(n ? n : 1, sizeof *drv);
+	if (!drv) {
+		papplSystemDelete(sys);
+		return NULL;
+	}
+	for (size_t k = 0; k < n; k++) {
+		const lp_driver_t *d = lp_driver_at(k);
+		drv[k].name = d->name;
+		drv[k].description = d->description;
+		drv[k].device_id = d->device_id[0] ? d->device_id : NULL;
+	}
+	papplSystemSetPrinterDrivers(sys, (int)n, drv, lp_autoadd_cb, NULL, lp_driver_cb, NULL);
+	if (is_server) {
+		const char *listen = cupsGetOption("listen-hostname", num_options, options);
+		if (!cupsGetOption("private-server", num_options, options)
+			&& !papplSystemAddListeners(sys, listen ? listen : "localhost")) {
+			fprintf(stderr, "locus-printer: cannot listen on %s port %d (in use?)\n", listen ? listen : "localhost", port);
+			papplSystemDelete(sys);
+			return NULL;
+		}
+		papplSystemLoadState(sys, state_file);
+		papplSystemSetSaveCallback(sys, (pappl_save_cb_t)papplSystemSaveState, state_file);
+	}
+	return sys;
+}
+
+/* The subcommand: the first word that is no option and no option's value. */
+static const char *subcommand(int argc, char **argv)
+{
+	for (int i = 1; i < argc; i++) {
+		if (argv[i][0] != '-')
+			return argv[i];
+		if (argv[i][1] && argv[i][1] != '-' && !argv[i][2] && strchr("adjmnouU", argv[i][1]))
+			i++;   /* its value follows */
+	}
+	return NULL;
+}
+
+int main(int argc, char **argv)
+{
+	const char *sub = subcommand(argc, argv);
+	is_server = sub && !strcmp(sub, "server");
+	lp_drivers_init();
+	lp_links_add();
+	return papplMainloop(argc, argv, LOCUS_VERSION, NULL, 0, NULL, NULL, NULL, NULL, NULL, system_cb, usage, NULL);
+}

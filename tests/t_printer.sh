@@ -1,0 +1,234 @@
+#!/bin/sh
+# t_printer.sh: bin/locus-printer, the PAPPL printer application, with real clients: the server
+# on a loopback port picked here, printers added by its own CLI, jobs and queries through
+# ipptool (cups-ipp-utils), the output of file: devices compared byte for byte with what
+# locus-hpgl and locus-play write for the same document; a broken or unsupported document fails
+# alone; the printers survive a restart.
+. tests/lib.sh
+: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
+P=$BIN/locus-printer
+IPPT=/usr/share/cups/ipptool
+if ! command -v ipptool > /dev/null || [ ! -f "$IPPT/print-job-and-wait.test" ]; then
+	ok "locus-printer # SKIP ipptool (Debian cups-ipp-utils) is not installed"
+	done_tests
+fi
+# The CLI finds the server through a domain socket in PAPPL's temporary directory ($TMPDIR for a
+# user, $SNAP_COMMON when run as root): both point into this test's directory.
+mkdir -p "$T/tmp"
+TMPDIR=$T/tmp SNAP_COMMON=$T/tmp
+export TMPDIR SNAP_COMMON
+SPID=
+stop_server() {
+	[ -n "$SPID" ] || return 0
+	kill "$SPID" 2> /dev/null
+	n=0
+	while kill -0 "$SPID" 2> /dev/null && [ $n -lt 50 ]; do sleep 0.1; n=$((n + 1)); done
+	kill -9 "$SPID" 2> /dev/null
+	wait "$SPID" 2> /dev/null
+	SPID=
+}
+# a private server the CLI may have started (see up) is shut down too, by its socket
+stop_all() {
+	stop_server
+	if [ -S "$TMPDIR/locus-printer.sock" ] && python3 -c 'import socket, sys; u = socket.socket(socket.AF_UNIX); u.settimeout(1); u.connect(sys.argv[1])' "$TMPDIR/locus-printer.sock" 2> /dev/null; then
+		timeout 10 "$P" shutdown > /dev/null 2>&1
+	fi
+}
+trap 'stop_all' EXIT
+trap 'stop_all; exit 130' INT TERM
+# A free loopback port: bound by the kernel's choice, then released for the server.
+PORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+URI=ipp://localhost:$PORT/ipp/print
+# up: the server takes connections on its port and its domain socket. (The CLI is not used to
+# ask: PAPPL's CLI starts a private server of its own when none answers.)
+up() {
+	python3 - "$PORT" "$TMPDIR/locus-printer.sock" <<'PY' 2> /dev/null
+import socket, sys
+a = socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=1); a.close()
+u = socket.socket(socket.AF_UNIX); u.settimeout(1); u.connect(sys.argv[2]); u.close()
+PY
+}
+# start_server: in the foreground of a background job, ready when it answers (10 s at most)
+start_server() {
+	"$P" server -o server-port="$PORT" -o spool-directory="$T/spool" -o log-file="$T/log" -o log-level=info -o resume-wait=20 \
+		> "$T/server.out" 2>&1 &
+	SPID=$!
+	n=0
+	while [ $n -lt 100 ]; do
+		up && return 0
+		kill -0 "$SPID" 2> /dev/null || break
+		sleep 0.1
+		n=$((n + 1))
+	done
+	return 1
+}
+
+# --help, --version, drivers
+"$P" --help > "$T/help" 2>&1 && grep -q "server-port=PORT" "$T/help" && grep -q "spool-directory=DIR" "$T/help" \
+	&& ok "--help lists the subcommands and the server options" || notok "--help: $(head -3 "$T/help")"
+[ "$("$P" --version)" = "$("$BIN/locus-hpgl" --version | awk '{ print $NF }')" ] && ok "--version: $("$P" --version)" \
+	|| notok "--version: $("$P" --version) vs $("$BIN/locus-hpgl" --version)"
+"$P" drivers > "$T/drivers" 2> "$T/drivers.err"
+missing=
+for prof in $("$BIN/locus-hpgl" --list-profiles | awk '{ print $1 }'); do
+	grep -q "^hpgl-$prof " "$T/drivers" || missing="$missing hpgl-$prof"
+done
+for d in ps-level1 ps-level2 ps-level3 pdf film-dpx raster-png; do grep -q "^$d " "$T/drivers" || missing="$missing $d"; done
+[ -z "$missing" ] && grep -q '^[^ ]*7475[^ ]* ' "$T/drivers" \
+	&& ok "drivers: $(wc -l < "$T/drivers") a line, name first: every HP-GL profile (the 7475A's name holds 7475), PostScript 1-3, PDF, film, raster" \
+	|| notok "drivers: missing$missing: $(cat "$T/drivers" "$T/drivers.err")"
+
+if ! start_server; then
+	notok "the server starts on port $PORT: $(cat "$T/server.out"; tail -5 "$T/log")"
+	done_tests
+fi
+ok "the server answers IPP on localhost:$PORT (spool, log and state in the test's directory)"
+# listening on loopback only
+if command -v ss > /dev/null; then
+	ss -ltnH "sport = :$PORT" | awk '{ print $4 }' > "$T/listen"
+	[ -s "$T/listen" ] && ! grep -vqE '^(127\.0\.0\.1|\[::1\]|\[::ffff:127\.0\.0\.1\]):' "$T/listen" \
+		&& ok "it listens on loopback addresses only: $(tr '\n' ' ' < "$T/listen")" || notok "listens on: $(cat "$T/listen")"
+fi
+[ "$(stat -c %a "$T/spool")" = 700 ] && ok "the spool directory is private (0700)" || notok "spool mode $(stat -c %a "$T/spool")"
+
+# Printers added by the CLI, each onto a file: directory (one file per job, named by PAPPL)
+for q in plot:hpgl-7475a:hpgl ps:ps-level2:ps pdf:pdf:pdf; do
+	name=${q%%:*} rest=${q#*:} drv=${rest%%:*} ext=${q##*:}
+	mkdir -p "$T/out-$name"
+	"$P" add -d "$name" -v "file://$T/out-$name?ext=$ext" -m "$drv" > "$T/add.out" 2>&1 \
+		&& ok "add -d $name -m $drv" || notok "add $name: $(cat "$T/add.out")"
+done
+"$P" printers > "$T/printers" 2>&1
+[ "$(sort "$T/printers" | tr '\n' ' ')" = "pdf plot ps " ] && ok "printers lists the three" || notok "printers: $(cat "$T/printers")"
+
+# get-printer-attributes.test, and the formats each printer takes
+ipptool -T 10 -t "$URI/plot" "$IPPT/get-printer-attributes.test" > "$T/gpa" 2>&1 \
+	&& ok "ipptool get-printer-attributes.test passes on the plotter" || notok "get-printer-attributes.test: $(grep -i fail "$T/gpa" | head -5)"
+ipptool -T 10 -v "$URI/plot" "$IPPT/get-printer-attributes.test" > "$T/gpa.v" 2>&1
+fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.v")
+case ",$fmts," in
+*,application/vnd.locus-meta,*application/vnd.hp-HPGL,* | *,application/vnd.hp-HPGL,*application/vnd.locus-meta,*)
+	ok "document-format-supported on the plotter: $fmts" ;;
+*) notok "document-format-supported on the plotter: $fmts" ;;
+esac
+ipptool -T 10 -v "$URI/ps" "$IPPT/get-printer-attributes.test" > "$T/gpa.ps" 2>&1
+fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.ps")
+case ",$fmts," in
+*,application/vnd.hp-HPGL,*) notok "the PostScript printer claims HP-GL: $fmts" ;;
+*,application/vnd.locus-meta,*) ok "document-format-supported on the PostScript printer: $fmts" ;;
+*) notok "PostScript printer formats: $fmts" ;;
+esac
+
+# print FILE FORMAT PRINTER OUT: print-job-and-wait.test; OUT gets the job's state line
+print() {
+	ipptool -T 60 -t -f "$1" -d filetype="$2" "$URI/$3" "$IPPT/print-job-and-wait.test" > "$4" 2>&1
+}
+# newest DIR: the file the last job made
+newest() { ls -t "$1" | head -1; }
+
+# A meta job onto the plotter: byte for byte what locus-hpgl writes for the 7475A
+M=fixtures/meta/strokes.meta
+"$BIN/locus-hpgl" --profile 7475a "$M" -o "$T/strokes.hpgl" 2> /dev/null
+print "$M" application/vnd.locus-meta plot "$T/j1" && ok "print-job-and-wait.test: a meta job on the plotter completes" \
+	|| notok "meta job: $(grep -i "fail\|job-state" "$T/j1" | head -5)"
+f=$(newest "$T/out-plot")
+[ -n "$f" ] && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \
+	&& ok "the plotter's file: output is locus-hpgl --profile 7475a's, byte for byte ($(wc -c < "$T/strokes.hpgl") bytes)" \
+	|| notok "plotter output differs from locus-hpgl's: $f $(cmp "$T/out-plot/$f" "$T/strokes.hpgl" 2>&1)"
+
+# the binary encoding too, typed by its first bytes (application/octet-stream)
+"$BIN/locus-meta" convert "$M" -o "$T/strokes.lmb" > /dev/null 2>&1 || "$BIN/locus-meta" convert --binary "$M" -o "$T/strokes.lmb" > /dev/null 2>&1
+if [ -s "$T/strokes.lmb" ] && ! head -c 10 "$T/strokes.lmb" | grep -q LOCUS-META; then
+	rm -f "$T/out-plot"/*
+	print "$T/strokes.lmb" application/octet-stream plot "$T/j2" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \
+		&& ok "a binary meta file sent as application/octet-stream is recognised and plots the same bytes" \
+		|| notok "binary meta: $(grep -i "fail\|job-state" "$T/j2" | head -3)"
+else
+	notok "locus-meta convert made no binary meta file"
+fi
+
+# HP-GL from another program (../shared/corpus): read by the HP-GL reader, then sent as it is
+CORPUS=../shared/corpus/hpgl
+if [ -d "$CORPUS" ]; then
+	h=$CORPUS/hp2xx-arcs.hp
+	rm -f "$T/out-plot"/*
+	print "$h" application/vnd.hp-HPGL plot "$T/j3" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$h" \
+		&& ok "an HP-GL job ($(basename "$h"), hp2xx's) reaches the plotter unchanged" || notok "HP-GL job: $(grep -i "fail\|job-state" "$T/j3" | head -3)"
+else
+	ok "HP-GL corpus job # SKIP ../shared is absent"
+fi
+
+# A PostScript Level 2 printer: what locus-play -d ps -O level=2 writes
+"$BIN/locus-play" -d ps -O level=2 "$M" -o "$T/strokes.ps" 2> /dev/null
+print "$M" application/vnd.locus-meta ps "$T/j4" && f=$(newest "$T/out-ps") && cmp -s "$T/out-ps/$f" "$T/strokes.ps" \
+	&& ok "the PostScript Level 2 printer's output is locus-play -d ps -O level=2's, byte for byte" \
+	|| notok "PS job: $(grep -i "fail\|job-state" "$T/j4" | head -3) $(cmp "$T/out-ps/$f" "$T/strokes.ps" 2>&1)"
+
+# jobstate JOBFILE: the last job-state the wait test displayed
+jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
+# A broken meta document: it alone is aborted with document-format-error, the queue goes on
+rm -f "$T/out-plot"/*
+print fixtures/bad/bad-keyword.meta application/vnd.locus-meta plot "$T/j5"
+[ "$(jobstate "$T/j5")" = aborted ] && grep -q "document-format-error" "$T/j5" && [ -z "$(ls "$T/out-plot")" ] \
+	&& ok "a broken meta document: its job is aborted with document-format-error, nothing reaches the plotter" \
+	|| notok "broken meta: state $(jobstate "$T/j5"): $(grep -i "job-state" "$T/j5" | head -3); $(ls "$T/out-plot")"
+grep -q "bad-keyword\|line\|expected" "$T/log" && ok "the log names what was wrong: $(grep -m1 "ERROR.*Job" "$T/log" | cut -c1-160)" || notok "no line in the log"
+printf 'IN;SP1;PD1,2,3;\n' > "$T/odd.hpgl"
+print "$T/odd.hpgl" application/vnd.hp-HPGL plot "$T/j6"
+[ "$(jobstate "$T/j6")" = aborted ] && grep -q "document-format-error" "$T/j6" && [ -z "$(ls "$T/out-plot")" ] \
+	&& ok "broken HP-GL (an odd coordinate count): aborted with document-format-error, nothing sent" \
+	|| notok "broken HP-GL: $(jobstate "$T/j6"); $(ls "$T/out-plot")"
+print "$M" application/vnd.locus-meta plot "$T/j7" && [ "$(jobstate "$T/j7")" = completed ] \
+	&& ok "the next job on the same queue completes" || notok "after the broken ones: $(jobstate "$T/j7")"
+
+# An unsupported format is refused at submission with client-error-document-format-not-supported
+cat > "$T/unsup.test" <<'EOF'
+{
+	NAME "Print-Job in a format the printer does not take"
+	OPERATION Print-Job
+	GROUP operation-attributes-tag
+	ATTR charset attributes-charset utf-8
+	ATTR language attributes-natural-language en
+	ATTR uri printer-uri $uri
+	ATTR name requesting-user-name $user
+	ATTR mimeMediaType document-format text/plain
+	FILE $filename
+	STATUS client-error-document-format-not-supported
+}
+EOF
+ipptool -T 10 -t -f "$M" "$URI/plot" "$T/unsup.test" > "$T/j8" 2>&1 \
+	&& ok "text/plain is refused with client-error-document-format-not-supported" || notok "unsupported: $(grep -i "fail\|status" "$T/j8" | head -3)"
+ipptool -T 10 -t -f "$M" "$URI/ps" "$T/unsup.test" -d x=1 > /dev/null 2>&1
+sed 's|text/plain|application/vnd.hp-HPGL|' "$T/unsup.test" > "$T/unsup2.test"
+ipptool -T 10 -t -f "$h" "$URI/ps" "$T/unsup2.test" > "$T/j9" 2>&1 \
+	&& ok "HP-GL to the PostScript printer is refused the same way" || notok "HP-GL to PS: $(grep -i "fail\|status" "$T/j9" | head -3)"
+
+# IPP Everywhere: the attribute checks of ipp-everywhere.test (its print tests need the PWG's
+# raster samples, which Debian does not ship: ipptool skips them)
+ipptool -T 30 -t "$URI/plot" "$IPPT/ipp-everywhere.test" > "$T/ippe" 2>&1
+grep -E "^\s+(PASS|FAIL|SKIP)" "$T/ippe" > /dev/null
+pass=$(grep -c "\[PASS\]" "$T/ippe") fail=$(grep -c "\[FAIL\]" "$T/ippe") skip=$(grep -c "\[SKIP\]" "$T/ippe")
+[ "$fail" = 0 ] && [ "$pass" -ge 1 ] && ok "ipp-everywhere.test: $pass pass, $skip skipped (no PWG raster samples), none fail" \
+	|| notok "ipp-everywhere.test: $pass pass, $fail fail: $(grep -A3 "\[FAIL\]" "$T/ippe" | head -8)"
+
+# The state survives a restart: the printers are there again
+stop_server
+if start_server; then
+	"$P" printers > "$T/printers2" 2>&1
+	[ "$(sort "$T/printers2" | tr '\n' ' ')" = "pdf plot ps " ] && ok "after a restart the printers are there (state file in the spool directory)" \
+		|| notok "after restart: $(cat "$T/printers2")"
+	rm -f "$T/out-plot"/*
+	print "$M" application/vnd.locus-meta plot "$T/j10" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \
+		&& ok "and the plotter prints the same bytes after the restart" || notok "after restart: $(grep -i "fail\|job-state" "$T/j10" | head -3)"
+	"$P" delete -d pdf > /dev/null 2>&1 && "$P" printers > "$T/printers3" 2>&1 && ! grep -q '^pdf$' "$T/printers3" \
+		&& ok "delete -d pdf removes it" || notok "delete: $(cat "$T/printers3")"
+	"$P" shutdown > /dev/null 2>&1
+	n=0
+	while kill -0 "$SPID" 2> /dev/null && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+	kill -0 "$SPID" 2> /dev/null && notok "shutdown: the server still runs after 10 s" || { ok "shutdown ends the server"; wait "$SPID"; SPID=; }
+else
+	notok "restart: $(tail -5 "$T/log")"
+fi
+find "$T/spool" -name '*.jnl' -o -name 'locus-job-*' -o -name 'locus-raster-*' | grep -q . \
+	&& notok "job data left in the spool directory: $(ls "$T/spool")" || ok "no job temporaries or journals left in the spool directory"
+done_tests
