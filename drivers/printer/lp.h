@@ -42,6 +42,7 @@ bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *d
 		const char *device_id, pappl_pr_driver_data_t *data, ipp_t **attrs, void *cbdata);
 const char *lp_autoadd_cb(const char *device_info, const char *device_uri, const char *device_id,
 		void *cbdata);
+void lp_create_cb(pappl_printer_t *printer, void *cbdata);
 /* The driver of a job's printer. */
 const lp_driver_t *lp_job_driver(pappl_job_t *job);
 

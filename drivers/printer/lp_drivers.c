@@ -1,4 +1,5 @@
 /* lp_drivers.c: locus-printer's drivers: one per Locus device and HP-GL profile, and their IPP data. */
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
 #include "hpgl.h"
@@ -118,13 +119,20 @@ static void set_media(pappl_media_col_t *m, const char *name, int lr, int bt)
 	snprintf(m->type, sizeof m->type, "stationery");
 }
 
+/* Identify-Printer: the devices have no panel of their own; the request shows in the log and
+ * as the printer's state message (PAPPL's "display"). */
+static void identify(pappl_printer_t *printer, pappl_identify_actions_t actions, const char *message)
+{
+	(void)actions;
+	papplLogPrinter(printer, PAPPL_LOGLEVEL_INFO, "Identify-Printer: %s", message ? message : "(no message)");
+}
+
 bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *device_uri,
 		const char *device_id, pappl_pr_driver_data_t *data, ipp_t **attrs, void *cbdata)
 {
 	(void)device_uri;
 	(void)device_id;
 	(void)cbdata;
-	(void)attrs;
 	const lp_driver_t *d = lp_driver_find(driver_name);
 	if (!d) {
 		papplLog(system, PAPPL_LOGLEVEL_ERROR, "No driver '%s' (locus-printer drivers lists them).", driver_name);
@@ -138,6 +146,7 @@ bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *d
 	data->format = d->format;
 	snprintf(data->make_and_model, sizeof data->make_and_model, "Locus %s", d->description);
 	data->ppm = 1;
+	data->has_supplies = d->family == LP_HPGL;
 	data->ppm_color = 1;
 	data->kind = d->family == LP_HPGL ? PAPPL_KIND_DOCUMENT | PAPPL_KIND_LARGE_FORMAT : PAPPL_KIND_DOCUMENT;
 	data->color_supported = PAPPL_COLOR_MODE_AUTO | PAPPL_COLOR_MODE_COLOR | PAPPL_COLOR_MODE_MONOCHROME;
@@ -145,7 +154,18 @@ bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *d
 	data->content_default = PAPPL_CONTENT_AUTO;
 	data->quality_default = IPP_QUALITY_NORMAL;
 	data->scaling_default = PAPPL_SCALING_AUTO;
-	data->orient_default = IPP_ORIENT_NONE;
+	data->orient_default = IPP_ORIENT_PORTRAIT;
+	data->identify_cb = identify;
+	data->identify_default = PAPPL_IDENTIFY_ACTIONS_DISPLAY;
+	data->identify_supported = PAPPL_IDENTIFY_ACTIONS_DISPLAY;
+	/* what IPP Everywhere asks for that PAPPL 1.3 leaves to the driver: no preferred-attributes
+	 * answer, and colour is taken as it comes (no rendering intents) */
+	if (attrs && (*attrs = ippNew()) != NULL) {
+		ippAddBoolean(*attrs, IPP_TAG_PRINTER, "preferred-attributes-supported", 0);
+		ippAddString(*attrs, IPP_TAG_PRINTER, IPP_CONST_TAG(IPP_TAG_KEYWORD), "print-rendering-intent-default", NULL, "auto");
+		ippAddString(*attrs, IPP_TAG_PRINTER, IPP_CONST_TAG(IPP_TAG_KEYWORD), "print-rendering-intent-supported", NULL, "auto");
+		ippAddString(*attrs, IPP_TAG_PRINTER, IPP_CONST_TAG(IPP_TAG_KEYWORD), "pwg-raster-document-sheet-back", NULL, "normal");
+	}
 	data->raster_types = PAPPL_PWG_RASTER_TYPE_BLACK_1 | PAPPL_PWG_RASTER_TYPE_BLACK_8 |
 		PAPPL_PWG_RASTER_TYPE_SGRAY_8 | PAPPL_PWG_RASTER_TYPE_SRGB_8;
 	data->sides_supported = PAPPL_SIDES_ONE_SIDED;
@@ -178,6 +198,60 @@ bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *d
 	set_media(&data->media_default, def, data->left_right, data->bottom_top);
 	data->media_ready[0] = data->media_default;
 	return true;
+}
+
+/* The supply colour nearest to a pen's ink. */
+static pappl_supply_color_t supply_colour(uint32_t rgb)
+{
+	static const struct { uint32_t rgb; pappl_supply_color_t c; } ink[] = {
+		{ 0x000000, PAPPL_SUPPLY_COLOR_BLACK }, { 0x808080, PAPPL_SUPPLY_COLOR_GRAY },
+		{ 0xd02020, PAPPL_SUPPLY_COLOR_MAGENTA }, { 0x20a040, PAPPL_SUPPLY_COLOR_GREEN },
+		{ 0x2050c0, PAPPL_SUPPLY_COLOR_CYAN }, { 0xe0d020, PAPPL_SUPPLY_COLOR_YELLOW },
+		{ 0xf08020, PAPPL_SUPPLY_COLOR_ORANGE }, { 0x8030a0, PAPPL_SUPPLY_COLOR_VIOLET },
+	};
+	pappl_supply_color_t best = PAPPL_SUPPLY_COLOR_NO_COLOR;
+	long bd = -1;
+	for (size_t k = 0; k < sizeof ink / sizeof ink[0]; k++) {
+		long dr = (long)(rgb >> 16 & 255) - (long)(ink[k].rgb >> 16 & 255);
+		long dg = (long)(rgb >> 8 & 255) - (long)(ink[k].rgb >> 8 & 255);
+		long db = (long)(rgb & 255) - (long)(ink[k].rgb & 255);
+		long dd = dr * dr + dg * dg + db * db;
+		if (bd < 0 || dd < bd) {
+			bd = dd;
+			best = ink[k].c;
+		}
+	}
+	return best;
+}
+
+/* A new (or reloaded) printer: a plotter's supplies are the pens of its profile's carousel
+ * (their levels are not known: a plotter cannot tell how much ink a pen has). */
+void lp_create_cb(pappl_printer_t *printer, void *cbdata)
+{
+	(void)cbdata;
+	const lp_driver_t *d = lp_driver_find(papplPrinterGetDriverName(printer));
+	if (!d || d->family != LP_HPGL)
+		return;
+	const hpgl_profile_t *p = hpgl_profile_find(d->options + strlen("profile="));
+	static hpgl_pens_t pens;   /* large: not on a thread's stack */
+	static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+	char err[256];
+	pappl_supply_t sup[PAPPL_MAX_SUPPLY];
+	int n = 0;
+	pthread_mutex_lock(&lock);
+	if (p && !hpgl_pens_parse(p->pens, 0.3, &pens, err, sizeof err))
+		for (size_t k = 0; k < pens.n && n < PAPPL_MAX_SUPPLY; k++, n++) {
+			memset(&sup[n], 0, sizeof sup[n]);
+			sup[n].color = supply_colour(pens.pen[k].rgb);
+			snprintf(sup[n].description, sizeof sup[n].description, "Pen %d (%.2f mm, #%06x)", pens.pen[k].slot,
+				pens.pen[k].width_mm, (unsigned)pens.pen[k].rgb);
+			sup[n].is_consumed = true;
+			sup[n].level = -1;
+			sup[n].type = PAPPL_SUPPLY_TYPE_INK;
+		}
+	pthread_mutex_unlock(&lock);
+	if (n)
+		papplPrinterSetSupplies(printer, n, sup);
 }
 
 /* A device found by `devices` or at start-up: the driver whose model its IEEE-1284 ID names. */

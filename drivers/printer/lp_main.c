@@ -179,7 +179,7 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 		drv[k].description = d->description;
 		drv[k].device_id = d->device_id[0] ? d->device_id : NULL;
 	}
-	papplSystemSetPrinterDrivers(sys, (int)n, drv, lp_autoadd_cb, NULL, lp_driver_cb, NULL);
+	papplSystemSetPrinterDrivers(sys, (int)n, drv, lp_autoadd_cb, lp_create_cb, lp_driver_cb, NULL);
 	if (is_server) {
 		const char *listen = cupsGetOption("listen-hostname", num_options, options);
 		if (!cupsGetOption("private-server", num_options, options)
