@@ -4,8 +4,9 @@
 # ipptool (cups-ipp-utils), the output of file: devices compared byte for byte with what
 # locus-hpgl and locus-play write for the same document; a broken or unsupported document fails
 # alone; the printers survive a restart.
-. tests/lib.sh
-: "${T:?T (a scratch directory) must be set: run through tests/run.sh}"
+# tests/emu/lib.sh: tests/lib.sh, the plotter emulator (EMU_PLOTTER), the segment lister (SEG),
+# the contour plot META and $T/job.hpgl, what locus-hpgl makes of it for the 7475A
+. tests/emu/lib.sh
 P=$BIN/locus-printer
 IPPT=/usr/share/cups/ipptool
 if ! command -v ipptool > /dev/null || [ ! -f "$IPPT/print-job-and-wait.test" ]; then
@@ -115,6 +116,7 @@ cat > "$T/formats.test" <<'EOF'
 	ATTR keyword requested-attributes document-format-supported,printer-state-reasons
 	STATUS successful-ok
 	DISPLAY document-format-supported
+	DISPLAY printer-state-reasons
 }
 EOF
 ipptool -T 10 -t "$URI/plot" "$T/formats.test" > "$T/gpa.v" 2>&1
@@ -262,11 +264,90 @@ grep "EXPECTED:" "$T/ippe" | grep -v "EXPECTED: overrides-supported$" \
 	&& ok "ipp-everywhere.test: $pass groups pass, $fail fail only on overrides-supported and the loopback URI count (PAPPL 1.3)" \
 	|| notok "ipp-everywhere.test: $pass pass, $fail fail: $(head -5 "$T/ippe.other")"
 
+# A plotter on a serial line: the emulated 7475A behind a pseudo-terminal (tests/emu/plotemu.c),
+# paced with ESC.B. The printer's device is a symlink to the emulator's terminal, so that the
+# plotter "plugged in again" (a second emulator, a new terminal) is the same device. The cable is
+# pulled after 5000 bytes; the job waits (printer offline), and when the plotter is back it
+# resumes at the journal's point: the two parts, the first cut there, draw every segment of the
+# contour plot once.
+if [ -x "$EMU_PLOTTER" ] && [ -x "$SEG" ]; then
+	cat > "$T/submit.test" <<'EOF'
+{
+	NAME "Print-Job"
+	OPERATION Print-Job
+	GROUP operation-attributes-tag
+	ATTR charset attributes-charset utf-8
+	ATTR language attributes-natural-language en
+	ATTR uri printer-uri $uri
+	ATTR name requesting-user-name $user
+	ATTR mimeMediaType document-format application/vnd.locus-meta
+	FILE $filename
+	STATUS successful-ok
+	DISPLAY job-id
+}
+EOF
+	cat > "$T/wait.test" <<'EOF'
+{
+	NAME "Wait for the job"
+	OPERATION Get-Job-Attributes
+	GROUP operation-attributes-tag
+	ATTR charset attributes-charset utf-8
+	ATTR language attributes-natural-language en
+	ATTR uri printer-uri $uri
+	ATTR integer job-id $jobid
+	ATTR name requesting-user-name $user
+	STATUS successful-ok
+	EXPECT job-state WITH-VALUE >5 REPEAT-NO-MATCH REPEAT-LIMIT 60
+	DISPLAY job-state
+	DISPLAY job-impressions-completed
+}
+EOF
+	ln -sf /dev/null "$T/tty"
+	"$P" add -d plotter -v "serial:$T/tty?baud=115200&flow=escb" -m hpgl-7475a > "$T/add.serial" 2>&1 \
+		&& ok "add -d plotter -v serial:…?baud=115200&flow=escb -m hpgl-7475a (PAPPL takes Locus's serial: scheme)" \
+		|| notok "add serial: $(cat "$T/add.serial")"
+	# part 1: plug in, print, the cable is pulled; wait (20 s at most) until the job says it waits
+	cat > "$T/part1.sh" <<EOF
+ln -sf "\$1" "$T/tty"
+ipptool -T 10 -t -v -f "$META" "$URI/plotter" "$T/submit.test" > "$T/sub.out" 2>&1 || exit 3
+n=0
+while ! grep -q "waiting up to" "$T/log" && [ \$n -lt 200 ]; do sleep 0.1; n=\$((n + 1)); done
+grep -q "waiting up to" "$T/log"
+EOF
+	"$EMU_PLOTTER" --handshake n --pen-scale 4 --hangup-after 5000 --deadline 40 --record "$T/p1" -- sh "$T/part1.sh" @TTY@ > "$T/e1" 2> "$T/e1.err"
+	jobid=$(sed -n 's/.*job-id (integer) = //p' "$T/sub.out" | head -1)
+	[ "$(word child "$T/e1")" = 0 ] && [ -n "$jobid" ] \
+		&& ok "cable pulled after 5000 bytes: job $jobid waits for the plotter ($(grep -m1 "waiting up to" "$T/log" | sed 's/.*\] //' | cut -c1-150))" \
+		|| notok "serial part 1: $(cat "$T/e1" "$T/e1.err" "$T/sub.out" | head -5)"
+	ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/offline" 2>&1
+	grep -q "printer-state-reasons.*offline" "$T/offline" && ok "meanwhile printer-state-reasons says offline" \
+		|| notok "printer-state-reasons while away: $(grep printer-state-reasons "$T/offline")"
+	# part 2: plugged in again (a new terminal behind the same name): the job resumes and completes
+	cat > "$T/part2.sh" <<EOF
+ln -sf "\$1" "$T/tty"
+timeout 60 ipptool -T 10 -t -d jobid=$jobid "$URI/plotter" "$T/wait.test" > "$T/wait.out" 2>&1
+EOF
+	"$EMU_PLOTTER" --handshake n --pen-scale 4 --deadline 70 --record "$T/p2" -- sh "$T/part2.sh" @TTY@ > "$T/e2" 2> "$T/e2.err"
+	[ "$(word child "$T/e2")" = 0 ] && [ "$(jobstate "$T/wait.out")" = completed ] \
+		&& ok "plugged in again, the job completes: $(grep -m1 "resumed at byte" "$T/log" | sed 's/.*\] //')" \
+		|| notok "serial part 2: $(cat "$T/e2" "$T/wait.out" | head -6); $(grep "Job $jobid" "$T/log" | tail -3)"
+	safe=$(sed -n 's/.*resumed at byte \([0-9]*\) .*/\1/p' "$T/log" | head -1)
+	if [ -n "$safe" ] && [ "$safe" -gt 0 ]; then
+		parts_whole "resumed through locus-printer" "$T/job.hpgl" "$safe" "$T/p1" "$T/p2"
+	else
+		notok "no resume point in the log"
+	fi
+	ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/online" 2>&1
+	grep -q "printer-state-reasons.*offline" "$T/online" && notok "still offline after the job" || ok "and the printer is no longer offline"
+else
+	ok "serial plotter # SKIP the emulator ($EMU_PLOTTER) is not built: make the test programs"
+fi
+
 # The state survives a restart: the printers are there again
 stop_server
 if start_server; then
 	"$P" printers > "$T/printers2" 2>&1
-	[ "$(sort "$T/printers2" | tr '\n' ' ')" = "pdf plot ps " ] && ok "after a restart the printers are there (state file in the spool directory)" \
+	[ "$(sort "$T/printers2" | tr '\n' ' ')" = "pdf plot plotter ps " ] && ok "after a restart the printers are there (state file in the spool directory)" \
 		|| notok "after restart: $(cat "$T/printers2")"
 	rm -f "$T/out-plot"/*
 	print "$M" application/vnd.locus-meta plot "$T/j10" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \

@@ -187,6 +187,20 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 	return st;
 }
 
+/* The journal's resume point ("safe N"), -1 when there is none. */
+static long journal_safe(const char *path)
+{
+	FILE *f = fopen(path, "r");
+	char line[256];
+	long safe = -1;
+	while (f && fgets(line, sizeof line, f))
+		if (sscanf(line, "safe %ld", &safe) == 1)
+			break;
+	if (f)
+		fclose(f);
+	return safe;
+}
+
 /* A job on a serial: or hid: printer: journaled; when the device goes away mid-job the job waits
  * (printer offline, the job's message saying so) and resumes at the journal's point when the
  * device is back, so no stroke is lost or drawn twice. */
@@ -198,13 +212,18 @@ static bool play_link(pappl_job_t *job, int fd, const char *link, int hpgl)
 	unlink(jnl);
 	int st = send_link(job, fd, link, jnl, 0, hpgl, err, sizeof err);
 	time_t give_up = time(NULL) + resume_wait;
+	int told = 0;
 	while ((st == 74 || st == 75) && !papplJobIsCanceled(job) && time(NULL) < give_up) {
 		papplPrinterSetReasons(pr, PAPPL_PREASON_OFFLINE, PAPPL_PREASON_NONE);
 		papplJobSetMessage(job, "waiting for the device: %s", err);
-		papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s for the device to resume", err, resume_wait);
+		if (st == 75 || !told++)
+			papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s for the device to resume", err, resume_wait);
 		sleep(1);
-		struct stat sb;
-		st = send_link(job, fd, link, jnl, stat(jnl, &sb) == 0, hpgl, err, sizeof err);
+		long safe = journal_safe(jnl);
+		st = send_link(job, fd, link, jnl, safe >= 0, hpgl, err, sizeof err);
+		if (st != 74)
+			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the device is back: %s at byte %ld of the job (the journal's point)",
+				safe >= 0 ? "resumed" : "started again", safe >= 0 ? safe : 0);
 	}
 	papplPrinterSetReasons(pr, PAPPL_PREASON_NONE, PAPPL_PREASON_OFFLINE);
 	unlink(jnl);
