@@ -67,8 +67,10 @@ start_server() {
 # --help, --version, drivers
 "$P" --help > "$T/help" 2>&1 && grep -q "server-port=PORT" "$T/help" && grep -q "spool-directory=DIR" "$T/help" \
 	&& ok "--help lists the subcommands and the server options" || notok "--help: $(head -3 "$T/help")"
-[ "$("$P" --version)" = "$("$BIN/locus-hpgl" --version | awk '{ print $NF }')" ] && ok "--version: $("$P" --version)" \
+[ "$("$P" --version)" = "locus-printer $("$BIN/locus-hpgl" --version | awk '{ print $NF }')" ] && ok "--version: $("$P" --version)" \
 	|| notok "--version: $("$P" --version) vs $("$BIN/locus-hpgl" --version)"
+"$P" --no-such-option > /dev/null 2> "$T/unk"; rc=$?
+[ $rc = 64 ] && [ "$(wc -l < "$T/unk")" = 1 ] && ok "an unknown option: exit 64, one line" || notok "unknown option: exit $rc: $(cat "$T/unk")"
 "$P" drivers > "$T/drivers" 2> "$T/drivers.err"
 missing=
 for prof in $("$BIN/locus-hpgl" --list-profiles | awk '{ print $1 }'); do

@@ -208,6 +208,20 @@ static const char *subcommand(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+	/* --version names the program as every Locus program does; an unknown long option is a
+	 * usage error (64) as everywhere in Locus (PAPPL would say 1) */
+	for (int i = 1; i < argc; i++) {
+		if (!strcmp(argv[i], "--"))
+			break;
+		if (!strcmp(argv[i], "--version")) {
+			printf("locus-printer %s\n", LOCUS_VERSION);
+			return 0;
+		}
+		if (!strncmp(argv[i], "--", 2) && strcmp(argv[i], "--help")) {
+			fprintf(stderr, "locus-printer: unknown option '%s' (locus-printer --help lists them)\n", argv[i]);
+			return 64;
+		}
+	}
 	const char *sub = subcommand(argc, argv);
 	is_server = sub && !strcmp(sub, "server");
 	lp_drivers_init();
