@@ -93,6 +93,9 @@ if command -v ss > /dev/null; then
 		&& ok "it listens on loopback addresses only: $(tr '\n' ' ' < "$T/listen")" || notok "listens on: $(cat "$T/listen")"
 fi
 [ "$(stat -c %a "$T/spool")" = 700 ] && ok "the spool directory is private (0700)" || notok "spool mode $(stat -c %a "$T/spool")"
+sleep 1   # (the server makes its socket private from its first timer)
+[ "$(stat -c %a "$TMPDIR/locus-printer.sock")" = 600 ] && ok "the CLI's domain socket (PAPPL trusts it with administration) is the owner's only (0600)" \
+	|| notok "socket mode $(stat -c %a "$TMPDIR/locus-printer.sock")"
 
 # Printers added by the CLI, each onto a file: directory (one file per job, named by PAPPL)
 for q in plot:hpgl-7475a:hpgl ps:ps-level2:ps pdf:pdf:pdf; do

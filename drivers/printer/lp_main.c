@@ -124,6 +124,30 @@ static int make_spool(const char *opt)
 	return 0;
 }
 
+/* PAPPL's domain socket for the CLI: what PAPPL 1.3 calls it (mainloop-support.c), by uid. */
+static void socket_path(char *buf, size_t n)
+{
+	const char *snap = getenv("SNAP_COMMON");
+	if (getuid())
+		snprintf(buf, n, "%s/locus-printer%d.sock", papplGetTempDir(), (int)getuid());
+	else if (snap)
+		snprintf(buf, n, "%s/locus-printer.sock", snap);
+	else
+		snprintf(buf, n, "/run/locus-printer.sock");
+}
+
+/* PAPPL makes its domain socket 0777 and trusts every connection on it with administration:
+ * the server's owner only (root connects anyway), as soon as the server runs. */
+static bool private_socket(pappl_system_t *sys, void *data)
+{
+	(void)data;
+	char path[1100];
+	socket_path(path, sizeof path);
+	if (chmod(path, 0600))
+		papplLog(sys, PAPPL_LOGLEVEL_WARN, "%s: cannot make the socket private: %s", path, strerror(errno));
+	return false;   /* once */
+}
+
 /* PAPPL's system for every subcommand that needs one; the server also listens (localhost unless
  * told otherwise) and keeps its state in the spool directory. */
 static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *data)
@@ -188,6 +212,7 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 			papplSystemDelete(sys);
 			return NULL;
 		}
+		papplSystemAddTimerCallback(sys, 0, 0, private_socket, NULL);
 		papplSystemLoadState(sys, state_file);
 		papplSystemSetSaveCallback(sys, (pappl_save_cb_t)papplSystemSaveState, state_file);
 	}
