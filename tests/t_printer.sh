@@ -184,6 +184,15 @@ print "$M" application/vnd.locus-meta ps "$T/j4" && f=$(newest "$T/out-ps") && c
 	&& ok "the PostScript Level 2 printer's output is locus-play -d ps -O level=2's, byte for byte" \
 	|| notok "PS job: $(grep -i "fail\|job-state" "$T/j4" | head -3) $(cmp "$T/out-ps/$f" "$T/strokes.ps" 2>&1)"
 
+# IPP Everywhere raster: a PNG (PAPPL turns it into raster rows, lp_raster.c into a meta image)
+# plots as hatched rows: HP-GL that the HP-GL reader reads, with pen-down strokes
+"$BIN/locus-raster" "$M" -o "$T/strokes.png" 2> /dev/null
+rm -f "$T/out-plot"/*
+print "$T/strokes.png" image/png plot "$T/jr" && f=$(newest "$T/out-plot") && [ -n "$f" ] \
+	&& "$SEG" "$T/out-plot/$f" > "$T/png.seg" 2> "$T/png.seg.err" && [ -s "$T/png.seg" ] \
+	&& ok "a PNG job plots: $(wc -l < "$T/png.seg") hatch segments that the HP-GL reader reads" \
+	|| notok "PNG job: $(grep -i "fail\|job-state" "$T/jr" | head -3) $(head -2 "$T/png.seg.err")"
+
 # jobstate JOBFILE: the last job-state the wait test displayed
 jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
 # A broken meta document: it alone is aborted with document-format-error, the queue goes on
