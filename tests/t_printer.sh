@@ -18,7 +18,16 @@ fi
 mkdir -p "$T/tmp"
 TMPDIR=$T/tmp SNAP_COMMON=$T/tmp
 export TMPDIR SNAP_COMMON
-SPID=
+SPID= CPID=
+stop_cupsd() {
+	[ -n "$CPID" ] || return 0
+	kill "$CPID" 2> /dev/null
+	n=0
+	while kill -0 "$CPID" 2> /dev/null && [ $n -lt 50 ]; do sleep 0.1; n=$((n + 1)); done
+	kill -9 "$CPID" 2> /dev/null
+	wait "$CPID" 2> /dev/null
+	CPID=
+}
 stop_server() {
 	[ -n "$SPID" ] || return 0
 	kill "$SPID" 2> /dev/null
@@ -30,6 +39,7 @@ stop_server() {
 }
 # a private server the CLI may have started (see up) is shut down too, by its socket
 stop_all() {
+	stop_cupsd
 	stop_server
 	if [ -S "$TMPDIR/locus-printer.sock" ] && python3 -c 'import socket, sys; u = socket.socket(socket.AF_UNIX); u.settimeout(1); u.connect(sys.argv[1])' "$TMPDIR/locus-printer.sock" 2> /dev/null; then
 		timeout 10 "$P" shutdown > /dev/null 2>&1
@@ -355,6 +365,90 @@ EOF
 	grep -q "printer-state-reasons.*offline" "$T/online" && notok "still offline after the job" || ok "and the printer is no longer offline"
 else
 	ok "serial plotter # SKIP the emulator ($EMU_PLOTTER) is not built: make the test programs"
+fi
+
+# CUPS in front: a cupsd started here with its own configuration (its own port, socket, spool
+# and logs under $T), a queue made with lpadmin -m everywhere from the printer's IPP attributes,
+# and lp. CUPS does not know the meta type, so lp sends it raw (application/octet-stream) and
+# locus-printer types it by its first bytes. The plotter's file is locus-hpgl's again.
+cups_skip=
+if ! command -v cupsd > /dev/null || ! command -v lpadmin > /dev/null || ! command -v lp > /dev/null; then
+	cups_skip="cupsd, lpadmin or lp is not installed (Debian cups-daemon, cups-client)"
+elif [ "$(id -u)" != 0 ]; then
+	cups_skip="cupsd needs root to run its backends as user lp"
+fi
+if [ -z "$cups_skip" ]; then
+	C=$T/cups
+	mkdir -p "$C/spool" "$C/cache" "$C/state" "$C/tmp" "$C/log"
+	chmod 711 "$T"; chmod 755 "$C"; chown root:lp "$C/spool" "$C/tmp" "$C/cache"; chmod 1770 "$C/spool"; chmod 1777 "$C/tmp"
+	CPORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+	cat > "$C/cups-files.conf" <<EOF
+ServerRoot $C
+RequestRoot $C/spool
+CacheDir $C/cache
+StateDir $C/state
+TempDir $C/tmp
+AccessLog $C/log/access_log
+ErrorLog $C/log/error_log
+PageLog $C/log/page_log
+Printcap $C/printcap
+ServerBin /usr/lib/cups
+DataDir /usr/share/cups
+User lp
+Group lp
+SystemGroup root
+EOF
+	cat > "$C/cupsd.conf" <<EOF
+Listen 127.0.0.1:$CPORT
+Listen $C/cups.sock
+LogLevel info
+Browsing Off
+WebInterface No
+DefaultAuthType None
+<Location />
+  Order allow,deny
+  Allow all
+</Location>
+<Location /admin>
+  Order allow,deny
+  Allow all
+</Location>
+<Policy default>
+  <Limit All>
+    Order deny,allow
+  </Limit>
+</Policy>
+EOF
+	cupsd -f -c "$C/cupsd.conf" -s "$C/cups-files.conf" > "$C/cupsd.out" 2>&1 &
+	CPID=$!
+	n=0
+	while [ ! -S "$C/cups.sock" ] && kill -0 "$CPID" 2> /dev/null && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+	if [ ! -S "$C/cups.sock" ]; then
+		cups_skip="cupsd did not start here: $(cat "$C/cupsd.out" "$C/log/error_log" 2> /dev/null | grep -v '^D' | tail -2 | tr '\n' ' ')"
+		stop_cupsd
+	fi
+fi
+if [ -z "$cups_skip" ]; then
+	CUPS_SERVER=$C/cups.sock
+	export CUPS_SERVER
+	timeout 60 lpadmin -p locus -E -v "ipp://localhost:$PORT/ipp/print/plot" -m everywhere > "$C/lpadmin.out" 2>&1 \
+		&& ok "lpadmin -p locus -v ipp://localhost:$PORT/ipp/print/plot -m everywhere (a cupsd of the test's own)" \
+		|| notok "lpadmin: $(cat "$C/lpadmin.out")"
+	rm -f "$T/out-plot"/*
+	timeout 20 lp -d locus -o raw "$M" > "$C/lp.out" 2>&1 || notok "lp: $(cat "$C/lp.out")"
+	n=0
+	while [ -z "$(find "$T/out-plot" -type f -size +0)" ] && [ $n -lt 300 ]; do sleep 0.1; n=$((n + 1)); done
+	sleep 0.5
+	f=$(newest "$T/out-plot")
+	[ -n "$f" ] && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \
+		&& ok "lp -d locus -o raw strokes.meta through CUPS: the plotter's file is locus-hpgl's, byte for byte ($(cat "$C/lp.out"))" \
+		|| notok "lp through CUPS: $(cat "$C/lp.out"); $(ls "$T/out-plot"); $(grep -v '^D' "$C/log/error_log" | tail -3)"
+	timeout 10 lpstat -l -p locus > "$C/lpstat" 2>&1
+	grep -q "printer locus" "$C/lpstat" && ok "lpstat -p locus: $(head -1 "$C/lpstat")" || notok "lpstat: $(cat "$C/lpstat")"
+	unset CUPS_SERVER
+	stop_cupsd
+else
+	ok "CUPS queue with lp # SKIP $cups_skip"
 fi
 
 # The state survives a restart: the printers are there again
