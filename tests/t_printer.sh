@@ -363,6 +363,24 @@ EOF
 	fi
 	ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/online" 2>&1
 	grep -q "printer-state-reasons.*offline" "$T/online" && notok "still offline after the job" || ok "and the printer is no longer offline"
+	# cancel mid-plot: the job stops at a command boundary and the pen is lifted and parked
+	cat > "$T/part3.sh" <<EOF
+ln -sf "\$1" "$T/tty"
+ipptool -T 10 -t -v -f "$META" "$URI/plotter" "$T/submit.test" > "$T/sub3.out" 2>&1 || exit 3
+id=\$(sed -n 's/.*job-id (integer) = //p' "$T/sub3.out" | head -1)
+sleep 0.4
+"$P" cancel -d plotter -j \$id > "$T/cancel.out" 2>&1 || exit 4
+timeout 30 ipptool -T 10 -t -d jobid=\$id "$URI/plotter" "$T/wait.test" > "$T/wait3.out" 2>&1
+exit 0
+EOF
+	"$EMU_PLOTTER" --handshake n --pen-scale 4 --deadline 40 --record "$T/p3" -- sh "$T/part3.sh" @TTY@ > "$T/e3" 2> "$T/e3.err"
+	n3=$(wc -c < "$T/p3")
+	cut3=$((n3 - 7))
+	[ "$(jobstate "$T/wait3.out")" = canceled ] && [ "$n3" -lt "$(wc -c < "$T/job.hpgl")" ] && [ "$(tail -c 7 "$T/p3")" = "PU;SP0;" ] \
+		&& head -c "$cut3" "$T/p3" | cmp -s - "$T/job.hpgl" -n "$cut3" 2> /dev/null; r=$?
+	[ $r = 0 ] && [ "$(head -c "$cut3" "$T/p3" | tail -c 1)" = ";" ] \
+		&& ok "cancel mid-plot: the plotter got $cut3 bytes of the job, up to a command's end, then PU;SP0; (pen up, parked)" \
+		|| notok "cancel: state $(jobstate "$T/wait3.out"), $n3 bytes, ends '$(tail -c 12 "$T/p3")': $(cat "$T/e3" "$T/cancel.out" | head -3)"
 else
 	ok "serial plotter # SKIP the emulator ($EMU_PLOTTER) is not built: make the test programs"
 fi
