@@ -91,6 +91,21 @@ for d in ps-level1 ps-level2 ps-level3 pdf film-dpx raster-png; do grep -q "^$d 
 	&& ok "drivers: $(wc -l < "$T/drivers") a line, name first: every HP-GL profile (the 7475A's name holds 7475), PostScript 1-3, PDF, film, raster" \
 	|| notok "drivers: missing$missing: $(cat "$T/drivers" "$T/drivers.err")"
 
+# devices: Locus's hid: bridges found by the code behind locus-play --list-devices, and PAPPL's
+# usb: printers, both through the emulated USB devices of tests/emu (umockdev)
+if command -v umockdev-wrapper > /dev/null && [ -x "$EMU_USB" ]; then
+	"$EMU_USB" --cp2110 -- "$BIN/locus-play" --list-devices > "$T/lpl" 2>&1
+	"$EMU_USB" --cp2110 -- "$P" devices > "$T/dev.hid" 2>&1
+	name=$(grep -o '^hid:[^ ]*' "$T/lpl" | head -1)
+	[ -n "$name" ] && grep -qx "$name" "$T/dev.hid" && grep -q "CP2110" "$T/dev.hid" \
+		&& ok "devices lists the CP2110 bridge as locus-play --list-devices names it: $name" || notok "devices (hid): $(cat "$T/dev.hid" "$T/lpl")"
+	"$EMU_USB" -- "$P" devices > "$T/dev.usb" 2>&1
+	grep -q '^usb://' "$T/dev.usb" && grep -q "CMD:HPGL" "$T/dev.usb" \
+		&& ok "devices lists the emulated USB plotter through PAPPL's usb: scheme, with its IEEE-1284 ID" || notok "devices (usb): $(cat "$T/dev.usb")"
+else
+	ok "devices # SKIP umockdev or the USB emulator is missing"
+fi
+
 if ! start_server; then
 	notok "the server starts on port $PORT: $(cat "$T/server.out"; tail -5 "$T/log")"
 	done_tests

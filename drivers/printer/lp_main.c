@@ -219,6 +219,35 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 	return sys;
 }
 
+/* `devices`: PAPPL's list, one device a URI with its description and IEEE-1284 ID indented below.
+ * DNS-SD browsing is left out when the Avahi daemon is not running: PAPPL 1.3 goes on after
+ * failing to reach it and Avahi's library aborts the program. */
+static bool show_device(const char *info, const char *uri, const char *id, void *data)
+{
+	(void)data;
+	printf("%s\n", uri);
+	if (info && *info)
+		printf("    %s\n", info);
+	if (id && *id)
+		printf("    %s\n", id);
+	return false;
+}
+
+static void show_error(const char *message, void *data)
+{
+	(void)data;
+	fprintf(stderr, "locus-printer: %s\n", message);
+}
+
+static int list_devices(void)
+{
+	pappl_devtype_t types = PAPPL_DEVTYPE_ALL;
+	if (access("/run/avahi-daemon/socket", F_OK))
+		types &= ~(pappl_devtype_t)PAPPL_DEVTYPE_DNS_SD;
+	papplDeviceList(types, show_device, NULL, show_error, NULL);
+	return fflush(stdout) ? 74 : 0;
+}
+
 /* The subcommand: the first word that is no option and no option's value. */
 static const char *subcommand(int argc, char **argv)
 {
@@ -251,5 +280,7 @@ int main(int argc, char **argv)
 	is_server = sub && !strcmp(sub, "server");
 	lp_drivers_init();
 	lp_links_add();
+	if (sub && !strcmp(sub, "devices"))
+		return list_devices();
 	return papplMainloop(argc, argv, LOCUS_VERSION, NULL, 0, NULL, NULL, NULL, NULL, NULL, system_cb, usage, NULL);
 }
