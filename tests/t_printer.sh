@@ -16,6 +16,7 @@ fi
 # The CLI finds the server through a domain socket in PAPPL's temporary directory ($TMPDIR for a
 # user, $SNAP_COMMON when run as root): both point into this test's directory.
 mkdir -p "$T/tmp"
+SYSTMP=${TMPDIR:-/tmp}
 TMPDIR=$T/tmp SNAP_COMMON=$T/tmp
 export TMPDIR SNAP_COMMON
 SPID= CPID=
@@ -38,8 +39,10 @@ stop_server() {
 	SPID=
 }
 # a private server the CLI may have started (see up) is shut down too, by its socket
+C=
 stop_all() {
 	stop_cupsd
+	[ -n "$C" ] && rm -rf "$C"
 	stop_server
 	if [ -S "$TMPDIR/locus-printer.sock" ] && python3 -c 'import socket, sys; u = socket.socket(socket.AF_UNIX); u.settimeout(1); u.connect(sys.argv[1])' "$TMPDIR/locus-printer.sock" 2> /dev/null; then
 		timeout 10 "$P" shutdown > /dev/null 2>&1
@@ -410,10 +413,18 @@ if ! command -v cupsd > /dev/null || ! command -v lpadmin > /dev/null || ! comma
 elif [ "$(id -u)" != 0 ]; then
 	cups_skip="cupsd needs root to run its backends as user lp"
 fi
+# (its backends run as user lp and open the spooled file: its directory is one lp can reach,
+# outside this test's private one, and removed on every way out)
+if [ -z "$cups_skip" ] && ! C=$(mktemp -d "$SYSTMP/locus-cups.XXXXXX"); then
+	cups_skip="no directory for cupsd in $SYSTMP"
+	C=
+fi
+if [ -z "$cups_skip" ] && ! su -s /bin/sh lp -c "test -x '$SYSTMP'" 2> /dev/null; then
+	cups_skip="user lp cannot reach $SYSTMP"
+fi
 if [ -z "$cups_skip" ]; then
-	C=$T/cups
 	mkdir -p "$C/spool" "$C/cache" "$C/state" "$C/tmp" "$C/log"
-	chmod 711 "$T"; chmod 755 "$C"; chown root:lp "$C/spool" "$C/tmp" "$C/cache"; chmod 1770 "$C/spool"; chmod 1777 "$C/tmp"
+	chmod 711 "$C"; chown root:lp "$C/spool" "$C/tmp" "$C/cache"; chmod 1770 "$C/spool"; chmod 1777 "$C/tmp"
 	CPORT=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 	cat > "$C/cups-files.conf" <<EOF
 ServerRoot $C

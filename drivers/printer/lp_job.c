@@ -71,9 +71,12 @@ static long meta_pages(const char *path, const char *name, char *err, size_t n)
 	while ((rc = meta_read(r, &c)) > 0)
 		pages += c.op == META_PAGE;
 	if (rc < 0) {
-		const char *e = meta_reader_error(r), *colon = strchr(e, ':');
 		/* the reader names the spool file: name the document instead */
-		snprintf(err, n, "%s%s", name, colon && !strncmp(e, path, strlen(path)) ? e + strlen(path) : e);
+		const char *e = meta_reader_error(r);
+		if (!strncmp(e, path, strlen(path)))
+			snprintf(err, n, "%s%s", name, e + strlen(path));
+		else
+			snprintf(err, n, "%s", e);
 	}
 	meta_reader_free(r);
 	return rc < 0 ? -1 : pages;
