@@ -171,6 +171,8 @@ esac
 print() {
 	ipptool -T 60 -t -f "$1" -d filetype="$2" "$URI/$3" "$IPPT/print-job-and-wait.test" > "$4" 2>&1
 }
+# jobstate JOBFILE: the last job-state the wait test displayed
+jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
 # newest DIR: the file the last job made
 newest() { ls -t "$1" | head -1; }
 
@@ -183,6 +185,13 @@ f=$(newest "$T/out-plot")
 [ -n "$f" ] && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \
 	&& ok "the plotter's file: output is locus-hpgl --profile 7475a's, byte for byte ($(wc -c < "$T/strokes.hpgl") bytes)" \
 	|| notok "plotter output differs from locus-hpgl's: $f $(cmp "$T/out-plot/$f" "$T/strokes.hpgl" 2>&1)"
+
+# progress in pages: a meta job's impressions are its pages (the log's line for the job)
+np=$(grep -c '^page' fixtures/meta/multipage.meta)
+print fixtures/meta/multipage.meta application/vnd.locus-meta plot "$T/jp"
+jid=$(grep -o '\[Job [0-9]*\] Completed, job-impressions-completed=[0-9]*' "$T/log" | tail -1)
+[ "$(jobstate "$T/jp")" = completed ] && [ "${jid##*=}" = "$np" ] \
+	&& ok "a $np-page meta job completes with job-impressions-completed=$np" || notok "pages: $(jobstate "$T/jp"), $jid"
 
 # the binary encoding too, typed by its first bytes (application/octet-stream)
 "$BIN/locus-meta" convert "$M" -o "$T/strokes.lmb" > /dev/null 2>&1 || "$BIN/locus-meta" convert --binary "$M" -o "$T/strokes.lmb" > /dev/null 2>&1
@@ -218,11 +227,21 @@ print "$M" application/vnd.locus-meta ps "$T/j4" && f=$(newest "$T/out-ps") && c
 rm -f "$T/out-plot"/*
 print "$T/strokes.png" image/png plot "$T/jr" && f=$(newest "$T/out-plot") && [ -n "$f" ] \
 	&& "$SEG" "$T/out-plot/$f" > "$T/png.seg" 2> "$T/png.seg.err" && [ -s "$T/png.seg" ] \
+	&& cp "$T/out-plot/$f" "$T/png.hpgl" \
 	&& ok "a PNG job plots: $(wc -l < "$T/png.seg") hatch segments that the HP-GL reader reads" \
 	|| notok "PNG job: $(grep -i "fail\|job-state" "$T/jr" | head -3) $(head -2 "$T/png.seg.err")"
 
-# jobstate JOBFILE: the last job-state the wait test displayed
-jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
+# the same PNG in monochrome: PAPPL sends grey or 1-bit rows (print-color-mode monochrome),
+# which lp_raster.c turns into grey runs; it plots (each grey hatched with its nearest pen)
+sed 's/^\tGROUP job-attributes-tag$/\tGROUP job-attributes-tag\n\tATTR keyword print-color-mode monochrome/' \
+	"$IPPT/print-job-and-wait.test" > "$T/mono.test"
+rm -f "$T/out-plot"/*
+ipptool -T 60 -t -f "$T/strokes.png" -d filetype=image/png "$URI/plot" "$T/mono.test" > "$T/jm" 2>&1 \
+	&& f=$(newest "$T/out-plot") && [ -n "$f" ] && "$SEG" "$T/out-plot/$f" > "$T/mono.seg" 2> /dev/null && [ -s "$T/mono.seg" ] \
+	&& ! cmp -s "$T/out-plot/$f" "$T/png.hpgl" \
+	&& ok "the PNG in monochrome plots too, differently: $(wc -l < "$T/mono.seg") segments" \
+	|| notok "monochrome PNG: $(grep -i "fail\|job-state" "$T/jm" | tail -2)"
+
 # A broken meta document: it alone is aborted with document-format-error, the queue goes on
 rm -f "$T/out-plot"/*
 print fixtures/bad/bad-keyword.meta application/vnd.locus-meta plot "$T/j5"

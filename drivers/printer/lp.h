@@ -50,9 +50,10 @@ const lp_driver_t *lp_job_driver(pappl_job_t *job);
 void lp_filters_add(pappl_system_t *system);
 /* Replay the meta file at path onto the job's device: the Locus device of the printer's
  * driver, with the job's options; the output goes to device (or, for serial:/hid: printers,
- * straight to the Locus link, journaled and resumed when the device comes back). true when
+ * straight to the Locus link, journaled and resumed when the device comes back). count: set
+ * the job's impressions from the file's pages (PAPPL counts raster jobs itself). true when
  * the job was delivered; false with the job's reasons and message set. */
-bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path);
+bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path, int count);
 /* How long (seconds) a job on a serial:/hid: printer waits for its device to come back. */
 void lp_set_resume_wait(int seconds);
 

@@ -238,7 +238,7 @@ static bool play_link(pappl_job_t *job, int fd, const char *link, int hpgl)
 	return true;
 }
 
-bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path)
+bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path, int count)
 {
 	const lp_driver_t *d = lp_job_driver(job);
 	if (!d)
@@ -247,7 +247,8 @@ bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path)
 	long pages = meta_pages(path, papplJobGetName(job) ? papplJobGetName(job) : "document", err, sizeof err);
 	if (pages < 0)
 		return doc_error(job, err);
-	papplJobSetImpressions(job, (int)pages);
+	if (count)
+		papplJobSetImpressions(job, (int)pages);
 	job_options(job, d, opts, sizeof opts);
 	int fd = spool_temp();
 	if (fd < 0)
@@ -268,7 +269,7 @@ bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path)
 	else
 		ok = send_device(job, fd, device, d->family == LP_HPGL);
 	close(fd);
-	if (ok && !papplJobIsCanceled(job))
+	if (ok && count && !papplJobIsCanceled(job))
 		papplJobSetImpressionsCompleted(job, (int)pages);
 	return ok;
 }
@@ -276,7 +277,7 @@ bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path)
 static bool meta_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 {
 	(void)data;
-	return lp_play_meta(job, device, papplJobGetFilename(job));
+	return lp_play_meta(job, device, papplJobGetFilename(job), 1);
 }
 
 /* An HP-GL document: read through by the HP-GL reader first (a broken file fails alone, before
@@ -300,7 +301,7 @@ static bool hpgl_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 		fclose(f);
 		return doc_error(job, err);
 	}
-	papplLogJob(job, PAPPL_LOGLEVEL_INFO, "HP-GL document read: %zu strokes", strokes);
+	papplLogJob(job, PAPPL_LOGLEVEL_INFO, "HP-GL document read: %lu strokes", (unsigned long)strokes);
 	papplJobSetImpressions(job, 1);
 	int fd = fileno(f);
 	bool ok = lp_link_name(papplPrinterGetDeviceURI(papplJobGetPrinter(job)), link, sizeof link)

@@ -139,7 +139,7 @@ bool lp_rendjob(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t *d
 	if (!ok)
 		papplLogJob(job, PAPPL_LOGLEVEL_ERROR, "cannot write the raster's meta file in the spool directory");
 	else
-		ok = lp_play_meta(job, device, r->path);
+		ok = lp_play_meta(job, device, r->path, 0);   /* PAPPL counts raster pages itself */
 	fclose(r->f);
 	free(r);
 	return ok;
