@@ -187,16 +187,12 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 	snprintf(ver.sversion, sizeof ver.sversion, "%s", LOCUS_VERSION);
 	sscanf(LOCUS_VERSION, "%hu.%hu.%hu", ver.version, ver.version + 1, ver.version + 2);
 	papplSystemSetVersions(sys, 1, &ver);
-	papplSystemSetFooterHTML(sys, "Locus printer application " LOCUS_VERSION);
 	/* filters before drivers, drivers before the state: a printer's formats are fixed when it
 	 * is made, and the state makes the printers */
 	lp_filters_add(sys);
-	size_t n = lp_driver_count();
-	pappl_pr_driver_t *drv = calloc(n ? n : 1, sizeof *drv);
-	if (!drv) {
-		papplSystemDelete(sys);
-		return NULL;
-	}
+	/* PAPPL keeps the table, and the system lives until the program ends */
+	static pappl_pr_driver_t drv[64];
+	size_t n = lp_driver_count() < 64 ? lp_driver_count() : 64;
 	for (size_t k = 0; k < n; k++) {
 		const lp_driver_t *d = lp_driver_at(k);
 		drv[k].name = d->name;
