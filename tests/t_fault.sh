@@ -75,9 +75,10 @@ feed() {
 	esac
 }
 KEYS="render meta-check meta-fmt meta-info meta-convert raster play diff"
+# (locus-printer is a print server, not a meta-in, file-out program: tests/t_printer.sh)
 for p in "$BIN"/locus-*; do
 	n=${p##*/locus-}
-	case $n in meta|render|raster|play|diff) ;; *) KEYS="$KEYS $n" ;; esac
+	case $n in meta|render|raster|play|diff|printer) ;; *) KEYS="$KEYS $n" ;; esac
 done
 
 # samples COUNT: the N to try, 1..COUNT, at most MAXN of them evenly spread (first and last kept)

@@ -75,9 +75,10 @@ kind() {
 	case $1 in render) echo scene ;; diff) echo "meta image" ;; *) echo meta ;; esac
 }
 KEYS="render meta-check meta-fmt meta-info meta-convert raster play diff"
+# (locus-printer is a print server, not a meta-in, file-out program: tests/t_printer.sh)
 for p in "$BIN"/locus-*; do
 	n=${p##*/locus-}
-	case " $KEYS " in *" $n "*) ;; *) case $n in meta|render|raster|play|diff) ;; *) KEYS="$KEYS $n" ;; esac ;; esac
+	case " $KEYS " in *" $n "*) ;; *) case $n in meta|render|raster|play|diff|printer) ;; *) KEYS="$KEYS $n" ;; esac ;; esac
 done
 
 # ---- every program answers --help, --version and refuses an unknown option (64) ------------
