@@ -2,7 +2,7 @@
 # Sources are found by wildcard in the subsystem folders (docs/drivers.md, "Where things are"):
 # a new file needs no edit here. drivers/cli/main-NAME.c becomes bin/locus-NAME.
 DRV_MAINS := $(wildcard drivers/cli/main-*.c)
-DRV_SRCS := $(filter-out $(DRV_MAINS),$(wildcard drivers/*/*.c drivers/*/*/*.c))
+DRV_SRCS := $(filter-out $(DRV_MAINS) drivers/printer/%,$(wildcard drivers/*/*.c drivers/*/*/*.c))
 $(B)/libdrivers.a: $(DRV_SRCS:%.c=$(B)/%.o)
 PROGRAMS += $(DRV_MAINS:drivers/cli/main-%.c=$(BINDIR)/locus-%)
 $(BINDIR)/locus-%: $(B)/drivers/cli/main-%.o $(B)/libdrivers.a $(B)/libmeta.a

@@ -10,7 +10,7 @@
 #define LOCUS_LP_H
 
 #include <pappl/pappl.h>
-#include "device.h"
+#include "device/device.h"
 
 /* The formats Locus reads; the SVG importer will add LP_FMT_SVG here and a filter in lp_job.c
  * (lp_filters_add): see "Adding a format" in docs/printer.md. */

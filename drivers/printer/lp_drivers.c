@@ -2,8 +2,8 @@
 #include <pthread.h>
 #include <stdio.h>
 #include <string.h>
-#include "hpgl.h"
-#include "lp.h"
+#include "hpgl/hpgl.h"
+#include "printer/lp.h"
 
 #define LP_MAX_DRIVERS 32
 

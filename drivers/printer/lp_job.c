@@ -8,10 +8,10 @@
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
-#include "hpgl.h"
-#include "hpgl_read.h"
-#include "lp.h"
-#include "run.h"
+#include "hpgl/hpgl.h"
+#include "hpgl/read/hpgl_read.h"
+#include "printer/lp.h"
+#include "cli/run.h"
 
 static int resume_wait = 600;      /* seconds a job waits for a link device to come back */
 static pthread_mutex_t link_lock = PTHREAD_MUTEX_INITIALIZER;

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "lp.h"
+#include "printer/lp.h"
 
 /* The URI is the Locus output name itself (docs/transports.md): serial:/dev/ttyUSB0?baud=9600&
  * flow=escb, hid:10c4:ea80[:SERIAL]?baud=...; serial:///dev/X is taken too. */

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include "lp.h"
+#include "printer/lp.h"
 
 #ifndef LOCUS_VERSION
 #define LOCUS_VERSION "0.0.0"

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-#include "lp.h"
+#include "printer/lp.h"
 
 /* A raster job being written as a meta file: one page per raster page, each a full-page image
  * whose rows are run-length coded as they arrive (top row first, as the meta image wants). */

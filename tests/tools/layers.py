@@ -32,6 +32,7 @@ ALLOWED = {
     'diff': FRAME | LOW | {'image'} | set(FAMILIES),
     'import': FRAME | LOW | {'image'} | set(FAMILIES),
     'cli': None,                       # anything
+    'printer': None,                   # the PAPPL printer application: a program, as cli
 }
 INC = re.compile(r'^\s*#\s*include\s*"([^"]+)"', re.M)
 
