@@ -17,7 +17,7 @@ CFLAGS     ?= -g
 STDFLAGS   := -std=c11 -D_POSIX_C_SOURCE=200809L -D_DEFAULT_SOURCE -DLOCUS_VERSION='"$(VERSION)"'
 WARNFLAGS  := -Wall -Wextra
 MATHFLAGS  := -fno-math-errno
-PKGS       := libpng zlib
+PKGS       := libpng zlib libxml-2.0
 
 ifeq ($(SANITIZE),1)
 B          := build/asan

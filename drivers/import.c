@@ -5,6 +5,7 @@
 #include <string.h>
 #include "meta_import.h"
 #include "plotmeta.h"
+#include "svg_import.h"
 #include "transport.h"
 
 static int out_write(void *user, const void *buf, size_t n)
@@ -13,6 +14,12 @@ static int out_write(void *user, const void *buf, size_t n)
 }
 
 int mimp_run(const char *in, const char *out, const char *pens)
+{
+	svgimp_opts_t o = { .tol_mm = 0.0125, .dpi = 96, .dedupe_mm = 0.05, .carousel = pens };
+	return mimp_run_svg(in, out, pens, &o, 0);
+}
+
+int mimp_run_svg(const char *in, const char *out, const char *pens, const svgimp_opts_t *svg, int svg_only)
 {
 	char err[700];
 	io_transport_t *t = io_open_read(in, err, sizeof err);
@@ -57,7 +64,12 @@ int mimp_run(const char *in, const char *out, const char *pens)
 	meta_writer_t *w = meta_writer_new(out_write, o, META_ENC_TEXT);
 	int rc = w ? 0 : -70;
 	snprintf(err, sizeof err, "out of memory");
-	if (w && plotmeta_is(buf, n) && pens) {
+	if (w && svgimp_is(buf, n)) {
+		rc = svgimp_import(buf, n, name, svg, w, err, sizeof err);
+	} else if (w && svg_only) {
+		snprintf(err, sizeof err, "locus-meta: %s is not SVG: --pens by-layer/by-colour, --pen, -O, --stats, --tolerance, --dpi and --profile are SVG's", name);
+		rc = -64;
+	} else if (w && plotmeta_is(buf, n) && pens) {
 		snprintf(err, sizeof err, "locus-meta: --pens: %s is a plotutils metafile, which has no pens", name);
 		rc = -64;
 	} else if (w && plotmeta_is(buf, n))

@@ -28,4 +28,11 @@ int mimp_hpgl_pens(const void *buf, size_t n, const char *name, double px_per_mm
  * line on failure; returns the exit status (0, 64 bad pens, 65 bad input, 66 no input, 70, 74). */
 int mimp_run(const char *in, const char *out, const char *pens);
 
+/* mimp_run with SVG's options (svg_import.h; svg_only: refuse other kinds); and the whole
+ * subcommand with its own options (import_svg_cli.c; argv[0] is "import"). */
+struct svgimp_opts_s;
+int mimp_run_svg(const char *in, const char *out, const char *pens, const struct svgimp_opts_s *svg,
+		int svg_only);
+int mimp_main(int argc, char **argv);
+
 #endif
