@@ -18,7 +18,7 @@
 #define FONT_SIZE 16.0          /* px: the em of a drawing that sets no font-size */
 #define SVG_NS "http://www.w3.org/2000/svg"
 
-typedef struct { int kind; uint32_t rgb; } paint_t;   /* kind 0 none, 1 colour */
+typedef struct { int kind; uint32_t rgb; double a; } paint_t;   /* kind 0 none, 1 colour; a its alpha */
 
 /* The computed style an element hands its children. */
 typedef struct {
@@ -59,7 +59,8 @@ static void warn_kind(st_t *s, const char *kind, long line)
 			return;
 	if (s->nwarned < 32)
 		s->warned[s->nwarned++] = kind;
-	fprintf(stderr, "%s:%ld: warning: %s; further ones not named\n", s->d.name, line, kind);
+	if (!s->d.o->quiet)
+		fprintf(stderr, "%s:%ld: warning: %s; further ones not named\n", s->d.name, line, kind);
 }
 
 static void sheet_warn(void *u, const char *kind)
@@ -160,20 +161,34 @@ static double attr_len(xmlNode *n, const char *name, const vp_t *vp, int axis, d
 
 /* ---- paint and style ---- */
 
-/* A gradient's colour for a flat fallback: its first stop's (following href), else grey. */
+static double opacity(const char *v, double dflt)
+{
+	const char *p = v;
+	double x;
+	while (isspace((unsigned char)*p))
+		p++;
+	if (svg_number(&p, &x))
+		return dflt;
+	if (*p == '%')
+		x /= 100, p++;
+	while (isspace((unsigned char)*p))
+		p++;
+	return *p ? dflt : fmin(fmax(x, 0), 1);
+}
+
+/* A gradient's colour for a flat fallback: the mean of its stops (following href), else grey. */
 static uint32_t gradient_colour(st_t *s, xmlNode *g, double *alpha)
 {
 	*alpha = 1;
 	for (int hop = 0; g && hop < 8; hop++) {
+		double sum[3] = { 0, 0, 0 }, asum = 0;
+		int n = 0;
 		for (xmlNode *c = g->children; c; c = c->next) {
 			if (!is_svg(c, "stop"))
 				continue;
-			char *val[SP_NPROP];
-			svg_cascade(s->sheet, c, val);
-			for (int k = 0; k < SP_NPROP; k++)
-				free(val[k]);
-			char *sc = prop(c, "stop-color"), *st = prop(c, "style");
+			char *sc = prop(c, "stop-color"), *st = prop(c, "style"), *so = prop(c, "stop-opacity");
 			uint32_t rgb = 0;
+			double a = 1, op = so ? opacity(so, 1) : 1;
 			const char *src = sc;
 			char *q = st ? strstr(st, "stop-color:") : NULL;
 			if (q)
@@ -183,11 +198,19 @@ static uint32_t gradient_colour(st_t *s, xmlNode *g, double *alpha)
 				size_t m = strcspn(src, ";");
 				snprintf(buf, sizeof buf, "%.*s", (int)(m < 63 ? m : 63), src);
 			}
-			if (svg_colour(buf, &rgb, alpha))
-				rgb = 0;
+			if (svg_colour(buf, &rgb, &a))
+				rgb = 0, a = 1;
+			for (int k = 0; k < 3; k++)
+				sum[k] += (rgb >> (16 - 8 * k) & 255);
+			asum += a * op;
+			n++;
 			xmlFree(sc);
 			xmlFree(st);
-			return rgb;
+			xmlFree(so);
+		}
+		if (n) {
+			*alpha = asum / n;
+			return (uint32_t)lround(sum[0] / n) << 16 | (uint32_t)lround(sum[1] / n) << 8 | (uint32_t)lround(sum[2] / n);
 		}
 		char *h = href(g);
 		g = by_ref(s, h);
@@ -207,7 +230,7 @@ static int paint(st_t *s, const char *v, const style_t *st, paint_t *p, long lin
 		return 0;
 	}
 	if (!strcasecmp(v, "currentColor")) {
-		p->kind = 1, p->rgb = st->color;
+		p->kind = 1, p->rgb = st->color, p->a = 1;
 		return 0;
 	}
 	if (!strncmp(v, "url(", 4)) {
@@ -217,8 +240,8 @@ static int paint(st_t *s, const char *v, const style_t *st, paint_t *p, long lin
 		while (isspace((unsigned char)*fb))
 			fb++;
 		if (r && (is_svg(r, "linearGradient") || is_svg(r, "radialGradient"))) {
-			warn_kind(s, "gradient paint (drawn in its first stop's colour)", line);
-			p->kind = 1, p->rgb = gradient_colour(s, r, &a);
+			warn_kind(s, "gradient paint (drawn in the mean of its stops' colours)", line);
+			p->kind = 1, p->rgb = gradient_colour(s, r, &a), p->a = a;
 			if (a == 0)
 				p->kind = 0;
 			return 0;
@@ -235,7 +258,7 @@ static int paint(st_t *s, const char *v, const style_t *st, paint_t *p, long lin
 	uint32_t rgb;
 	if (svg_colour(v, &rgb, &a))
 		return -1;
-	p->kind = a > 0, p->rgb = rgb;
+	p->kind = a > 0, p->rgb = rgb, p->a = a;
 	return 0;
 }
 
@@ -247,19 +270,6 @@ static int keyword(const char *v, const char *const *kw, int n)
 		if (!strcmp(v, kw[k]))
 			return k;
 	return -1;
-}
-
-static double opacity(const char *v, double dflt)
-{
-	const char *p = v;
-	double x;
-	while (isspace((unsigned char)*p))
-		p++;
-	if (svg_number(&p, &x))
-		return dflt;
-	if (*p == '%')
-		x /= 100;
-	return fmin(fmax(x, 0), 1);
 }
 
 /* The element's style from its parent's: cascade, then each property parsed or inherited. */
@@ -382,7 +392,7 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 {
 	if (!st->visible || s->fatal)
 		return;
-	double fa = st->fill_op * st->opacity, sa = st->stroke_op * st->opacity;
+	double fa = st->fill_op * st->opacity * st->fill.a, sa = st->stroke_op * st->opacity * st->stroke.a;
 	int want_fill = st->fill.kind && fa > 0, want_stroke = st->stroke.kind && sa > 0 && st->width > 0;
 	if (!want_fill && !want_stroke)
 		return;
@@ -402,6 +412,12 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 	if (bad)
 		warn_kind(s, "path data with an error (drawn up to it)", xmlGetLineNo(el));
 	s->points += g.n;
+	int area = 0;
+	for (size_t i = 0; i < g.nsub; i++)
+		area |= (i + 1 < g.nsub ? g.sub[i + 1] : g.n) - g.sub[i] >= 3;
+	if (!area && want_fill && !want_stroke)
+		g.nsub = 0;
+	want_fill &= area;
 	if (!g.nsub) {
 		svg_geom_free(&g);
 		return;
@@ -910,7 +926,7 @@ int svgimp_import(const void *buf, size_t n, const char *name, const svgimp_opts
 	int rc = 0;
 	if (viewbox(root, 0, 0, sw, sh, &rm, &vp) == 0) {
 		rm = svg_mat_mul(rm, (svg_mat_t){ k, 0, 0, k, 0, 0 });
-		style_t st = { .fill = { 1, 0 }, .stroke = { 0, 0 }, .fill_op = 1, .stroke_op = 1, .opacity = 1,
+		style_t st = { .fill = { 1, 0, 1 }, .stroke = { 0, 0, 1 }, .fill_op = 1, .stroke_op = 1, .opacity = 1,
 			.rule = META_RULE_NON_ZERO, .cap = META_CAP_BUTT, .join = META_JOIN_MITER, .visible = 1,
 			.width = 1, .miter = 4, .font = FONT_SIZE, .color = 0 };
 		int display;

@@ -136,7 +136,7 @@ int svg_colour(const char *s, uint32_t *rgb, double *alpha)
 		if (*p != ')' || n < 3)
 			return -1;
 		if (hsl) {
-			double h = c[0] / 360, sat = c[1], l = c[2];
+			double h = c[0] / 360, sat = fmin(fmax(c[1], 0), 1), l = fmin(fmax(c[2], 0), 1);
 			double q = l < 0.5 ? l * (1 + sat) : l + sat - l * sat, pp = 2 * l - q;
 			c[0] = 255 * hue(pp, q, h + 1.0 / 3), c[1] = 255 * hue(pp, q, h), c[2] = 255 * hue(pp, q, h - 1.0 / 3);
 		}
@@ -564,6 +564,12 @@ void svg_cascade(const svg_sheet_t *s, xmlNode *el, char **val)
 			apply_decls(r->decl, (uint64_t)1 << 58 | (uint64_t)(r->spec & 0xffffff) << 24 | (r->order & 0xffffff), val, key);
 	}
 	xmlChar *st = xmlGetProp(el, (const xmlChar *)"style");
+	for (char *p = (char *)st; p && (p = strstr(p, "/*"));) {   /* comments out */
+		char *q = strstr(p + 2, "*/");
+		size_t n = q ? (size_t)(q + 2 - p) : strlen(p);
+		memset(p, ' ', n);
+		p += n;
+	}
 	if (st) {
 		apply_decls((char *)st, (uint64_t)1 << 60, val, key);
 		xmlFree(st);

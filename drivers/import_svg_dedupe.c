@@ -95,8 +95,7 @@ static void subtract(seg_t *s, const seg_t *q, double tol)
 		double t = u0;
 		u0 = u1, u1 = t;
 	}
-	double slack = tol / L;   /* ends within tol of each other count as meeting */
-	u0 -= slack, u1 += slack;
+	double small = tol / L;   /* what is left shorter than the tolerance goes too */
 	double n0[MAX_IV * 2], n1[MAX_IV * 2];
 	int n = 0;
 	for (int i = 0; i < s->niv; i++) {
@@ -105,9 +104,9 @@ static void subtract(seg_t *s, const seg_t *q, double tol)
 			n0[n] = a, n1[n++] = b;
 			continue;
 		}
-		if (u0 > a)
+		if (u0 - a > small)
 			n0[n] = a, n1[n++] = u0;
-		if (u1 < b)
+		if (b - u1 > small)
 			n0[n] = u1, n1[n++] = b;
 	}
 	if (n > MAX_IV)

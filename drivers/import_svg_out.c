@@ -395,7 +395,8 @@ int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen)
 	if ((r = meta_end_page(w)) < 0)
 		goto werr;
 	if (s.clamped)
-		fprintf(stderr, "%s: warning: coordinates beyond the meta file's range (1000000 pixels) were clamped\n", d->name);
+		if (!o->quiet)
+			fprintf(stderr, "%s: warning: coordinates beyond the meta file's range (1000000 pixels) were clamped\n", d->name);
 	return 0;
 werr:
 	snprintf(err, errlen, "%s: %s", d->name, meta_writer_error(w) ? meta_writer_error(w) : "cannot write the meta file");

@@ -23,6 +23,7 @@ typedef struct svgimp_opts_s {
 	int stats, json, verbose;
 	const char *profile;    /* --profile NAME for the time estimate (default 7475a) */
 	FILE *stats_out;        /* where --stats and -v go (NULL: stderr) */
+	int quiet;              /* no warnings (the fuzzing harness) */
 } svgimp_opts_t;
 
 /* Is buf an XML document (blanks and a BOM, then '<')? HP-GL and plotutils never start so. */

@@ -14,6 +14,7 @@ int fuzz_entry_hpgl(const uint8_t *data, size_t size);
 int fuzz_entry_plotmeta(const uint8_t *data, size_t size);
 int fuzz_entry_imgread(const uint8_t *data, size_t size);
 int fuzz_entry_vector(const uint8_t *data, size_t size);
+int fuzz_entry_svg(const uint8_t *data, size_t size);
 
 static const struct {
 	const char *name;          /* harness name; regression files are named NAME-... */
@@ -29,6 +30,7 @@ static const struct {
 	{ "plotmeta", fuzz_entry_plotmeta, { "fixtures/fuzz/plotmeta", "fixtures/import", NULL } },
 	{ "imgread", fuzz_entry_imgread, { "fixtures/fuzz/imgread", NULL } },
 	{ "vector", fuzz_entry_vector, { "fixtures/meta", "fixtures/fuzz/raster", NULL } },
+	{ "svg", fuzz_entry_svg, { "fixtures/fuzz/svg", NULL } },
 };
 #define NH (sizeof harness / sizeof harness[0])
 

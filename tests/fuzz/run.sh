@@ -17,6 +17,7 @@ seeds() {
 	plotmeta) echo fixtures/fuzz/plotmeta fixtures/import ;;
 	imgread) echo fixtures/fuzz/imgread ;;
 	vector) echo fixtures/meta fixtures/fuzz/raster fixtures/raster/inputs ;;
+	svg) echo fixtures/fuzz/svg ../shared/corpus/svg/vpype/misc ;;
 	esac
 }
 # libFuzzer reads every regular file of a corpus directory: give it only the inputs
@@ -27,7 +28,7 @@ corpus_of() {
 		for f in "$s"/*; do
 			[ -f "$f" ] || continue
 			case $1 in
-			hpgl|plotmeta|imgread)   # every input file (the corpus is copied into build/ only)
+			hpgl|plotmeta|imgread|svg)   # every input file (the corpus is copied into build/ only)
 				case $f in *.md|*/goldens.txt|*.meta) continue ;; esac
 				cp "$f" "$d/$(echo "$s" | tr /. __)_$(basename "$f")"; continue ;;
 			esac
@@ -38,7 +39,7 @@ corpus_of() {
 	echo "$d"
 }
 status=0
-for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector; do
+for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector svg; do
 	[ -z "$FUZZ_ONLY" ] || [ "$FUZZ_ONLY" = "$h" ] || continue
 	mkdir -p "$B/corpus/$h" "$B/crash"
 	s=$(corpus_of "$h")
