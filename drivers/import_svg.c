@@ -50,6 +50,9 @@ typedef struct {
 	size_t errlen;
 	svg_mat_t page;         /* root user space to page pixels */
 	long style_line;        /* the first <style> element's line */
+	svg_pt_t clip[16][4];   /* viewports of nested svg and symbol on the page (convex quads) */
+	int nclip;
+	char *transform;        /* what compute() found for the element it was last called on */
 } st_t;
 
 static void warn_kind(st_t *s, const char *kind, long line)
@@ -327,7 +330,7 @@ static void compute(st_t *s, xmlNode *el, const style_t *parent, const vp_t *vp,
 		st->width = x;
 	if (v[SP_MITERLIMIT]) {
 		const char *p = v[SP_MITERLIMIT];
-		if (!svg_number(&p, &x) && x >= 1)
+		if (!svg_number(&p, &x) && !*p && x >= 1)
 			st->miter = x;
 	}
 	if (v[SP_DASHOFFSET] && !length(v[SP_DASHOFFSET], vp, AX_D, st->font, &x))
@@ -362,6 +365,8 @@ static void compute(st_t *s, xmlNode *el, const style_t *parent, const vp_t *vp,
 			warn_kind(s, "markers (left out)", line);
 	*origin = v[SP_TRANSFORM_ORIGIN];
 	v[SP_TRANSFORM_ORIGIN] = NULL;
+	s->transform = v[SP_TRANSFORM];   /* the attribute, or a sheet's or style's transform */
+	v[SP_TRANSFORM] = NULL;
 	for (k = 0; k < SP_NPROP; k++)
 		free(v[k]);
 }
@@ -384,6 +389,117 @@ static int add_item(st_t *s, svg_item_t *it)
 		return -1;
 	s->d.it[s->d.n++] = *it;
 	return 0;
+}
+
+
+/* ---- clipping to nested viewports (convex quadrilaterals on the page) ---- */
+
+static double side(const svg_pt_t *q, int k, svg_pt_t a)
+{
+	svg_pt_t p0 = q[k], p1 = q[(k + 1) % 4];
+	double area = (q[1].x - q[0].x) * (q[2].y - q[0].y) - (q[1].y - q[0].y) * (q[2].x - q[0].x);
+	double c = (p1.x - p0.x) * (a.y - p0.y) - (p1.y - p0.y) * (a.x - p0.x);
+	return area < 0 ? -c : c;   /* >= 0 inside */
+}
+
+/* g clipped to q: fills polygon by polygon (Sutherland-Hodgman), strokes segment by segment. */
+static int clip_geom(svg_geom_t *g, const svg_pt_t *q, int fill)
+{
+	svg_geom_t o = { .tol = g->tol, .m = { 1, 0, 0, 1, 0, 0 }, .limit = g->limit };
+	svg_pt_t *a = malloc((g->n * 2 + 16) * sizeof *a), *b = malloc((g->n * 2 + 16) * sizeof *b);
+	if (!a || !b) {
+		free(a), free(b);
+		return -1;
+	}
+	for (size_t s = 0; s < g->nsub; s++) {
+		size_t i0 = g->sub[s], i1 = s + 1 < g->nsub ? g->sub[s + 1] : g->n, n = i1 - i0;
+		if (fill) {
+			memcpy(a, g->pt + i0, n * sizeof *a);
+			for (int k = 0; k < 4 && n; k++) {
+				size_t m = 0;
+				for (size_t i = 0; i < n; i++) {
+					svg_pt_t c = a[i], p = a[(i + n - 1) % n];
+					double sc = side(q, k, c), sp = side(q, k, p);
+					if ((sc >= 0) != (sp >= 0)) {
+						double t = sp / (sp - sc);
+						b[m++] = (svg_pt_t){ p.x + t * (c.x - p.x), p.y + t * (c.y - p.y) };
+					}
+					if (sc >= 0)
+						b[m++] = c;
+				}
+				svg_pt_t *t = a;
+				a = b, b = t, n = m;
+			}
+			for (size_t i = 0; i < n; i++)
+				i ? svg_geom_line(&o, a[i].x, a[i].y) : svg_geom_move(&o, a[i].x, a[i].y);
+			if (n)
+				svg_geom_close(&o);
+			continue;
+		}
+		size_t m = n + (g->closed[s] && n > 1 ? 1 : 0);
+		int open = 0, whole = 1;
+		if (n == 1) {   /* a dot */
+			int in = 1;
+			for (int k = 0; k < 4; k++)
+				in &= side(q, k, g->pt[i0]) >= 0;
+			if (in) {
+				svg_geom_move(&o, g->pt[i0].x, g->pt[i0].y);
+				if (g->closed[s])
+					svg_geom_close(&o);
+			}
+			continue;
+		}
+		size_t first = o.nsub;
+		for (size_t j = 1; j < m; j++) {
+			svg_pt_t P = g->pt[i0 + j - 1], Q = g->pt[j < n ? i0 + j : i0];
+			double t0 = 0, t1 = 1;
+			for (int k = 0; k < 4 && t0 <= t1; k++) {
+				double sp = side(q, k, P), sq = side(q, k, Q);
+				if (sp < 0 && sq < 0)
+					t1 = -1;
+				else if (sp < 0)
+					t0 = fmax(t0, sp / (sp - sq));
+				else if (sq < 0)
+					t1 = fmin(t1, sp / (sp - sq));
+			}
+			if (t0 > t1) {
+				open = 0, whole = 0;
+				continue;
+			}
+			if (t0 > 0 || t1 < 1)
+				whole = 0;
+			if (!open || t0 > 0)
+				svg_geom_move(&o, P.x + t0 * (Q.x - P.x), P.y + t0 * (Q.y - P.y));
+			svg_geom_line(&o, P.x + t1 * (Q.x - P.x), P.y + t1 * (Q.y - P.y));
+			open = t1 >= 1;
+		}
+		if (whole && g->closed[s] && o.nsub == first + 1) {
+			o.n--;
+			svg_geom_close(&o);
+		}
+	}
+	free(a), free(b);
+	if (o.oom) {
+		svg_geom_free(&o);
+		return -1;
+	}
+	svg_geom_free(g);
+	*g = o;
+	return 0;
+}
+
+static void push_clip(st_t *s, svg_mat_t m, double x, double y, double w, double h, xmlNode *el)
+{
+	char *ov = prop(el, "overflow"), *st = prop(el, "style");
+	int visible = (ov && (!strcmp(ov, "visible") || !strcmp(ov, "auto"))) || (st && strstr(st, "overflow:visible"));
+	xmlFree(ov);
+	xmlFree(st);
+	if (visible || s->nclip == 16)
+		return;
+	double px[4] = { x, x + w, x + w, x }, py[4] = { y, y, y + h, y + h };
+	for (int k = 0; k < 4; k++)
+		s->clip[s->nclip][k] = (svg_pt_t){ m.a * px[k] + m.c * py[k] + m.e, m.b * px[k] + m.d * py[k] + m.f };
+	s->nclip++;
 }
 
 /* Draw the geometry made by fn with the element's fill and stroke. */
@@ -445,7 +561,10 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 				g = c;
 			}
 		}
-		if (add_item(s, &it)) {
+		for (int c = 0; c < s->nclip && !s->fatal; c++)
+			if (clip_geom(&it.g, s->clip[c], 1))
+				s->fatal = -70;
+		if (s->fatal || add_item(s, &it)) {
 			svg_geom_free(&it.g);
 			s->fatal = -70;
 		}
@@ -455,7 +574,10 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 		it.src_rgb = st->stroke.rgb;
 		it.rgb = over_white(st->stroke.rgb, sa);
 		it.width = st->width * k;
-		if (st->ndash) {
+		for (int c = 0; c < s->nclip && !s->fatal; c++)
+			if (clip_geom(&g, s->clip[c], 0))
+				s->fatal = -70;
+		if (st->ndash && !s->fatal) {
 			double dash[32], sum = 0;
 			int n = st->ndash;
 			for (int i = 0; i < n; i++)
@@ -673,12 +795,14 @@ static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const
 	int display;
 	char *origin = NULL;
 	compute(s, el, parent, vp, &st, &display, &origin);
+	char *tr = s->transform;
+	s->transform = NULL;
 	if (!display) {
 		free(origin);
+		free(tr);
 		return;
 	}
 	/* transform, about transform-origin */
-	char *tr = prop(el, "transform");
 	if (tr) {
 		svg_mat_t t;
 		svg_transform_parse(tr, &t);   /* an invalid list is the identity */
@@ -698,7 +822,7 @@ static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const
 			t = svg_mat_mul(svg_mat_mul((svg_mat_t){ 1, 0, 0, 1, -ox, -oy }, t), (svg_mat_t){ 1, 0, 0, 1, ox, oy });
 		}
 		m = svg_mat_mul(t, m);
-		xmlFree(tr);
+		free(tr);
 	}
 	free(origin);
 	int saved_layer = s->layer;
@@ -721,8 +845,10 @@ static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const
 		svg_mat_t v;
 		vp_t nvp;
 		if (w > 0 && h > 0 && !viewbox(el, x, y, w, h, &v, &nvp)) {
-			warn_kind(s, "nested svg viewport (drawn without clipping to it)", line);
+			int nc = s->nclip;
+			push_clip(s, m, x, y, w, h, el);
 			children(s, el, &st, svg_mat_mul(v, m), &nvp);
+			s->nclip = nc;
 		}
 	} else if (!strcmp(name, "use")) {
 		char *h = href(el);
@@ -752,13 +878,18 @@ static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const
 				char *o2 = NULL;
 				compute(s, r, &st, vp, &sst, &disp, &o2);
 				free(o2);
+				free(s->transform);
+				s->transform = NULL;
 				if (disp && w > 0 && hh > 0 && !viewbox(r, 0, 0, w, hh, &v, &nvp)) {
 					char *t2 = prop(r, "transform");
 					svg_mat_t t = { 1, 0, 0, 1, 0, 0 };
 					if (t2 && is_svg(r, "symbol"))
 						svg_transform_parse(t2, &t);
 					xmlFree(t2);
+					int nc = s->nclip;
+					push_clip(s, svg_mat_mul(t, mm), 0, 0, w, hh, r);
 					children(s, r, &sst, svg_mat_mul(svg_mat_mul(v, t), mm), &nvp);
+					s->nclip = nc;
 				}
 			} else {
 				walk(s, r, &st, mm, vp);
@@ -934,6 +1065,8 @@ int svgimp_import(const void *buf, size_t n, const char *name, const svgimp_opts
 		style_t rs;
 		compute(&s, root, &st, &vp, &rs, &display, &origin);
 		free(origin);
+		free(s.transform);
+		s.transform = NULL;
 		s.page = rm;
 		if (display)
 			children(&s, root, &rs, rm, &vp);
