@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "hpgl.h"
 #include "meta_import.h"
 #include "svg_import.h"
 
@@ -103,7 +104,14 @@ int mimp_main(int argc, char **argv)
 		case 's': o.stats = 1, svg_only = 1; break;
 		case 'j': o.json = 1; break;
 		case 'v': o.verbose = 1; break;
-		case 'r': o.profile = optarg; svg_only = 1; break;
+		case 'r':
+			if (!hpgl_profile_find(optarg)) {
+				fprintf(stderr, "locus-meta: --profile: unknown '%s' (7475a, 7550a, draftpro, hpgl2, cutter)\n", optarg);
+				return usage(NULL);
+			}
+			o.profile = optarg;
+			svg_only = 1;
+			break;
 		case ':':
 			fprintf(stderr, "locus-meta: option '%s' needs an argument\n", argv[optind - 1]);
 			return usage(NULL);
