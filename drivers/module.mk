@@ -14,4 +14,5 @@ $(B)/core/locus-render.o $(B)/meta/locus-meta.o: CFLAGS += -Idrivers/io -Idriver
 # A driver that needs another library adds "PKGS += NAME" (a pkg-config name) below.
 PKGS += libusb-1.0
 PKGS += hidapi-libusb
+PKGS += libxml-2.0
 include drivers/printer/printer.mk

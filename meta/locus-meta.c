@@ -566,6 +566,8 @@ int main(int argc, char **argv)
 	}
 	if (argc < 2)
 		return usage("missing subcommand");
+	if (strcmp(argv[1], "import") == 0)
+		return mimp_main(argc - 1, argv + 1);   /* its own options: drivers/import_svg_cli.c */
 	if (argv[1][0] == '-')
 		return usage("the subcommand comes first");
 	sub = argv[1];

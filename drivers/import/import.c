@@ -5,6 +5,7 @@
 #include <string.h>
 #include "import/meta_import.h"
 #include "import/plotmeta.h"
+#include "import/svg_import.h"
 #include "io/transport.h"
 
 static int out_write(void *user, const void *buf, size_t n)
@@ -14,10 +15,18 @@ static int out_write(void *user, const void *buf, size_t n)
 
 int mimp_run(const char *in, const char *out, const char *pens)
 {
-	return mimp_run_strict(in, out, pens, 0);
+	svgimp_opts_t o = { .tol_mm = 0.0125, .dpi = 96, .dedupe_mm = 0.05, .carousel = pens };
+	return mimp_run_svg(in, out, pens, &o, 0, 0);
 }
 
 int mimp_run_strict(const char *in, const char *out, const char *pens, int strict)
+{
+	svgimp_opts_t o = { .tol_mm = 0.0125, .dpi = 96, .dedupe_mm = 0.05, .carousel = pens };
+	return mimp_run_svg(in, out, pens, &o, 0, strict);
+}
+
+int mimp_run_svg(const char *in, const char *out, const char *pens, const svgimp_opts_t *svg, int svg_only,
+		int strict)
 {
 	char err[700];
 	io_transport_t *t = io_open_read(in, err, sizeof err);
@@ -62,7 +71,12 @@ int mimp_run_strict(const char *in, const char *out, const char *pens, int stric
 	meta_writer_t *w = meta_writer_new(out_write, o, META_ENC_TEXT);
 	int rc = w ? 0 : -70;
 	snprintf(err, sizeof err, "out of memory");
-	if (w && plotmeta_is(buf, n) && pens) {
+	if (w && svgimp_is(buf, n)) {
+		rc = svgimp_import(buf, n, name, svg, w, err, sizeof err);
+	} else if (w && svg_only) {
+		snprintf(err, sizeof err, "locus-meta: %s is not SVG: --pens by-layer/by-colour, --pen, -O, --stats, --tolerance, --dpi and --profile are SVG's", name);
+		rc = -64;
+	} else if (w && plotmeta_is(buf, n) && pens) {
 		snprintf(err, sizeof err, "locus-meta: --pens: %s is a plotutils metafile, which has no pens", name);
 		rc = -64;
 	} else if (w && plotmeta_is(buf, n))

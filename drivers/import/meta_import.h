@@ -38,4 +38,12 @@ int mimp_run(const char *in, const char *out, const char *pens);
  * default of mimp_run). */
 int mimp_run_strict(const char *in, const char *out, const char *pens, int strict);
 
+/* mimp_run with SVG's options (svg_import.h; svg_only: refuse other kinds; strict as for
+ * mimp_run_strict); and the whole
+ * subcommand with its own options (import_svg_cli.c; argv[0] is "import"). */
+struct svgimp_opts_s;
+int mimp_run_svg(const char *in, const char *out, const char *pens, const struct svgimp_opts_s *svg,
+		int svg_only, int strict);
+int mimp_main(int argc, char **argv);
+
 #endif

@@ -17,6 +17,7 @@ int fuzz_entry_vector(const uint8_t *data, size_t size);
 int fuzz_entry_vecdash(const uint8_t *data, size_t size);
 int fuzz_entry_resume(const uint8_t *data, size_t size);
 int fuzz_entry_journal(const uint8_t *data, size_t size);
+int fuzz_entry_svg(const uint8_t *data, size_t size);
 
 static const struct {
 	const char *name;          /* harness name; regression files are named NAME-... */
@@ -35,6 +36,7 @@ static const struct {
 	{ "vecdash", fuzz_entry_vecdash, { "fixtures/dash", "fixtures/fuzz/vecdash", NULL } },
 	{ "resume", fuzz_entry_resume, { "fixtures/fuzz/resume", NULL } },
 	{ "journal", fuzz_entry_journal, { "fixtures/fuzz/journal", NULL } },
+	{ "svg", fuzz_entry_svg, { "fixtures/fuzz/svg", NULL } },
 };
 #define NH (sizeof harness / sizeof harness[0])
 

@@ -20,6 +20,7 @@ seeds() {
 	vecdash) echo fixtures/dash fixtures/fuzz/vecdash fixtures/meta ;;
 	resume) echo fixtures/fuzz/resume ;;
 	journal) echo fixtures/fuzz/journal ;;
+	svg) echo fixtures/fuzz/svg ../shared/corpus/svg/vpype/misc ;;
 	esac
 }
 # libFuzzer reads every regular file of a corpus directory: give it only the inputs
@@ -30,7 +31,7 @@ corpus_of() {
 		for f in "$s"/*; do
 			[ -f "$f" ] || continue
 			case $1 in
-			hpgl|plotmeta|imgread|resume|journal)   # every input file (the corpus is copied into build/ only)
+			hpgl|plotmeta|imgread|resume|journal|svg)   # every input file (the corpus is copied into build/ only)
 				case $f in *.md|*/goldens.txt|*.meta) continue ;; esac
 				cp "$f" "$d/$(echo "$s" | tr /. __)_$(basename "$f")"; continue ;;
 			esac
@@ -41,7 +42,7 @@ corpus_of() {
 	echo "$d"
 }
 status=0
-for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector vecdash resume journal; do
+for h in meta_text meta_binary raster scene image hpgl plotmeta imgread vector vecdash resume journal svg; do
 	[ -z "$FUZZ_ONLY" ] || [ "$FUZZ_ONLY" = "$h" ] || continue
 	mkdir -p "$B/corpus/$h" "$B/crash"
 	s=$(corpus_of "$h")

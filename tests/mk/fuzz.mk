@@ -1,6 +1,8 @@
 # tests/mk/fuzz.mk: the libFuzzer harnesses of tests/fuzz/ (clang, `make fuzz`) and the replay of
 # their seeds and regression inputs through the normal build (test_fuzz_regress in make check).
 FUZZ_HARNESSES := meta_text meta_binary raster scene image hpgl plotmeta imgread vector vecdash resume journal
+FUZZ_HARNESSES += svg
+fuzz_src_svg := tests/fuzz/fuzz_svg.c
 FUZZ_CC     ?= clang
 FUZZ_B      := build/fuzz
 FUZZ_SAN    := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
