@@ -52,8 +52,8 @@ for p in vga xga; do
 	else ok "locus-$p --antialias changes the picture"; fi
 	same_file "locus-$p --antialias is locus-play -d $p -O antialias=4" "$T/$p-a.dump" "$T/$p-p.dump"
 done
-"$BIN/locus-film" --size 200x150 -f dpx16 --antialias=3 -o "$T/f3.dpx" $M/strokes.meta &&
-	"$BIN/locus-film" --size 200x150 -f dpx16 -O antialias=3 -o "$T/f3o.dpx" $M/strokes.meta
+SOURCE_DATE_EPOCH=0 "$BIN/locus-film" --size 200x150 -f dpx16 --antialias=3 -o "$T/f3.dpx" $M/strokes.meta &&
+	SOURCE_DATE_EPOCH=0 "$BIN/locus-film" --size 200x150 -f dpx16 -O antialias=3 -o "$T/f3o.dpx" $M/strokes.meta
 same_file "locus-film --antialias=3 is -O antialias=3 (one option, the common one)" "$T/f3.dpx" "$T/f3o.dpx"
 
 # refusals: one line, 64, no output file

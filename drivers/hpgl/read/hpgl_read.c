@@ -662,6 +662,7 @@ void hpgl_doc_free(hpgl_doc_t *doc)
 	free(doc->pts);
 	free(doc->strokes);
 	free(doc->attrs);
+	free(doc->warns);
 	memset(doc, 0, sizeof *doc);
 }
 
