@@ -215,8 +215,7 @@ static void triangle_rc(ext_t *x, int r)
 		x->oom = 1;
 }
 
-/* Room for one more vertex of m: its index (m->nv), or -1 out of memory. */
-static long vertex_slot(mesh_t *m)
+long mesh_vertex_slot(mesh_t *m)
 {
 	if (m->nv == m->vcap) {
 		size_t cap = m->vcap ? 2 * m->vcap : 4096;
@@ -239,7 +238,7 @@ long mesh_vertex_at(mesh_t *m, mesh_table_t *t, uint64_t k, double **p)
 		return -1;
 	if (r)
 		return (long)v;
-	if (vertex_slot(m) < 0)
+	if (mesh_vertex_slot(m) < 0)
 		return -1;
 	*p = m->v + 3 * m->nv;
 	mesh_table_put(t, at, k, m->nv);

@@ -45,6 +45,8 @@ void mesh_table_free(mesh_table_t *t);
 int mesh_table_get(mesh_table_t *t, uint64_t k, uint64_t *val, size_t *at);
 void mesh_table_put(mesh_table_t *t, size_t at, uint64_t k, uint64_t val);
 
+/* Room for one more vertex of m: its index (m->nv, not yet counted), or -1 out of memory. */
+long mesh_vertex_slot(mesh_t *m);
 /* The vertex of m stored under key k in t, made once: its index, or -1 out of memory. When it
  * is made now, *p points at its three coordinates for the caller to write; else *p is NULL. */
 long mesh_vertex_at(mesh_t *m, mesh_table_t *t, uint64_t k, double **p);

@@ -272,19 +272,6 @@ static void visit(mc_t *x, const uint64_t g[3], int level)
 	}
 }
 
-static long new_vertex(mesh_t *m)
-{
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q)
-			return -1;
-		m->v = q;
-		m->vcap = cap;
-	}
-	return (long)m->nv++;
-}
-
 static double dist2(const double *a, const double *b)
 {
 	double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -434,11 +421,12 @@ static void polygonise(mc_t *x, planes_t *pl)
 					vid[e] = (uint32_t)*slotp;
 					continue;
 				}
-				long i = new_vertex(m);
+				long i = mesh_vertex_slot(m);
 				if (i < 0) {
 					x->oom = 1;
 					break;
 				}
+				m->nv++;
 				double pa[3] = {x->lo[0] + (double)(gx + (a & 1)) * x->cell, x->lo[1] + (double)(gy + ((a >> 1) & 1)) * x->cell,
 				                x->lo[2] + (double)az * x->cell};
 				double pb[3] = {pa[0], pa[1], pa[2]};

@@ -183,18 +183,18 @@ static int copy_sub(scan_path_t *out, const scan_path_t *p, const scan_subpath_t
 
 /* The part of p -> q inside the box (Liang-Barsky), widened by a few thousandths for the
  * rounding of the pieces' ends. */
-static int in_box(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, double *tb)
+int scan_clip_window(const double lo[2], const double hi[2], scan_pt_t p, scan_pt_t q, double len,
+		double *ta, double *tb)
 {
-	const double *box = user;   /* lo x, lo y, hi x, hi y */
 	double a[2] = { (double)p.x, (double)p.y }, d[2] = { (double)(q.x - p.x), (double)(q.y - p.y) };
 	double u0 = 0, u1 = 1;
 	for (int k = 0; k < 2; k++) {
 		if (d[k] == 0) {
-			if (a[k] < box[k] || a[k] > box[2 + k])
+			if (a[k] < lo[k] || a[k] > hi[k])
 				return 0;
 			continue;
 		}
-		double e0 = (box[k] - a[k]) / d[k], e1 = (box[2 + k] - a[k]) / d[k];
+		double e0 = (lo[k] - a[k]) / d[k], e1 = (hi[k] - a[k]) / d[k];
 		if (e0 > e1) {
 			double t = e0; e0 = e1; e1 = t;
 		}
@@ -212,6 +212,12 @@ static int in_box(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, 
 	if (*tb > len)
 		*tb = len;
 	return 1;
+}
+
+static int in_box(void *user, scan_pt_t p, scan_pt_t q, double len, double *ta, double *tb)
+{
+	const double *box = user;   /* lo x, lo y, hi x, hi y */
+	return scan_clip_window(box, box + 2, p, q, len, ta, tb);
 }
 
 typedef struct {

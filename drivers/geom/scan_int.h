@@ -23,6 +23,12 @@ typedef struct {
 	void *user;
 } scan_dasher_t;
 
+/* The part of p -> q (length len) inside the box lo..hi, clipped by Liang-Barsky, as the
+ * distances *ta..*tb along it widened by 16 thousandths for the rounding of the pieces' ends:
+ * 1, or 0 when the segment misses the box. A dash walk's window (dash.c, stroke.c). */
+int scan_clip_window(const double lo[2], const double hi[2], scan_pt_t p, scan_pt_t q, double len,
+		double *ta, double *tb);
+
 /* Walk one subpath of n points through the even dash list by §5.3, in closed form: the
  * boundaries on a segment are t_i = rest + (p[k+1] + ... + p[k+i]), so those outside the
  * window are skipped in O(1). dp is scratch for the piece being built. Returns 0 or <0. */

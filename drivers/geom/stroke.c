@@ -249,32 +249,7 @@ static int reach_window(void *user, scan_pt_t p, scan_pt_t q, double len, double
 	const stroker_t *s = user;
 	double lo[2] = { -s->ext - 16.0, s->b->jlo * 1000.0 - s->ext - 16.0 };
 	double hi[2] = { s->b->width * 1000.0 + s->ext + 16.0, s->b->jhi * 1000.0 + s->ext + 16.0 };
-	double a[2] = { (double)p.x, (double)p.y }, d[2] = { (double)(q.x - p.x), (double)(q.y - p.y) };
-	double u0 = 0, u1 = 1;
-	for (int k = 0; k < 2; k++) {
-		if (d[k] == 0) {
-			if (a[k] < lo[k] || a[k] > hi[k])
-				return 0;
-			continue;
-		}
-		double e0 = (lo[k] - a[k]) / d[k], e1 = (hi[k] - a[k]) / d[k];
-		if (e0 > e1) {
-			double t = e0; e0 = e1; e1 = t;
-		}
-		if (e0 > u0)
-			u0 = e0;
-		if (e1 < u1)
-			u1 = e1;
-	}
-	if (u0 > u1)
-		return 0;
-	*ta = u0 * len - 16.0;
-	*tb = u1 * len + 16.0;
-	if (*ta < 0)
-		*ta = 0;
-	if (*tb > len)
-		*tb = len;
-	return 1;
+	return scan_clip_window(lo, hi, p, q, len, ta, tb);
 }
 
 /* A finished dash piece: stroked solid and open (culled segment by segment). */
