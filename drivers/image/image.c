@@ -9,6 +9,8 @@
 struct dev_imgw {
 	int fmt;
 	io_transport_t *t;
+	dev_write_fn sink;       /* instead of t (dev_imgw_new_png_fn) */
+	void *sink_user;
 	unsigned width, height, rows;
 	png_structp png;
 	png_infop info;
@@ -38,9 +40,9 @@ int dev_format_by_suffix(const char *path)
 static void png_out(png_structp png, png_bytep data, size_t n)
 {
 	dev_imgw_t *w = png_get_io_ptr(png);
-	if (io_write(w->t, data, n)) {
+	if (w->sink ? w->sink(w->sink_user, data, n) : io_write(w->t, data, n)) {
 		w->io_failed = 1;   /* the transport's message names the output and the cause */
-		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+		snprintf(w->err, sizeof w->err, "%s", w->sink ? "png: write failed" : io_error(w->t));
 		png_error(png, "write failed");
 	}
 }
@@ -153,6 +155,31 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 	return w;
 }
 
+dev_imgw_t *dev_imgw_new_png_fn(dev_write_fn fn, void *user, int compact, unsigned width,
+		unsigned height, char *err, size_t errlen)
+{
+	dev_imgw_t *w = calloc(1, sizeof *w);
+	if (!w) {
+		snprintf(err, errlen, "out of memory");
+		return NULL;
+	}
+	w->fmt = DEV_FMT_PNG;
+	w->sink = fn;
+	w->sink_user = user;
+	w->width = width;
+	w->height = height;
+	if (png_start(w)) {
+		snprintf(err, errlen, "%s", w->err);
+		dev_imgw_abort(w);
+		return NULL;
+	}
+	if (compact) {
+		png_set_compression_level(w->png, 9);
+		png_set_filter(w->png, PNG_FILTER_TYPE_BASE, PNG_ALL_FILTERS);
+	}
+	return w;
+}
+
 static int rle_row(dev_imgw_t *w, const uint8_t *p)
 {
 	unsigned char *o = w->rle;
@@ -217,7 +244,7 @@ int dev_imgw_finish(dev_imgw_t *w)
 	} else if (w->fmt == DEV_FMT_PNG) {
 		rc = png_end(w);
 	}
-	if (rc == 0 && (rc = io_flush(w->t)) != 0)
+	if (rc == 0 && !w->sink && (rc = io_flush(w->t)) != 0)
 		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
 	if (rc)
 		return rc;   /* caller reads the message, then aborts */

@@ -23,6 +23,15 @@ typedef struct dev_imgw dev_imgw_t;
 /* Start writing a width x height image of format fmt to t (borrowed). NULL + err on failure. */
 dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
 		size_t errlen);
+/* Where dev_imgw_new_png_fn's bytes go: write n bytes, 0 or <0 (the callback keeps its own
+ * message). */
+typedef int (*dev_write_fn)(void *user, const void *buf, size_t n);
+/* A PNG writer whose bytes go to fn(user, ...) instead of a transport: for a PNG embedded in
+ * another file (the SVG device's base64 <image>). compact = 1: zlib level 9 and adaptive row
+ * filters, smaller and slower than the PNG files' level 3 with the Sub filter. The rest of the
+ * interface is the same; dev_imgw_finish does not flush anything (the caller owns the sink). */
+dev_imgw_t *dev_imgw_new_png_fn(dev_write_fn fn, void *user, int compact, unsigned width,
+		unsigned height, char *err, size_t errlen);
 /* Record the physical size (PNG: the pHYs chunk, pixels per metre); call before the first row.
  * Pixels stay square (spec §4 `size`): both axes get the resolution at which the page fits
  * width_mm x height_mm, max(width/width_mm, height/height_mm). Formats without such a field

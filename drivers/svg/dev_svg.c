@@ -1,12 +1,35 @@
-/* dev-svg.c: SVG 1.1 vector device, the worked vector example of docs/drivers.md. */
+/* dev-svg.c: SVG 1.1 vector device, the worked vector example of docs/drivers.md. Image rows
+ * become embedded PNG <image>s (docs/svg.md). */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include "device/device.h"
+#include "image/image.h"
 
-/* Per-instance state: the page height, to turn y up into SVG's y down. */
+/* The raw bytes (3 a pixel) one <image> holds at most: a taller image is written as strips of
+ * whole rows, so memory is one strip whatever the image, and the base64 attribute stays under
+ * libxml2's 10 MB limit on one attribute value (4 MiB of pixels is at most about 5.6 MB of
+ * base64 even where deflate gains nothing). */
+#define SVG_STRIP_BYTES ((size_t)4 << 20)
+
+/* Per-instance state: the page height, to turn y up into SVG's y down, and the image strip
+ * being collected. */
 typedef struct {
 	int64_t height;             /* thousandths */
 	int crisp;                  /* -O crisp=1: shape-rendering="crispEdges" */
+	/* the strip: consecutive rows of one image (same x and width, each row the one below the
+	 * last), top row first; written out when the image ends, anything else is drawn, or it
+	 * holds SVG_STRIP_BYTES */
+	unsigned sx, sw;            /* its left column and width */
+	int64_t stop;               /* page row (from the bottom) of its top row */
+	unsigned nrows;
+	uint8_t *pix;               /* nrows rows of sw * 3 bytes */
+	size_t capbytes;            /* allocated, at most SVG_STRIP_BYTES or one row */
+	/* base64 of the PNG on its way out */
+	dev_device_t *d;
+	unsigned char carry[3];
+	size_t ncarry, nout;
+	char out[4096];
 } svg_t;
 
 static const dev_option_t svg_options[] = {
@@ -35,9 +58,11 @@ static int s_begin(dev_device_t *d, const dev_page_t *pg)
 {
 	svg_t *s = d->priv;
 	char w[DEV_FMT_SIZE], h[DEV_FMT_SIZE];
+	s->nrows = 0;
 	s->height = (int64_t)pg->height * 1000;
 	int rc = dev_printf(d, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-		"<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" ");
+		"<svg xmlns=\"http://www.w3.org/2000/svg\" "
+		"xmlns:xlink=\"http://www.w3.org/1999/xlink\" version=\"1.1\" ");
 	if (!rc && pg->has_size)
 		rc = dev_printf(d, "width=\"%smm\" height=\"%smm\" ", num(w, pg->width_mm), num(h, pg->height_mm));
 	else if (!rc)
@@ -48,9 +73,86 @@ static int s_begin(dev_device_t *d, const dev_page_t *pg)
 	return rc;
 }
 
+/* Base64 (RFC 4648, no line breaks: a data: URI is one token) of the PNG as libpng hands it
+ * over, through a 4 KB buffer into the output. */
+static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+static int b64_drain(svg_t *s)
+{
+	int rc = s->nout ? io_write(s->d->out, s->out, s->nout) : 0;
+	s->nout = 0;
+	return rc;
+}
+
+static int b64_quad(svg_t *s, const unsigned char *q, size_t n)
+{
+	if (s->nout + 4 > sizeof s->out && b64_drain(s))
+		return -1;
+	uint32_t v = (uint32_t)q[0] << 16 | (uint32_t)(n > 1 ? q[1] : 0) << 8 | (n > 2 ? q[2] : 0);
+	char *o = s->out + s->nout;
+	o[0] = b64[v >> 18];
+	o[1] = b64[v >> 12 & 63];
+	o[2] = n > 1 ? b64[v >> 6 & 63] : '=';
+	o[3] = n > 2 ? b64[v & 63] : '=';
+	s->nout += 4;
+	return 0;
+}
+
+static int b64_write(void *user, const void *buf, size_t n)
+{
+	svg_t *s = user;
+	const unsigned char *p = buf;
+	while (n) {
+		s->carry[s->ncarry++] = *p++;
+		n--;
+		if (s->ncarry == 3) {
+			if (b64_quad(s, s->carry, 3))
+				return -1;
+			s->ncarry = 0;
+		}
+	}
+	return 0;
+}
+
+/* Write the strip as <image x y width height> in page units (one sample on one pixel of the
+ * viewBox) with its PNG inline; pixelated (CSS) where the viewer knows it, else optimizeSpeed
+ * (SVG 1.1): a zoomed viewer shows square samples, not a blur. */
+static int strip_flush(dev_device_t *d)
+{
+	svg_t *s = d->priv;
+	if (!s->nrows)
+		return 0;
+	unsigned n = s->nrows;
+	s->nrows = 0;
+	int rc = dev_printf(d, "<image x=\"%u\" y=\"%lld\" width=\"%u\" height=\"%u\" "
+		"image-rendering=\"optimizeSpeed\" style=\"image-rendering:optimizeSpeed;"
+		"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,", s->sx,
+		(long long)(s->height / 1000 - 1 - s->stop), s->sw, n);
+	if (rc)
+		return rc;
+	char err[256];
+	s->d = d;
+	s->ncarry = s->nout = 0;
+	dev_imgw_t *w = dev_imgw_new_png_fn(b64_write, s, 1, s->sw, n, err, sizeof err);
+	if (!w)
+		return io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
+			: dev_fail(d, META_ENOMEM, "svg: %s", err);
+	if (dev_imgw_rows(w, s->pix, (size_t)s->sw * 3, n) || dev_imgw_finish(w)) {
+		rc = io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
+			: dev_fail(d, strstr(dev_imgw_error(w), "memory") ? META_ENOMEM : DEV_EDEVICE,
+				"svg: %s", dev_imgw_error(w));
+		dev_imgw_abort(w);
+		return rc;
+	}
+	if ((s->ncarry && b64_quad(s, s->carry, s->ncarry)) || b64_drain(s))
+		return dev_fail(d, META_EIO, "%s", io_error(d->out));
+	return dev_printf(d, "\"/>\n");
+}
+
 static int s_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
 {
-	return dev_printf(d, "<rect width=\"%u\" height=\"%u\" fill=\"#%06x\"/>\n", pg->width, pg->height, rgb);
+	int rc = strip_flush(d);
+	return rc ? rc : dev_printf(d, "<rect width=\"%u\" height=\"%u\" fill=\"#%06x\"/>\n", pg->width, pg->height, rgb);
 }
 
 /* The path data: subpaths of the flattened path, y turned down. */
@@ -73,7 +175,9 @@ static int path_data(dev_device_t *d, const scan_path_t *p)
 
 static int s_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
-	int rc = path_data(d, p->flat);
+	int rc = strip_flush(d);
+	if (!rc)
+		rc = path_data(d, p->flat);
 	return rc ? rc : dev_printf(d, " fill=\"#%06x\" fill-rule=\"%s\"/>\n", st->colour,
 		st->rule == META_RULE_EVEN_ODD ? "evenodd" : "nonzero");
 }
@@ -83,7 +187,9 @@ static int s_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 	static const char *const caps[] = { "butt", "round", "square" };
 	static const char *const joins[] = { "miter", "round", "bevel" };
 	char w[DEV_FMT_SIZE], m[DEV_FMT_SIZE];
-	int rc = path_data(d, p->flat);
+	int rc = strip_flush(d);
+	if (!rc)
+		rc = path_data(d, p->flat);
 	if (!rc)
 		rc = dev_printf(d, " fill=\"none\" stroke=\"#%06x\" stroke-width=\"%s\" stroke-linecap=\"%s\" "
 			"stroke-linejoin=\"%s\" stroke-miterlimit=\"%s\"/>\n", st->colour, num(w, st->line_width),
@@ -91,27 +197,74 @@ static int s_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 	return rc;
 }
 
+/* A span is one run of one colour: a one-row <rect> is exact, and smaller than any PNG. */
 static int s_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_t rgb)
 {
 	svg_t *s = d->priv;
-	return dev_printf(d, "<rect x=\"%u\" y=\"%lld\" width=\"%u\" height=\"1\" fill=\"#%06x\"/>\n", x,
+	int rc = strip_flush(d);
+	return rc ? rc : dev_printf(d, "<rect x=\"%u\" y=\"%lld\" width=\"%u\" height=\"1\" fill=\"#%06x\"/>\n", x,
 		(long long)(s->height / 1000 - 1 - y), n, rgb);
 }
 
+/* An image row joins the strip when it continues it (the row below, same x, same width), else
+ * it starts a new one. */
 static int s_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns)
 {
-	int rc = 0;
-	for (size_t k = 0; k < nruns && !rc; k++) {
-		rc = s_span(d, x, y, runs[k].count, runs[k].rgb);
-		x += runs[k].count;
+	svg_t *s = d->priv;
+	unsigned w = 0;
+	for (size_t k = 0; k < nruns; k++)
+		w += runs[k].count;
+	if (!w)
+		return 0;
+	size_t rowbytes = (size_t)w * 3;
+	unsigned maxrows = SVG_STRIP_BYTES / rowbytes ? (unsigned)(SVG_STRIP_BYTES / rowbytes) : 1;
+	if (s->nrows && (x != s->sx || w != s->sw || (int64_t)y != s->stop - s->nrows ||
+			s->nrows >= maxrows)) {
+		int rc = strip_flush(d);
+		if (rc)
+			return rc;
 	}
-	return rc;
+	if (!s->nrows) {
+		s->sx = x;
+		s->sw = w;
+		s->stop = y;
+	}
+	size_t need = ((size_t)s->nrows + 1) * rowbytes;
+	if (need > s->capbytes) {
+		size_t cap = s->capbytes * 2 > need ? s->capbytes * 2 : need;
+		if (cap > (size_t)maxrows * rowbytes)
+			cap = (size_t)maxrows * rowbytes;
+		uint8_t *p = realloc(s->pix, cap);
+		if (!p)
+			return dev_fail(d, META_ENOMEM, "out of memory");
+		s->pix = p;
+		s->capbytes = cap;
+	}
+	uint8_t *o = s->pix + (size_t)s->nrows * rowbytes;
+	for (size_t k = 0; k < nruns; k++)
+		for (uint32_t i = 0; i < runs[k].count; i++) {
+			*o++ = (uint8_t)(runs[k].rgb >> 16);
+			*o++ = (uint8_t)(runs[k].rgb >> 8);
+			*o++ = (uint8_t)runs[k].rgb;
+		}
+	s->nrows++;
+	return 0;
 }
 
 static int s_end(dev_device_t *d, const dev_page_t *pg)
 {
 	(void)pg;
-	return dev_printf(d, "</svg>\n");
+	int rc = strip_flush(d);
+	return rc ? rc : dev_printf(d, "</svg>\n");
+}
+
+static int s_close(dev_device_t *d)
+{
+	svg_t *s = d->priv;
+	free(s->pix);
+	s->pix = NULL;
+	s->capbytes = 0;
+	return 0;
 }
 
 const dev_ops_t dev_svg_ops = {
@@ -123,4 +276,5 @@ const dev_ops_t dev_svg_ops = {
 	.priv_size = sizeof(svg_t), .option_list = svg_options,
 	.open = s_open, .begin_page = s_begin, .clear = s_clear, .stroke_path = s_stroke,
 	.fill_path = s_fill, .put_span = s_span, .put_image_row = s_row, .end_page = s_end,
+	.close = s_close,
 };
