@@ -39,28 +39,104 @@ int mesh_tet(mesh_t *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
 	return 0;
 }
 
-int mesh_prism(mesh_t *m, const uint32_t p[6])
+/* The diagonal that cuts the quadrilateral q (q[0..3] in order round it), as its two ends: the
+ * one from its smallest vertex index (Dompierre et al.'s rule, which the neighbour sharing the
+ * face applies too), or f0-f1 when both are corners of q (the surface's own quadrilateral, which
+ * no other tetrahedron shares). */
+static void quad_diag(const uint32_t q[4], uint32_t f0, uint32_t f1, uint32_t d[2])
 {
-	/* Dompierre et al.'s rule: each quadrilateral face is cut by the diagonal from its
-	 * smallest vertex index, the same choice the neighbour sharing the face makes, so the
-	 * tetrahedra match across it. Renumber so that the smallest vertex is V0 (bottom V0 V1
-	 * V2, top V3 V4 V5, Vi above Vi-3), then two ways to cut the face V1 V2 V5 V4. */
+	int h0 = 0, h1 = 0, k = 0;
+	for (int i = 0; i < 4; i++) {
+		h0 |= q[i] == f0;
+		h1 |= q[i] == f1;
+		if (q[i] < q[k])
+			k = i;
+	}
+	if (h0 && h1 && f0 != f1) {
+		d[0] = f0;
+		d[1] = f1;
+	} else {
+		d[0] = q[k];
+		d[1] = q[(k + 2) % 4];
+	}
+}
+
+static int is_end(const uint32_t d[2], uint32_t a, uint32_t b)
+{
+	return (d[0] == a && d[1] == b) || (d[0] == b && d[1] == a);
+}
+
+/* The prism p cut with the quadrilaterals' diagonals of quad_diag. Three tetrahedra from a
+ * corner V0 that both its quadrilaterals' diagonals leave; when none does (the three diagonals
+ * turn the same way round, which only a forced diagonal can cause), eight from a point added at
+ * the prism's centroid, a cone over its five faces as they are cut. */
+static int prism_cut(mesh_t *m, const uint32_t p[6], uint32_t f0, uint32_t f1)
+{
+	/* the prism renumbered so that corner k is V0 (bottom V0 V1 V2, top V3 V4 V5, Vi above
+	 * Vi-3); the candidates in order of vertex index, so that without a forced diagonal the
+	 * smallest corner is V0, as Dompierre et al.'s rule has it */
 	static const int rot[6][6] = {{0, 1, 2, 3, 4, 5}, {1, 2, 0, 4, 5, 3}, {2, 0, 1, 5, 3, 4},
 	                              {3, 5, 4, 0, 2, 1}, {4, 3, 5, 1, 0, 2}, {5, 4, 3, 2, 1, 0}};
-	int k = 0;
+	int order[6] = {0, 1, 2, 3, 4, 5};
 	for (int i = 1; i < 6; i++)
-		if (p[i] < p[k])
-			k = i;
-	uint32_t V[6];
-	for (int i = 0; i < 6; i++)
-		V[i] = p[rot[k][i]];
-	uint32_t m15 = V[1] < V[5] ? V[1] : V[5], m24 = V[2] < V[4] ? V[2] : V[4];
-	int rc;
-	if (m15 < m24)
-		rc = mesh_tet(m, V[0], V[1], V[2], V[5]) | mesh_tet(m, V[0], V[1], V[5], V[4]);
-	else
-		rc = mesh_tet(m, V[0], V[1], V[2], V[4]) | mesh_tet(m, V[0], V[4], V[2], V[5]);
-	return rc | mesh_tet(m, V[0], V[4], V[5], V[3]);
+		for (int j = i; j > 0 && p[order[j]] < p[order[j - 1]]; j--) {
+			int t = order[j];
+			order[j] = order[j - 1];
+			order[j - 1] = t;
+		}
+	for (int c = 0; c < 6; c++) {
+		uint32_t V[6], d01[2], d02[2], d12[2];
+		for (int i = 0; i < 6; i++)
+			V[i] = p[rot[order[c]][i]];
+		uint32_t q01[4] = {V[0], V[1], V[4], V[3]}, q02[4] = {V[0], V[2], V[5], V[3]};
+		uint32_t q12[4] = {V[1], V[2], V[5], V[4]};
+		quad_diag(q01, f0, f1, d01);
+		quad_diag(q02, f0, f1, d02);
+		if (!is_end(d01, V[0], V[4]) || !is_end(d02, V[0], V[5]))
+			continue;
+		quad_diag(q12, f0, f1, d12);
+		int rc;
+		if (is_end(d12, V[1], V[5]))
+			rc = mesh_tet(m, V[0], V[1], V[2], V[5]) | mesh_tet(m, V[0], V[1], V[5], V[4]);
+		else
+			rc = mesh_tet(m, V[0], V[1], V[2], V[4]) | mesh_tet(m, V[0], V[4], V[2], V[5]);
+		return rc | mesh_tet(m, V[0], V[4], V[5], V[3]);
+	}
+	long c = mesh_vertex_slot(m);
+	if (c < 0)
+		return -1;
+	double *P = m->v + 3 * (size_t)c;
+	for (int i = 0; i < 3; i++) {
+		P[i] = 0;
+		for (int k = 0; k < 6; k++)
+			P[i] += m->v[3 * (size_t)p[k] + i] / 6;
+	}
+	m->nv++;
+	uint32_t C = (uint32_t)c;
+	int rc = mesh_tet(m, C, p[0], p[1], p[2]) | mesh_tet(m, C, p[3], p[4], p[5]);
+	static const int quads[3][4] = {{0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+	for (int k = 0; k < 3; k++) {
+		uint32_t q[4] = {p[quads[k][0]], p[quads[k][1]], p[quads[k][2]], p[quads[k][3]]}, d[2];
+		quad_diag(q, f0, f1, d);
+		if (is_end(d, q[0], q[2]))
+			rc |= mesh_tet(m, C, q[0], q[1], q[2]) | mesh_tet(m, C, q[0], q[2], q[3]);
+		else
+			rc |= mesh_tet(m, C, q[1], q[2], q[3]) | mesh_tet(m, C, q[1], q[3], q[0]);
+	}
+	return rc;
+}
+
+int mesh_prism(mesh_t *m, const uint32_t p[6])
+{
+	return prism_cut(m, p, UINT32_MAX, UINT32_MAX);
+}
+
+/* The squared distance between vertices a and b of m. */
+static double dist2v(const mesh_t *m, uint32_t a, uint32_t b)
+{
+	const double *A = m->v + 3 * (size_t)a, *B = m->v + 3 * (size_t)b;
+	double x = A[0] - B[0], y = A[1] - B[1], z = A[2] - B[2];
+	return x * x + y * y + z * z;
 }
 
 int mesh_cut_tet(mesh_t *m, int nin, const uint32_t *in, const uint32_t e[4])
@@ -72,9 +148,15 @@ int mesh_cut_tet(mesh_t *m, int nin, const uint32_t *in, const uint32_t e[4])
 		return mesh_prism(m, p);
 	}
 	/* two inside corners a0 a1, crossings e0 = a0b0, e1 = a0b1, e2 = a1b0, e3 = a1b1: the prism
-	 * with ends a0 e0 e1 and a1 e2 e3 */
+	 * with ends a0 e0 e1 and a1 e2 e3. Its face e0 e1 e3 e2 is the surface's quadrilateral,
+	 * which the surface (mesh_tet_surface) splits along its shorter diagonal, 0-3 on a tie: the
+	 * solid cuts it there too, so that its boundary is the surface mesh itself and the two
+	 * volumes agree to rounding. (The other faces lie on the Kuhn tetrahedron's faces and keep
+	 * the rule their neighbours apply.) */
 	uint32_t p[6] = {in[0], e[0], e[1], in[1], e[2], e[3]};
-	return mesh_prism(m, p);
+	if (dist2v(m, e[0], e[3]) <= dist2v(m, e[1], e[2]))
+		return prism_cut(m, p, e[0], e[3]);
+	return prism_cut(m, p, e[1], e[2]);
 }
 
 /* The three vertex indices of face f (the corner it omits) of tetrahedron t, sorted. */

@@ -1,5 +1,6 @@
 /* test_mesh.c: polygonisation: closed, consistently oriented meshes whose area and volume match the analytic ones. */
 #include "mesh.h"
+#include "mesh_int.h"
 #include "unit.h"
 
 #include <math.h>
@@ -200,7 +201,52 @@ int main(void)
 		mesh_free(&m);
 		model_free(s);
 	}
-	/* 6. formats by suffix */
+	/* 6. the solid's cut of a Kuhn tetrahedron with two inside corners: its surface
+	 * quadrilateral is cut along the surface's own (shorter) diagonal, its other faces from
+	 * their smallest vertex. Numbered so that these three diagonals turn the same way round
+	 * the prism (e0 smallest, a0 smallest of its other quadrilateral, e1-e2 the shorter), which
+	 * no three tetrahedra can fill: a point at the centroid and 8 tetrahedra. With the outside
+	 * part cut the same way, the two fill the tetrahedron exactly, face to face. */
+	{
+		/* a0 (0,0,0) a1 (1,0,0) inside, b0 (0,1,0) b1 (0,0,1) outside */
+		static const double P[8][3] = {
+			{0, 0.5, 0},      /* 0: e0 on a0b0 */
+			{0, 0, 0},        /* 1: a0 */
+			{1, 0, 0},        /* 2: a1 */
+			{0, 0, 0.2},      /* 3: e1 on a0b1 */
+			{0.5, 0.5, 0},    /* 4: e2 on a1b0 */
+			{0.5, 0, 0.5},    /* 5: e3 on a1b1 */
+			{0, 1, 0},        /* 6: b0 */
+			{0, 0, 1},        /* 7: b1 */
+		};
+		mesh_init(&m);
+		for (int i = 0; i < 8; i++) {
+			long k = mesh_vertex_slot(&m);
+			CHECK(k == i, "vertex %d in slot %ld", i, k);
+			for (int j = 0; j < 3; j++)
+				m.v[3 * (size_t)k + j] = P[i][j];
+			m.nv++;
+		}
+		uint32_t in[2] = {1, 2}, e[4] = {0, 3, 4, 5};
+		CHECK(mesh_cut_tet(&m, 2, in, e) == 0, "inside part cut");
+		CHECK(m.ntet == 8 && m.nv == 9, "a cyclic prism: %zu tetrahedra around %zu added point", m.ntet, m.nv - 8);
+		mesh_solid_check_t k;
+		mesh_solid_check(&m, &k);
+		double inside = k.volume;
+		CHECK(k.negative == 0 && k.flat == 0 && k.boundary_faces == 8 && k.inner_faces == 12 && k.overused_faces == 0,
+		      "its 8 tetrahedra: %zu negative, %zu flat, %zu boundary and %zu inner faces, %zu overused",
+		      k.negative, k.flat, k.boundary_faces, k.inner_faces, k.overused_faces);
+		/* the outside part: corners b0 b1, crossings b0a0 b0a1 b1a0 b1a1 */
+		uint32_t out[2] = {6, 7}, eo[4] = {0, 4, 3, 5};
+		CHECK(mesh_cut_tet(&m, 2, out, eo) == 0, "outside part cut");
+		mesh_solid_check(&m, &k);
+		CHECK(k.negative == 0 && k.flat == 0 && k.overused_faces == 0 && fabs(k.volume - 1.0 / 6) < 1e-15 &&
+		      k.boundary_faces == 4 + 2 + 2 + 2 + 2,
+		      "inside %.6f + outside part = %.17g (the tetrahedron's 1/6), %zu boundary faces (its 4 faces as 12 triangles), %zu overused",
+		      inside, k.volume, k.boundary_faces, k.overused_faces);
+		mesh_free(&m);
+	}
+	/* 7. formats by suffix */
 	CHECK(mesh_format_of("a.stl") == MESH_STL && mesh_format_of("B.PLY") == MESH_PLY && mesh_format_of("x/y.obj") == MESH_OBJ
 	      && mesh_format_of("a.meta") < 0 && mesh_format_of("stl") < 0 && mesh_format_of("-") < 0, "formats from the suffix");
 	return UNIT_DONE();
