@@ -34,13 +34,15 @@ static const char usage_text[] =
 	"  --frame-rate R        frames a second in every header, with each frame's time code (24)\n"
 	"  --first-frame N       the frame number of the first page (default: the input's frame\n"
 	"                        records, as locus-render --frames writes them, else 1)\n"
+	"  --skip-existing       with a frame pattern: leave each frame whose file is there and\n"
+	"                        whole; only the others are scan-converted (a farm's rerun)\n"
 	"  -O KEY=VALUE[,...]    device options (the long options above, as locus-play -d film takes)\n"
 	"  --band-rows N, --mem-budget MIB   banding of the frame (default: an 8 MiB page buffer)\n"
 	"  --help, --version\n"
 	"SOURCE_DATE_EPOCH, when set, is the time stamp written into every header.\n";
 
 enum { O_PRESET = 0x2000, O_LIST, O_SIZE, O_ENDIAN, O_FIT, O_LETTERBOX, O_WHITE, O_BLACK, O_DENSITY,
-	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA, O_RATE, O_FIRST };
+	O_FGAMMA, O_DGAMMA, O_CAL, O_SEP, O_AA, O_RATE, O_FIRST, O_SKIP };
 
 static const struct option film_long[] = {
 	{ "format", required_argument, NULL, 'f' },
@@ -59,6 +61,7 @@ static const struct option film_long[] = {
 	{ "separations", optional_argument, NULL, O_SEP },
 	{ "frame-rate", required_argument, NULL, O_RATE },
 	{ "first-frame", required_argument, NULL, O_FIRST },
+	{ "skip-existing", no_argument, NULL, O_SKIP },
 	{ NULL, 0, NULL, 0 }
 };
 
@@ -71,6 +74,7 @@ typedef struct {
 	const char *cal;
 	int separations;          /* 0 none, 1 three files, 2 planar */
 	int first_given;          /* --first-frame (or -O first-frame=) */
+	int skip_existing;        /* --skip-existing */
 } film_args_t;
 
 static int on_option(cli_t *c, int key, const char *arg)
@@ -104,6 +108,9 @@ static int on_option(cli_t *c, int key, const char *arg)
 	case O_FIRST:
 		a->first_given = 1;
 		return cli_set_option(c, "first-frame", arg) ? 64 : CLI_RUN;
+	case O_SKIP:
+		a->skip_existing = 1;
+		return CLI_RUN;
 	case O_SEP:
 		if (!arg || !strcmp(arg, "files"))
 			a->separations = 1;
@@ -177,18 +184,22 @@ static int frame_numbers(const char *in, long *first, long *step, long *npages, 
 	return st;
 }
 
-/* first-frame=N of the device options, when given there. 0 or -1. */
-static int dev_first_frame(const char *opts, long *first)
+/* KEY=N of the device options (key "first-frame" or "frame-step"), when given there: *v, 0;
+ * -1 when it is not a number 0 to 9999999. */
+static int dev_frame_option(const char *opts, const char *key, long *v)
 {
-	const char *p = strstr(opts, "first-frame=");
+	size_t k = strlen(key);
+	const char *p = opts;
+	while ((p = strstr(p, key)) && ((p != opts && p[-1] != ',') || p[k] != '='))
+		p += k;
 	if (!p)
 		return 0;
 	char *e;
 	errno = 0;
-	long v = strtol(p + 12, &e, 10);
-	if (errno || v < 0 || v > 9999999 || (*e && *e != ','))
+	long x = strtol(p + k + 1, &e, 10);
+	if (errno || x < 0 || x > 9999999 || (*e && *e != ','))
 		return -1;
-	*first = v;
+	*v = x;
 	return 0;
 }
 
@@ -196,7 +207,8 @@ static int dev_first_frame(const char *opts, long *first)
  * page (the usual file of one frame from a farm) is written straight to its name; several go to
  * a private directory beside OUT and are renamed to their names when all replayed, each file
  * whole. */
-static int run_pattern(cli_t *c, const char *out, long first, long step, long npages, char *err, size_t errlen)
+static int run_pattern(cli_t *c, const char *in, const char *out, long first, long step, long npages, char *err,
+		size_t errlen)
 {
 	if (npages == 1) {
 		char *name = meta_frame_pattern_name(out, first);
@@ -204,7 +216,7 @@ static int run_pattern(cli_t *c, const char *out, long first, long step, long np
 			snprintf(err, errlen, "out of memory");
 			return 70;
 		}
-		dev_job_t job = { c->in[0], name, &dev_film_ops, c->band_rows, c->budget, c->options };
+		dev_job_t job = { in, name, &dev_film_ops, c->band_rows, c->budget, c->options };
 		int st = dev_run(&job, err, errlen);
 		free(name);
 		return st;
@@ -226,7 +238,7 @@ static int run_pattern(cli_t *c, const char *out, long first, long step, long np
 		return 74;
 	}
 	snprintf(tmp, n, "%s/frame%s", dir, dot ? dot : "");
-	dev_job_t job = { c->in[0], tmp, &dev_film_ops, c->band_rows, c->budget, c->options };
+	dev_job_t job = { in, tmp, &dev_film_ops, c->band_rows, c->budget, c->options };
 	int st = dev_run(&job, err, errlen);
 	/* the pages written: tmp alone, or tmp-001 ... */
 	for (unsigned k = 1; st == 0; k++) {
@@ -261,9 +273,149 @@ static int run_pattern(cli_t *c, const char *out, long first, long step, long np
 	return st;
 }
 
+static int fd_write(void *user, const void *buf, size_t n)
+{
+	FILE *f = user;
+	return fwrite(buf, 1, n, f) == n ? 0 : -1;
+}
+
+static int meta_status(int rc)
+{
+	return rc == META_ENOMEM ? 70 : rc == META_EIO ? 74 : 65;
+}
+
+/* Pages k0 .. k1 (0-based) of the meta file in, as a binary meta file of their own at tmp. 0, or
+ * an exit status with err. */
+static int extract_pages(const char *in, long k0, long k1, const char *tmp, char *err, size_t errlen)
+{
+	meta_reader_t *r = meta_reader_open(in, err, errlen);
+	if (!r)
+		return errno == ENOMEM ? 70 : 66;
+	FILE *f = fopen(tmp, "wb");
+	meta_writer_t *w = f ? meta_writer_new(fd_write, f, META_ENC_BINARY) : NULL;
+	int st = 0, rc = 0;
+	long page = -1;
+	int inside = 0;
+	meta_cmd_t c;
+	if (!w) {
+		snprintf(err, errlen, "%s: cannot write: %s", tmp, f ? "out of memory" : strerror(errno));
+		st = f ? 70 : 74;
+	}
+	while (!st && page <= k1 && (rc = meta_read(r, &c)) > 0) {
+		if (c.op == META_PAGE)
+			page++, inside = 1;
+		if (inside && page >= k0 && page <= k1 && (rc = meta_write(w, &c)) < 0) {
+			snprintf(err, errlen, "%s: %s", tmp, meta_writer_error(w));
+			st = meta_status(rc);
+		}
+		if (c.op == META_END_PAGE)
+			inside = 0;
+	}
+	if (!st && rc < 0) {
+		snprintf(err, errlen, "%s", meta_reader_error(r));
+		st = meta_status(rc);
+	}
+	if (w && meta_writer_close(w) < 0 && !st) {
+		snprintf(err, errlen, "%s: write failed", tmp);
+		st = 74;
+	}
+	if (f && fclose(f) && !st) {
+		snprintf(err, errlen, "%s: write failed: %s", tmp, strerror(errno));
+		st = 74;
+	}
+	meta_reader_free(r);
+	return st;
+}
+
+/* --skip-existing with a frame pattern: page k is frame first + k x step; the frames whose files
+ * are there and whole (film_file_complete) are left alone, each run of consecutive missing pages
+ * is copied to a meta file of its own beside OUT and replayed with its own first frame, so the
+ * headers carry the frame numbers one run of the whole file would have written. */
+static int run_skipping(cli_t *c, const char *out, long first, long step, long npages, char *err, size_t errlen)
+{
+	if (npages < 0) {   /* the page count, when frame_numbers did not read it */
+		meta_frames_t fs;
+		int rc = meta_frames_scan(c->in[0], &fs, err, errlen);
+		if (rc)
+			return rc == -66 ? 66 : rc == -70 ? 70 : rc == -74 ? 74 : 65;
+		npages = (long)fs.pages;
+		meta_frames_free(&fs);
+	}
+	unsigned char *need = calloc((size_t)npages + 1, 1);
+	if (!need) {
+		snprintf(err, errlen, "out of memory");
+		return 70;
+	}
+	long nneed = 0;
+	char why[600];
+	for (long k = 0; k < npages; k++) {
+		long fr = first + k * step;
+		char *name = meta_frame_pattern_name(out, fr);
+		if (!name) {
+			free(need);
+			snprintf(err, errlen, "out of memory");
+			return 70;
+		}
+		int done = film_file_complete(name, fr, why, sizeof why);
+		if (done == 0)
+			fprintf(stderr, "locus-film: frame %ld: %s: made again\n", fr, why);
+		need[k] = done != 1;
+		nneed += done != 1;
+		free(name);
+	}
+	int st = 0;
+	if (nneed == npages) {
+		st = run_pattern(c, c->in[0], out, first, step, npages, err, errlen);
+	} else if (nneed) {
+		const char *slash = strrchr(out, '/');
+		size_t n = strlen(out) + 64;
+		char *tmp = malloc(n);
+		if (!tmp) {
+			free(need);
+			snprintf(err, errlen, "out of memory");
+			return 70;
+		}
+		for (long k = 0; k < npages && !st;) {
+			if (!need[k]) {
+				k++;
+				continue;
+			}
+			long k1 = k;
+			while (k1 + 1 < npages && need[k1 + 1])
+				k1++;
+			snprintf(tmp, n, "%.*s.locus-film-pages.XXXXXX", slash ? (int)(slash - out + 1) : 0, out);
+			int fd = mkstemp(tmp);
+			if (fd < 0) {
+				snprintf(err, errlen, "%s: cannot make a file for the missing frames: %s", tmp, strerror(errno));
+				st = 74;
+				break;
+			}
+			close(fd);
+			char v[24];
+			st = extract_pages(c->in[0], k, k1, tmp, err, errlen);
+			snprintf(v, sizeof v, "%ld", first + k * step);
+			if (!st && cli_set_option(c, "first-frame", v))
+				st = 64;
+			snprintf(v, sizeof v, "%ld", step);
+			if (!st && cli_set_option(c, "frame-step", v))
+				st = 64;
+			if (!st)
+				st = run_pattern(c, tmp, out, first + k * step, step, k1 - k + 1, err, errlen);
+			unlink(tmp);
+			k = k1 + 1;
+		}
+		free(tmp);
+	}
+	if (!st)
+		fprintf(stderr, "locus-film: %ld of %ld frames were there and whole, %ld made\n", npages - nneed, npages,
+			nneed);
+	free(need);
+	return st;
+}
+
 int main(int argc, char **argv)
 {
-	film_args_t a = { NULL, 0, 0 };
+	film_args_t a = { NULL, 0, 0, 0 };
 	cli_t c;
 	memset(&c, 0, sizeof c);
 	c.prog = "locus-film";
@@ -306,6 +458,10 @@ int main(int argc, char **argv)
 	if (pattern && a.separations == 1)
 		return cli_fail(&c, 64, "--separations=files and a frame pattern: give one of them (or "
 			"--separations=planar)");
+	if (a.skip_existing && !pattern)
+		return cli_fail(&c, 64, "--skip-existing works frame by frame: give -o a frame pattern (NAME-%%04d.dpx)");
+	if (a.skip_existing && !strcmp(c.in[0], "-"))
+		return cli_fail(&c, 64, "--skip-existing reads the input again for the missing frames: give a file, not stdin");
 	long first = 1, step = 1, npages = -1;
 	if (!a.first_given && !strstr(c.options, "first-frame=")) {
 		st = frame_numbers(c.in[0], &first, &step, &npages, err, sizeof err);
@@ -318,11 +474,14 @@ int main(int argc, char **argv)
 		snprintf(v, sizeof v, "%ld", step);
 		if (cli_set_option(&c, "frame-step", v))
 			return 64;
-	} else if (dev_first_frame(c.options, &first)) {
-		return cli_fail(&c, 64, "--first-frame needs a frame number 0 to 9999999");
+	} else if (dev_frame_option(c.options, "first-frame", &first) || dev_frame_option(c.options, "frame-step", &step)
+			|| step < 1) {
+		return cli_fail(&c, 64, "--first-frame needs a frame number 0 to 9999999 (and frame-step 1 to 9999999)");
 	}
+	if (pattern && a.skip_existing)
+		return report(run_skipping(&c, out, first, step, npages, err, sizeof err), err);
 	if (pattern)
-		return report(run_pattern(&c, out, first, step, npages, err, sizeof err), err);
+		return report(run_pattern(&c, c.in[0], out, first, step, npages, err, sizeof err), err);
 	if (a.separations != 1) {
 		dev_job_t job = { c.in[0], out, &dev_film_ops, c.band_rows, c.budget, c.options };
 		return report(dev_run(&job, err, sizeof err), err);

@@ -122,6 +122,11 @@ int film_parse_size(const char *s, unsigned *w, unsigned *h);
 /* The creation time of frames: SOURCE_DATE_EPOCH when set (reproducible files), else now.
  * -1 with a message when SOURCE_DATE_EPOCH is not a plain count of seconds. */
 int film_source_time(int64_t *t, char *err, size_t errlen);
+/* Is path a whole frame of its kind? A DPX (either byte order) or Cineon file whose header's file
+ * size is the file's and whose frame position is frame (any with frame < 0), or an RLE frame that
+ * decodes to its last row with nothing after it. 1 whole, 0 there but not whole (why: one line
+ * naming path), -1 no such file. For --skip-existing (filmdone.c). */
+int film_file_complete(const char *path, long frame, char *why, size_t n);
 /* The device (for locus-film; locus-play finds it as "film"). */
 struct dev_ops;
 extern const struct dev_ops dev_film_ops;
