@@ -102,10 +102,18 @@ static int prism_cut(mesh_t *m, const uint32_t p[6], uint32_t f0, uint32_t f1)
 			rc = mesh_tet(m, V[0], V[1], V[2], V[4]) | mesh_tet(m, V[0], V[4], V[2], V[5]);
 		return rc | mesh_tet(m, V[0], V[4], V[5], V[3]);
 	}
-	long c = mesh_vertex_slot(m);
-	if (c < 0)
-		return -1;
-	double *P = m->v + 3 * (size_t)c;
+	/* room for the point (mesh.c's mesh_vertex_slot would make mesh.c and this file need each
+	 * other: it calls mesh_cut_tet) */
+	if (m->nv == m->vcap) {
+		size_t cap = m->vcap ? 2 * m->vcap : 4096;
+		double *q = realloc(m->v, 3 * cap * sizeof *q);
+		if (!q)
+			return -1;
+		m->v = q;
+		m->vcap = cap;
+	}
+	size_t c = m->nv;
+	double *P = m->v + 3 * c;
 	for (int i = 0; i < 3; i++) {
 		P[i] = 0;
 		for (int k = 0; k < 6; k++)

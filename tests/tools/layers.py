@@ -28,7 +28,7 @@ ALLOWED = {
     'render': BASE | {'geom'},
     'device': FRAME - {'device'},
     'raster': FRAME | {'image'}, 'film': FRAME | {'image'}, 'fb': FRAME | {'quant'},
-    'svg': FRAME, 'ps': FRAME, 'hpgl': FRAME | {'hpgl/read'},
+    'svg': FRAME | {'image'}, 'ps': FRAME, 'hpgl': FRAME | {'hpgl/read'},
     'diff': FRAME | LOW | {'image'} | set(FAMILIES),
     'import': FRAME | LOW | {'image'} | set(FAMILIES),
     'cli': None,                       # anything
