@@ -1,5 +1,9 @@
 /* svg_render.c: render an SVG file to a PNG of W x H pixels with librsvg (loaded at run time,
- * since only its runtime library is installed here) on a cairo image surface; for t_svg.sh. */
+ * since only its runtime library is installed here) on a cairo image surface; for t_svg.sh.
+ * The document is fitted to the W x H viewport (rsvg_handle_render_document, librsvg 2.46 on),
+ * so a viewBox of W x H draws at exactly one unit a pixel, as rsvg-convert draws it, whatever
+ * the width and height in millimetres say (42.333mm is 159.9987 px at 96 dpi: at that size
+ * librsvg and cairo resample an embedded image with a filter that mixes neighbouring rows). */
 #include <cairo.h>
 #include <dlfcn.h>
 #include <stdio.h>
@@ -14,6 +18,10 @@ typedef void *(*new_from_data_fn)(const unsigned char *data, size_t len, void **
 typedef int (*render_cairo_fn)(void *handle, cairo_t *cr);
 typedef void (*get_dim_fn)(void *handle, rsvg_dim_t *dim);
 typedef void (*unref_fn)(void *obj);
+typedef struct {
+	double x, y, width, height;
+} rsvg_rect_t;
+typedef int (*render_document_fn)(void *handle, cairo_t *cr, const rsvg_rect_t *viewport, void **error);
 
 static unsigned char *slurp(const char *path, size_t *len)
 {
@@ -53,6 +61,7 @@ int main(int argc, char **argv)
 	render_cairo_fn render = (render_cairo_fn)dlsym(lib, "rsvg_handle_render_cairo");
 	get_dim_fn get_dim = (get_dim_fn)dlsym(lib, "rsvg_handle_get_dimensions");
 	unref_fn unref = (unref_fn)dlsym(RTLD_DEFAULT, "g_object_unref");
+	render_document_fn render_doc = (render_document_fn)dlsym(lib, "rsvg_handle_render_document");
 	if (!from_data || !render || !get_dim || !unref) {
 		fprintf(stderr, "svg_render: librsvg lacks the entry points used\n");
 		return 69;
@@ -76,9 +85,15 @@ int main(int argc, char **argv)
 	cairo_t *cr = cairo_create(s);
 	cairo_set_source_rgb(cr, 1, 1, 1);
 	cairo_paint(cr);
-	if (dim.width > 0 && dim.height > 0)
-		cairo_scale(cr, (double)w / dim.width, (double)ht / dim.height);
-	int ok = render(h, cr);
+	int ok;
+	if (render_doc) {
+		rsvg_rect_t vp = { 0, 0, w, ht };
+		ok = render_doc(h, cr, &vp, &err);
+	} else {
+		if (dim.width > 0 && dim.height > 0)
+			cairo_scale(cr, (double)w / dim.width, (double)ht / dim.height);
+		ok = render(h, cr);
+	}
 	cairo_destroy(cr);
 	int rc = ok && cairo_surface_write_to_png(s, argv[2]) == CAIRO_STATUS_SUCCESS ? 0 : 74;
 	cairo_surface_destroy(s);
