@@ -268,7 +268,7 @@ static int s_close(dev_device_t *d)
 }
 
 const dev_ops_t dev_svg_ops = {
-	.name = "svg", .description = "SVG 1.1 vector file (paths, dash pieces from the framework)",
+	.name = "svg", .description = "SVG 1.1 vector file (paths, dash pieces from the framework, images as PNG)",
 	.extension = ".svg",
 	/* SVG fills and draws any width; its dashes differ from §5.3 at closed subpaths, so the
 	 * framework hands over the dash pieces instead (DEV_CAP_ONLY without DEV_CAP_DASH) */
