@@ -375,7 +375,7 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		return 0;
 	}
 	if (c->op == META_COMMENT)
-		return 0;
+		return p->d->ops->comment ? p->d->ops->comment(p->d, c->str, c->len) : 0;
 	int rc = device_page(p);
 	if (rc)
 		return rc;

@@ -178,6 +178,8 @@ typedef struct dev_ops {
 	int (*put_image_row)(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
 	int (*end_page)(dev_device_t *d, const dev_page_t *pg);
 	int (*close)(dev_device_t *d);
+	/* optional: a comment line of the meta file (text without '#', len bytes), after open */
+	int (*comment)(dev_device_t *d, const char *text, size_t len);
 } dev_ops_t;
 
 /* A device instance. Fields before priv are set by the caller (dev_new + options). */

@@ -45,6 +45,8 @@ static const dev_option_t hpgl_options[] = {
 	{ "pcl", "no|yes: PCL framing around HP-GL/2 for printers that start in PCL (default no)" },
 	{ "knife", "cutter blade offset in mm (default: the profile's)" },
 	{ "overcut", "cutter overcut in mm (default: the profile's)" },
+	{ "pen", "per-pen settings N:speed=CM/S;force=F;accel=A;pause/N:... (VS, FS, AS sent with SP)" },
+	{ "pause", "pens to pause before (loaded by hand): N;M, all or none (default: the profile's)" },
 	{ NULL, NULL }
 };
 
@@ -138,6 +140,8 @@ static int h_open(dev_device_t *d)
 	if (h->pens.n > h->prof.npens || h->pens.pen[h->pens.n - 1].slot > (int)h->prof.npens)
 		return dev_fail(d, DEV_EUSAGE, "pens: profile %s has %u pen slots, pen %d does not fit", h->prof.name,
 			h->prof.npens, h->pens.pen[h->pens.n - 1].slot);
+	if ((rc = hpgl_dev_pen_options(d)))
+		return rc;
 	h->sets = calloc(h->pens.n, sizeof *h->sets);
 	if (!h->sets)
 		return hpgl_dev_nomem(d);
@@ -529,6 +533,12 @@ static int h_begin(dev_device_t *d, const dev_page_t *pg)
 	h->em = hpgl_emit_new(d->out, &h->prof);
 	if (!h->em)
 		return hpgl_dev_nomem(d);
+	int pauses = h->pause_all;
+	for (int k = 1; k <= HPGL_MAX_PENS && !pauses; k++)
+		pauses = h->penset[k].pause;
+	if (pauses && d->out && !io_in_place(d->out))
+		hpgl_dev_warn(&h->warned_pause, "pauses before pens happen only when the job goes to a device "
+			"(a file is plotted later, whole)");
 	return hpgl_page_begin(d, pg);
 }
 
@@ -550,6 +560,7 @@ static int h_close(dev_device_t *d)
 	free(h->rep);
 	free(h->ipts);
 	hpgl_emit_free(h->em);
+	hpgl_dev_pen_free(h);
 	memset(h, 0, sizeof *h);
 	return 0;
 }
@@ -560,4 +571,5 @@ const dev_ops_t dev_hpgl_ops = {
 	.priv_size = sizeof(hpgl_dev_t), .option_list = hpgl_options,
 	.open = h_open, .begin_page = h_begin, .clear = h_clear, .stroke_path = h_stroke, .fill_path = h_fill,
 	.text = h_text, .put_span = h_span, .end_page = hpgl_page_write, .close = h_close,
+	.comment = hpgl_dev_comment,
 };

@@ -66,6 +66,14 @@ typedef struct {
 	size_t capkpts;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
+	/* per-pen settings and pauses (hpgl_pause.c) */
+	hpgl_penset_t penset[HPGL_MAX_PENS + 1];   /* the profile's, then the options' */
+	int pause_all;              /* a pause before every pen change (hand-fed) */
+	int loaded;                 /* the slot in the pen holder across pages, -1 unknown */
+	double vs_page, vs_now, fs_now, as_now;   /* VS at the page's start; VS/FS/AS in force (0: default) */
+	uint64_t job_base;          /* job bytes written before this page's emitter (one in-place output) */
+	char *layer[HPGL_MAX_PENS + 1];   /* layer names from "pen N: layer \"NAME\"" comments */
+	int warned_pause;
 } hpgl_dev_t;
 
 /* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
@@ -78,6 +86,16 @@ int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n);
 int hpgl_dev_emit_fail(dev_device_t *d);
 /* One warning of a kind per run (*flag remembers it), through the reporter. */
 void hpgl_dev_warn(int *flag, const char *msg);
+/* Select carousel pen k for drawing: a pause first when the pen is to be loaded by hand (PU,
+ * everything sent, the program's pauser asked; a stop ends the job resumably), then SP, PW
+ * (HP-GL/2) and the pen's VS/FS/AS where they differ from those in force (hpgl_pause.c). */
+int hpgl_dev_pen(dev_device_t *d, size_t k);
+/* The device's comment op: keeps "pen N: layer \"NAME\"" for the pauses' question. */
+int hpgl_dev_comment(dev_device_t *d, const char *text, size_t len);
+/* Read the options pen=, pause=, over the profile's settings (h_open). */
+int hpgl_dev_pen_options(dev_device_t *d);
+/* Free the layer names. */
+void hpgl_dev_pen_free(hpgl_dev_t *h);
 /* Start a page after the emitter is made: IN, VS, the pen's position; without the optimiser
  * the page is streamed (h->rep collects its report). */
 int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg);

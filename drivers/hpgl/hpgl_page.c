@@ -105,11 +105,9 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 	memset(pr, 0, sizeof *pr);
 	pr->slot = h->pens.pen[k].slot;
 	pr->paths_in = s->npaths;
-	if (hpgl_emit_pen(h->em, pr->slot))
-		return hpgl_dev_emit_fail(d);
+	if (hpgl_dev_pen(d, k))
+		return -1;
 	r->pen_changes++;
-	if (h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, pr->slot))
-		return hpgl_dev_emit_fail(d);
 	for (size_t i = 0; i < h->nfills; i++) {
 		const hpgl_nfill_t *f = &h->fills[i];
 		if (f->pen == k && hpgl_emit_fill(h->em, h->fpts, h->fstarts + f->first, f->ncont, 0, f->even_odd))
@@ -173,6 +171,9 @@ int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg)
 	if ((h->pcl && hpgl_emit_raw(h->em, "\033%-1B", 5)) || hpgl_emit_cmd(h->em, "IN") ||
 			(h->prof.v_down > 0 && !h->prof.cutter && hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down)))
 		return hpgl_dev_emit_fail(d);
+	/* IN set the plotter's defaults: the speed just sent, its own force and acceleration */
+	h->vs_page = h->vs_now = h->prof.v_down > 0 && !h->prof.cutter ? h->prof.v_down : 0;
+	h->fs_now = h->as_now = 0;
 	if (h->optimise)
 		return 0;
 	h->rep = calloc(1, sizeof *h->rep);
@@ -190,9 +191,8 @@ int hpgl_page_pen(dev_device_t *d, size_t k)
 		return 0;
 	h->stream_pen = k;
 	int slot = h->pens.pen[k].slot;
-	if (hpgl_emit_pen(h->em, slot) ||
-			(h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, slot)))
-		return hpgl_dev_emit_fail(d);
+	if (hpgl_dev_pen(d, k))
+		return -1;
 	r->pen_changes++;
 	for (h->stream_pr = r->pen; h->stream_pr < r->pen + r->npens && h->stream_pr->slot != slot; h->stream_pr++)
 		;
@@ -258,6 +258,7 @@ int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 		}
 		r->plot_s += r->pen_changes * h->prof.t_change;
 		r->bytes = hpgl_emit_bytes(h->em);
+		h->job_base += r->bytes;   /* (pauses look at it only on one in-place output) */
 		if (reporter)
 			reporter(reporter_user, r);
 	}
