@@ -51,6 +51,11 @@ const char *dev_error(const dev_device_t *d)
 	return d->err;
 }
 
+unsigned dev_caps(const dev_device_t *d)
+{
+	return d->caps ? d->caps : d->ops->caps;
+}
+
 /* Everything one replay needs. */
 typedef struct {
 	meta_reader_t *rd;

@@ -165,10 +165,6 @@ typedef int (*hpgl_poly_fn)(void *user, const hpgl_dpt_t *pts, size_t n, int clo
  * the visible pieces (a closed polyline that stays whole is handed on closed). */
 int hpgl_clip_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double r[4],
 		hpgl_poly_fn fn, void *user);
-/* Dash a polyline by the meta-language's rules (spec §5.3: pattern restarts per subpath, a
- * boundary at a vertex starts the next segment), pattern in the same units as the points. */
-int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pat, size_t npat,
-		hpgl_poly_fn fn, void *user);
 /* Offset a polyline sideways by dist (left positive): mitred joins (at most 4 x dist), bevelled
  * on the outer side of turns sharper than 120 degrees. Writes up to 2n points to out and returns the count. */
 size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out);

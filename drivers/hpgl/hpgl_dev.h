@@ -48,6 +48,8 @@ typedef struct {
 	size_t nfstarts, capfstarts;
 	hpgl_dpt_t *tmp;
 	size_t captmp;
+	hpgl_dpt_t *mpts;           /* add_model: a piece mapped to plotter units */
+	size_t capmpts;
 	popt_pt_t *ipts;
 	size_t capipts;
 	size_t cur_pen;             /* the pen the current primitive goes to */
@@ -76,6 +78,10 @@ typedef struct {
 	int warned_pause;
 } hpgl_dev_t;
 
+/* ---- hpgl_devutil.c: shared by dev_hpgl.c, hpgl_page.c and hpgl_pause.c ---- */
+
+/* Hand a page's report (or a warning) to the program's reporter, if any. */
+void hpgl_dev_report(const hpgl_report_t *r);
 /* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
 int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size);
 /* Record "hpgl: out of memory"; returns META_ENOMEM. */
@@ -96,6 +102,8 @@ int hpgl_dev_comment(dev_device_t *d, const char *text, size_t len);
 int hpgl_dev_pen_options(dev_device_t *d);
 /* Free the layer names. */
 void hpgl_dev_pen_free(hpgl_dev_t *h);
+/* ---- hpgl_page.c ---- */
+
 /* Start a page after the emitter is made: IN, VS, the pen's position; without the optimiser
  * the page is streamed (h->rep collects its report). */
 int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg);

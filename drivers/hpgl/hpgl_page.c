@@ -6,35 +6,6 @@
 #include <string.h>
 #include "hpgl/hpgl_dev.h"
 
-static void (*reporter)(void *, const hpgl_report_t *);
-static void *reporter_user;
-
-void hpgl_set_reporter(void (*fn)(void *user, const hpgl_report_t *r), void *user)
-{
-	reporter = fn;
-	reporter_user = user;
-}
-
-void hpgl_dev_warn(int *flag, const char *msg)
-{
-	if (!*flag && reporter) {
-		hpgl_report_t *r = calloc(1, sizeof *r);
-		if (r) {
-			r->warning = msg;
-			reporter(reporter_user, r);
-			free(r);
-		}
-	}
-	*flag = 1;
-}
-
-int hpgl_dev_emit_fail(dev_device_t *d)
-{
-	hpgl_dev_t *h = d->priv;
-	const char *e = hpgl_emit_error(h->em);
-	return dev_fail(d, META_EIO, "%s", e[0] ? e : "hpgl: out of memory");
-}
-
 /* The knife's tool path: round and write it. */
 static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
@@ -259,8 +230,7 @@ int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 		r->plot_s += r->pen_changes * h->prof.t_change;
 		r->bytes = hpgl_emit_bytes(h->em);
 		h->job_base += r->bytes;   /* (pauses look at it only on one in-place output) */
-		if (reporter)
-			reporter(reporter_user, r);
+		hpgl_dev_report(r);
 	}
 	for (size_t i = 0; i < h->nlabels; i++)
 		free(h->labels[i].s);

@@ -2,7 +2,7 @@
  * before pens loaded by hand: the pen lifted, everything before it sent, the program's pauser
  * asked; a stop ends the job as a temporary failure with the job journal exactly at the pen
  * change, so that a --resume goes on with the new pen. (Parsing: hpgl_penset.c.) It calls
- * nothing of dev_hpgl.c or hpgl_page.c, which call it. */
+ * only hpgl_devutil.c of the device's files, not dev_hpgl.c or hpgl_page.c, which call it. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,20 +57,12 @@ int hpgl_dev_comment(dev_device_t *d, const char *text, size_t len)
 	size_t n = len - 1 - (size_t)at;
 	char *s = malloc(n + 1);
 	if (!s)
-		return dev_fail(d, META_ENOMEM, "hpgl: out of memory");
+		return hpgl_dev_nomem(d);
 	memcpy(s, text + at, n);
 	s[n] = 0;
 	free(h->layer[slot]);
 	h->layer[slot] = s;
 	return 0;
-}
-
-/* The emitter failed: its transport's words. */
-static int emit_fail(dev_device_t *d)
-{
-	hpgl_dev_t *h = d->priv;
-	const char *e = hpgl_emit_error(h->em);
-	return dev_fail(d, META_EIO, "%s", e[0] ? e : "hpgl: out of memory");
 }
 
 /* Set a modal value (VS, FS, AS) to want (0: the plotter's default, the command without a
@@ -89,7 +81,7 @@ static int pause_before(dev_device_t *d, int slot)
 {
 	hpgl_dev_t *h = d->priv;
 	if (hpgl_emit_cmd(h->em, "PU") || hpgl_emit_flush(h->em))
-		return emit_fail(d);
+		return hpgl_dev_emit_fail(d);
 	if (!d->out || !io_in_place(d->out))
 		return 0;   /* a file is plotted later, whole (begin_page warned) */
 	if (io_flush(d->out))
@@ -123,6 +115,6 @@ int hpgl_dev_pen(dev_device_t *d, size_t k)
 			(h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, slot)) ||
 			modal(h->em, "VS", ps->speed > 0 ? ps->speed : h->vs_page, &h->vs_now) ||
 			modal(h->em, "FS", ps->force, &h->fs_now) || modal(h->em, "AS", ps->accel, &h->as_now))
-		return emit_fail(d);
+		return hpgl_dev_emit_fail(d);
 	return 0;
 }
