@@ -31,6 +31,15 @@ seq=$(grep -o 'SP[0-9]*;\(VS[0-9.]*;\|FS[0-9.]*;\|AS[0-9.]*;\)*' "$T/set.hpgl" |
 [ "$(cat "$T/perpen")" = "1:5 2:4 3:7 " ] \
 	&& ok "pen 1 draws layer 1's square and the line outside every layer, pen 2 layer 2's square, pen 3 layer 3's two squares, cut by the page's edge (segments per pen: $(cat "$T/perpen"))" \
 	|| notok "segments per pen: $(cat "$T/perpen")"
+# the plot-time model draws each pen at its own speed: pen 2's 212 mm at 5 cm/s take over 4 s
+"$H" --pens "$PENS" --estimate "$T/l.meta" > "$T/est0" 2>&1
+"$H" --pens "$PENS" --pen 2:speed=5 --estimate "$T/l.meta" > "$T/est5" 2>&1
+d0=$(sed -n 's/^estimate page 1 pen 2: .*drawing \([0-9]*\) mm in \([0-9.]*\) s.*/\1 \2/p' "$T/est0")
+d5=$(sed -n 's/^estimate page 1 pen 2: .*drawing \([0-9]*\) mm in \([0-9.]*\) s.*/\1 \2/p' "$T/est5")
+awk -v a="$d0" -v b="$d5" 'BEGIN { split(a, x, " "); split(b, y, " "); exit !(x[1] == y[1] && x[1] > 0 &&
+	y[2] >= x[1] / 50 && y[2] < x[1] / 50 + 1 && x[2] < y[2] / 4) }' \
+	&& ok "--estimate draws pen 2 at its own speed: $d0 (mm, s) at the 7475A's 38.1 cm/s, $d5 at 5 cm/s" \
+	|| notok "estimate: '$d0' '$d5': $(cat "$T/est5")"
 cat > "$T/prof.txt" <<EOF
 name = my7550
 base = 7550a

@@ -76,6 +76,7 @@ typedef struct {
 	uint64_t job_base;          /* job bytes written before this page's emitter (one in-place output) */
 	char *layer[HPGL_MAX_PENS + 1];   /* layer names from "pen N: layer \"NAME\"" comments */
 	int warned_pause;
+	hpgl_profile_t tprof;       /* the time model's profile: v_down the selected pen's speed */
 } hpgl_dev_t;
 
 /* ---- hpgl_devutil.c: shared by dev_hpgl.c, hpgl_page.c and hpgl_pause.c ---- */

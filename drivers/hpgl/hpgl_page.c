@@ -24,7 +24,7 @@ static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	if (m == 1)
 		q[m++] = q[0];
 	double dx = (double)q[0].x - h->k_at->x, dy = (double)q[0].y - h->k_at->y;
-	hpgl_time_add(&h->k_pr->time, &h->prof, sqrt(dx * dx + dy * dy), q, m);
+	hpgl_time_add(&h->k_pr->time, &h->tprof, sqrt(dx * dx + dy * dy), q, m);
 	int rc = hpgl_emit_poly(h->em, q, m);
 	*h->k_at = q[m - 1];
 	free(q);
@@ -53,7 +53,7 @@ static int put_path(dev_device_t *d, hpgl_pen_report_t *pr, popt_pt_t *at, popt_
 		return 0;
 	}
 	double dx = (double)pts[0].x - at->x, dy = (double)pts[0].y - at->y, t = sqrt(dx * dx + dy * dy);
-	hpgl_time_add(&pr->time, &h->prof, t, pts, n);
+	hpgl_time_add(&pr->time, &h->tprof, t, pts, n);
 	if (hpgl_emit_poly(h->em, pts, n))
 		return hpgl_dev_emit_fail(d);
 	*at = pts[n - 1];
@@ -145,6 +145,7 @@ int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg)
 	/* IN set the plotter's defaults: the speed just sent, its own force and acceleration */
 	h->vs_page = h->vs_now = h->prof.v_down > 0 && !h->prof.cutter ? h->prof.v_down : 0;
 	h->fs_now = h->as_now = 0;
+	h->tprof = h->prof;   /* hpgl_dev_pen gives it each pen's own speed */
 	if (h->optimise)
 		return 0;
 	h->rep = calloc(1, sizeof *h->rep);

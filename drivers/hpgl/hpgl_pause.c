@@ -111,6 +111,7 @@ int hpgl_dev_pen(dev_device_t *d, size_t k)
 			return rc;
 	}
 	h->loaded = slot;
+	h->tprof.v_down = ps->speed > 0 ? ps->speed : h->prof.v_down;   /* the plot-time model draws at it */
 	if (hpgl_emit_pen(h->em, slot) ||
 			(h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, slot)) ||
 			modal(h->em, "VS", ps->speed > 0 ? ps->speed : h->vs_page, &h->vs_now) ||
