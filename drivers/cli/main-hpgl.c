@@ -1,9 +1,12 @@
 /* main-hpgl.c: locus-hpgl, a meta file to HP-GL or HP-GL/2 for pen plotters and cutters. */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <termios.h>
+#include <unistd.h>
 #include "cli/cli.h"
 #include "hpgl/hpgl.h"
 #include "hpgl/read/hpgl_read.h"
@@ -25,6 +28,13 @@ static const char usage[] =
 	"  --pens SPEC|FILE     carousel, e.g. 1=black,2=red:0.3mm,3=#008000 (or a file of such lines)\n"
 	"  --no-optimize        keep the file's order, pens included, and stream (no page in memory)\n"
 	"  --fill hatch|native|outline|none  --text strokes|label   --raster hatch|skip\n"
+	"  --pen N:speed=CM/S,force=F,accel=A,pause  settings of pen N, sent with its SP (VS, FS, AS;\n"
+	"                       FS/AS where the profile has them); repeat for more pens\n"
+	"  --pause-at-pen N[,M] before pen N is loaded: pen up, everything sent, then ask on the\n"
+	"                       terminal (/dev/tty) to load it: Enter goes on, s stops (exit 75;\n"
+	"                       with --journal FILE, --resume FILE goes on with the new pen)\n"
+	"  --pause-pens         a pause before every pen change (a plotter with one pen holder)\n"
+	"  --no-prompt          ask nobody: a pause is a stop (batch jobs)\n"
 	"  --estimate           print the expected plot time per pen and in total (no OUT: no HP-GL)\n"
 	"  --stats, -v          print pen-up travel before/after, pen lifts and pen changes to stderr\n"
 	"  --analyse            IN is HP-GL: print its pen-down length, pen-up travel, lifts, pen changes\n"
@@ -36,7 +46,8 @@ static const char usage[] =
 	"  --help, --version\n";
 
 enum { O_PROFILE = 0x2000, O_LIST, O_PAPER, O_ROTATE, O_MIRROR, O_FIT, O_SCALE, O_PENS, O_NOOPT,
-	O_FILL, O_TEXT, O_RASTER, O_ESTIMATE, O_STATS, O_ANALYSE, O_LENGTH };
+	O_FILL, O_TEXT, O_RASTER, O_ESTIMATE, O_STATS, O_ANALYSE, O_LENGTH, O_PEN, O_PAUSE_AT, O_PAUSE_ALL,
+	O_NOPROMPT };
 
 static const struct option longopts[] = {
 	{ "profile", required_argument, NULL, O_PROFILE },
@@ -55,11 +66,16 @@ static const struct option longopts[] = {
 	{ "stats", no_argument, NULL, O_STATS },
 	{ "analyse", no_argument, NULL, O_ANALYSE },
 	{ "length", required_argument, NULL, O_LENGTH },
+	{ "pen", required_argument, NULL, O_PEN },
+	{ "pause-at-pen", required_argument, NULL, O_PAUSE_AT },
+	{ "pause-pens", no_argument, NULL, O_PAUSE_ALL },
+	{ "no-prompt", no_argument, NULL, O_NOPROMPT },
 	{ 0, 0, 0, 0 }
 };
 
 typedef struct {
 	int estimate, stats, analyse;
+	int no_prompt;              /* --no-prompt: a pause is a stop */
 	double length;              /* --length MM, 0 = as is */
 	char profile[1024];
 	FILE *est;                  /* where the estimate goes */
@@ -157,6 +173,29 @@ static int on_option(cli_t *c, int key, const char *arg)
 	case O_FILL: return cli_set_option(c, "fill", arg) ? 64 : CLI_RUN;
 	case O_TEXT: return cli_set_option(c, "text", arg) ? 64 : CLI_RUN;
 	case O_RASTER: return cli_set_option(c, "raster", arg) ? 64 : CLI_RUN;
+	case O_PEN: case O_PAUSE_AT: {
+		/* repeated options add up: pen=N:..;../N:.. and pause=N;M (device option values hold no ',') */
+		static char pen[1024], pause[512];
+		char *buf = key == O_PEN ? pen : pause, one[512];
+		size_t cap = key == O_PEN ? sizeof pen : sizeof pause;
+		snprintf(one, sizeof one, "%s", arg);
+		for (char *q = one; *q; q++)
+			if (*q == ',' || *q == '/')
+				*q = key == O_PEN && *q == '/' ? '/' : ';';
+		hpgl_penset_t set[HPGL_MAX_PENS + 1];
+		char err[300];
+		int all = 0;
+		memset(set, 0, sizeof set);
+		if (key == O_PEN ? hpgl_penset_parse(one, set, err, sizeof err) : hpgl_pause_parse(one, set, &all, err, sizeof err))
+			return cli_fail(c, 64, "--%s %s: %s", key == O_PEN ? "pen" : "pause-at-pen", arg, err);
+		size_t n = strlen(buf);
+		if (n + strlen(one) + 2 > cap)
+			return cli_fail(c, 64, "--%s: too many settings", key == O_PEN ? "pen" : "pause-at-pen");
+		snprintf(buf + n, cap - n, "%s%s", n ? (key == O_PEN ? "/" : ";") : "", one);
+		return cli_set_option(c, key == O_PEN ? "pen" : "pause", buf) ? 64 : CLI_RUN;
+	}
+	case O_PAUSE_ALL: return cli_set_option(c, "pause", "all") ? 64 : CLI_RUN;
+	case O_NOPROMPT: p->no_prompt = 1; return CLI_RUN;
 	case O_ESTIMATE: p->estimate = 1; return CLI_RUN;
 	case O_STATS: case 'v': p->stats = 1; return CLI_RUN;
 	default: return 64;
@@ -209,6 +248,62 @@ static void report(void *user, const hpgl_report_t *r)
 		fprintf(est, "estimate page %u total: %s (%.1f s, %llu pen changes)\n", r->page + 1, t, r->plot_s,
 			(unsigned long long)r->pen_changes);
 	}
+}
+
+/* A pause before a pen: ask on the terminal (/dev/tty: standard input may be the meta file).
+ * Enter goes on; s, the end of the terminal, an interrupt, no terminal or --no-prompt stop. */
+static int ask_pen(void *user, const hpgl_pause_t *q, char *why, size_t whylen)
+{
+	const prog_t *p = user;
+	if (p->no_prompt) {
+		snprintf(why, whylen, "--no-prompt: a pause is a stop");
+		return 1;
+	}
+	int fd = open("/dev/tty", O_RDWR | O_NOCTTY | O_CLOEXEC);
+	if (fd < 0) {
+		snprintf(why, whylen, "no terminal to ask on (/dev/tty: %s)", strerror(errno));
+		return 1;
+	}
+	tcflush(fd, TCIFLUSH);   /* an Enter typed ahead does not answer for a pen not yet asked for */
+	char ask[400], layer[240] = "";
+	if (q->layer)
+		snprintf(layer, sizeof layer, " (layer \"%.200s\")", q->layer);
+	int n = snprintf(ask, sizeof ask, "locus-hpgl: load pen %d%s, then press Enter (or s and Enter to stop): ",
+		q->slot, layer);
+	if (n > 0 && write(fd, ask, (size_t)n < sizeof ask ? (size_t)n : sizeof ask - 1) < 0) {
+		snprintf(why, whylen, "cannot ask on the terminal: %s", strerror(errno));
+		close(fd);
+		return 1;
+	}
+	char line[128];
+	size_t k = 0;
+	int stop = 0;
+	for (;;) {
+		char ch;
+		ssize_t r = read(fd, &ch, 1);
+		if (r == 1 && ch != '\n') {
+			if (k < sizeof line - 1)
+				line[k++] = ch;
+			continue;
+		}
+		if (r == 1)
+			break;
+		snprintf(why, whylen, r == 0 ? "the terminal closed at the question" : errno == EINTR
+			? "interrupted at the question" : "cannot read the answer");
+		stop = 1;
+		break;
+	}
+	line[k] = 0;
+	size_t b = strspn(line, " \t\r");
+	if (!stop && (line[b] == 's' || line[b] == 'S')) {
+		snprintf(why, whylen, "stopped at the question, as asked");
+		stop = 1;
+	}
+	if (write(fd, stop ? "stopping\n" : "going on\n", stop ? 9 : 9) < 0) {
+		/* the answer stands */
+	}
+	close(fd);
+	return stop;
 }
 
 /* --analyse: what a plotter would do with an HP-GL file, by the reader and the time model. */
@@ -297,6 +392,7 @@ int main(int argc, char **argv)
 	if (p.estimate && !c.out)
 		p.est = stdout;
 	hpgl_set_reporter(report, &p);   /* warnings always; figures with --stats/--estimate */
+	hpgl_set_pauser(ask_pen, &p);
 	p.held = open_memstream(&p.heldbuf, &p.heldlen);   /* NULL: printed as they come */
 	dev_job_t job = { c.in[0], out, &dev_hpgl_ops, 0, 0, c.options };
 	char err[600];

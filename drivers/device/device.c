@@ -51,6 +51,11 @@ const char *dev_error(const dev_device_t *d)
 	return d->err;
 }
 
+unsigned dev_caps(const dev_device_t *d)
+{
+	return d->caps ? d->caps : d->ops->caps;
+}
+
 /* Everything one replay needs. */
 typedef struct {
 	meta_reader_t *rd;
@@ -375,7 +380,7 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		return 0;
 	}
 	if (c->op == META_COMMENT)
-		return 0;
+		return p->d->ops->comment ? p->d->ops->comment(p->d, c->str, c->len) : 0;
 	int rc = device_page(p);
 	if (rc)
 		return rc;

@@ -178,6 +178,8 @@ typedef struct dev_ops {
 	int (*put_image_row)(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs, size_t nruns);
 	int (*end_page)(dev_device_t *d, const dev_page_t *pg);
 	int (*close)(dev_device_t *d);
+	/* optional: a comment line of the meta file (text without '#', len bytes), after open */
+	int (*comment)(dev_device_t *d, const char *text, size_t len);
 } dev_ops_t;
 
 /* A device instance. Fields before priv are set by the caller (dev_new + options). */
@@ -202,6 +204,10 @@ struct dev {
 	 * raster of k*w x k*h, then averaged). docs/drivers.md, "Anti-aliasing". dev_play() also
 	 * takes it from the framework's own device option antialias=K in d->options. */
 	unsigned antialias;
+	/* Set by a device's open() when this instance can do less or more than ops->caps says
+	 * (a profile without native fills, an option that ignores dashes): its DEV_CAP_* (with
+	 * DEV_CAP_ONLY), which the framework then honours instead; 0: ops->caps. */
+	unsigned caps;
 	void *priv;                 /* ops->priv_size zeroed bytes for the driver */
 	void *user;                 /* free for the program */
 	/* Optional program hook, called before the device's begin_page (end = 0) and after its
@@ -228,6 +234,8 @@ int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
 	;
 /* The last error message, one line. */
 const char *dev_error(const dev_device_t *d);
+/* The instance's capabilities: d->caps when its open() set them, else d->ops->caps. */
+unsigned dev_caps(const dev_device_t *d);
 
 /* Replay a whole meta stream onto the device: open, pages, close. Returns 0, or <0 with
  * dev_error() set: a reader error verbatim ("f.meta:3:1: ...", reader_error = 1), a failure of

@@ -5,7 +5,7 @@
 
 static unsigned caps_of(const dev_device_t *d)
 {
-	unsigned c = d->ops->caps;
+	unsigned c = dev_caps(d);
 	return c & DEV_CAP_ONLY ? c : c | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH;
 }
 

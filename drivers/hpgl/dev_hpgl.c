@@ -1,6 +1,7 @@
-/* dev-hpgl.c: the HP-GL / HP-GL/2 pen-plotter and cutter device: options, and collecting a page's
- * paths per pen (dashes split, wide lines as passes, fills and rasters hatched, text as strokes
- * or LB); hpgl_page.c optimises and writes them at the end of the page. */
+/* dev_hpgl.c: the HP-GL / HP-GL/2 pen-plotter and cutter device: options, and collecting a page's
+ * paths per pen (the framework's dash pieces, wide lines as passes, fills hatched through the
+ * hatch op, rasters hatched, text as strokes or LB); hpgl_page.c optimises and writes them at
+ * the end of the page. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,15 +10,7 @@
 #include "hpgl/hpgl_hatch.h"
 #include "hpgl/hpgl_dev.h"
 
-int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size)
-{
-	return dev_grow(p, cap, need, size, 64);
-}
-
-int hpgl_dev_nomem(dev_device_t *d)
-{
-	return dev_fail(d, META_ENOMEM, "hpgl: out of memory");
-}
+extern const dev_ops_t dev_hpgl_ops;
 
 /* ---- options ---- */
 
@@ -45,6 +38,8 @@ static const dev_option_t hpgl_options[] = {
 	{ "pcl", "no|yes: PCL framing around HP-GL/2 for printers that start in PCL (default no)" },
 	{ "knife", "cutter blade offset in mm (default: the profile's)" },
 	{ "overcut", "cutter overcut in mm (default: the profile's)" },
+	{ "pen", "per-pen settings N:speed=CM/S;force=F;accel=A;pause/N:... (VS, FS, AS sent with SP)" },
+	{ "pause", "pens to pause before (loaded by hand): N;M, all or none (default: the profile's)" },
 	{ NULL, NULL }
 };
 
@@ -125,6 +120,10 @@ static int h_open(dev_device_t *d)
 			(rc = opt_num(d, "overcut", 0, 100, &h->overcut)) || (rc = opt_word(d, "background", bgs, &h->background)) ||
 			(rc = opt_word(d, "pcl", yesno, &h->pcl)))
 		return rc;
+	/* what this instance leaves to the framework: dashes (its windowed pieces) unless dash=solid
+	 * ignores them; fills go to the hatch op unless fill=native draws them (FP, RA). Widths stay
+	 * the driver's: parallel passes, which outline pieces filled by hatching would not match. */
+	d->caps = dev_hpgl_ops.caps | (h->dash_split ? 0 : DEV_CAP_DASH) | (h->fill == HPGL_FILL_NATIVE ? DEV_CAP_FILL : 0);
 	if (h->pcl && h->prof.dialect != HPGL_DIALECT_2)
 		return dev_fail(d, DEV_EUSAGE, "pcl=yes frames HP-GL/2; profile %s speaks HP-GL", h->prof.name);
 	if (!h->prof.has_paper[h->place.paper])
@@ -138,6 +137,8 @@ static int h_open(dev_device_t *d)
 	if (h->pens.n > h->prof.npens || h->pens.pen[h->pens.n - 1].slot > (int)h->prof.npens)
 		return dev_fail(d, DEV_EUSAGE, "pens: profile %s has %u pen slots, pen %d does not fit", h->prof.name,
 			h->prof.npens, h->pens.pen[h->pens.n - 1].slot);
+	if ((rc = hpgl_dev_pen_options(d)))
+		return rc;
 	h->sets = calloc(h->pens.n, sizeof *h->sets);
 	if (!h->sets)
 		return hpgl_dev_nomem(d);
@@ -151,13 +152,6 @@ static int cb_fail(dev_device_t *d)
 }
 
 /* ---- collecting ---- */
-
-int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n)
-{
-	if (n <= h->captmp)
-		return 0;
-	return hpgl_dev_grow((void **)&h->tmp, &h->captmp, n, sizeof *h->tmp);
-}
 
 /* A visible piece in plotter units: round and keep it for its pen. */
 static int add_piece(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
@@ -209,14 +203,14 @@ static int add_model(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
 	dev_device_t *d = user;
 	hpgl_dev_t *h = d->priv;
-	hpgl_dpt_t *m = malloc((n ? n : 1) * sizeof *m);
-	if (!m)
+	/* a scratch of the device's (add_mapped and below do not come back here): no allocation a
+	 * piece, which is most of a dash-heavy page's pieces' cost */
+	if (hpgl_dev_grow((void **)&h->mpts, &h->capmpts, n ? n : 1, sizeof *h->mpts))
 		return -1;
+	hpgl_dpt_t *m = h->mpts;
 	for (size_t i = 0; i < n; i++)
 		hpgl_map_point(&h->map, (int64_t)pts[i].x, (int64_t)pts[i].y, &m[i].x, &m[i].y);
-	int rc = add_mapped(user, m, n, closed);
-	free(m);
-	return rc;
+	return add_mapped(user, m, n, closed);
 }
 
 /* The carousel pen for a colour, or -1 for paper (hpgl_pens_pick). */
@@ -225,57 +219,9 @@ static long pen_for(hpgl_dev_t *h, meta_rgb_t rgb)
 	return hpgl_pens_pick(&h->pens, rgb);
 }
 
-/* How far a stroke reaches past its line, thousandths: half the width, a margin. */
-static int64_t reach_of(const dev_state_t *st)
-{
-	return (st->line_width < 1000 ? 1000 : st->line_width) / 2 + 2000;
-}
-
-/* 1 when subpath sp of f leaves the page (with the stroke's reach). */
-static int off_page(const scan_path_t *f, const scan_subpath_t *sp, const dev_page_t *pg, const dev_state_t *st)
-{
-	int64_t r = reach_of(st), w = (int64_t)pg->width * 1000, hh = (int64_t)pg->height * 1000;
-	for (size_t i = 0; i < sp->n; i++) {
-		const scan_pt_t *q = &f->pts[sp->start + i];
-		if (q->x < -r || q->y < -r || q->x > w + r || q->y > hh + r)
-			return 1;
-	}
-	return 0;
-}
-
-/* A dashed subpath that leaves the page: its pieces made only where the page can show them
- * (dash.c's closed-form walk, windowed), each drawn solid, so that a pattern along a line
- * running far off the page costs what the page shows, not the line's length. */
-static int dash_on_page(dev_device_t *d, const scan_path_t *f, const scan_subpath_t *sp, const dev_state_t *st)
-{
-	hpgl_dev_t *h = d->priv;
-	scan_path_t one = { 0 }, pieces = { 0 };
-	int64_t r = reach_of(st), w = (int64_t)d->page->width * 1000, hh = (int64_t)d->page->height * 1000;
-	int rc = 0;
-	for (size_t i = 0; i < sp->n && !rc; i++) {
-		const scan_pt_t *q = &f->pts[sp->start + i];
-		rc = i ? scan_path_draw(&one, q->x, q->y) : scan_path_move(&one, q->x, q->y);
-	}
-	if (!rc && sp->closed)
-		rc = scan_path_close(&one);
-	if (!rc)
-		rc = scan_dash_path_box(&one, st->dash, st->ndash, -r, -r, w + r, hh + r, &pieces);
-	for (size_t k = 0; k < pieces.nsubs && !rc; k++) {
-		const scan_subpath_t *ps = &pieces.subs[k];
-		if (hpgl_dev_need_tmp(h, ps->n + 1)) {
-			rc = -1;
-			break;
-		}
-		for (size_t i = 0; i < ps->n; i++)
-			h->tmp[i] = (hpgl_dpt_t){ (double)pieces.pts[ps->start + i].x, (double)pieces.pts[ps->start + i].y };
-		rc = add_model(d, h->tmp, ps->n, 0);
-	}
-	scan_path_free(&one);
-	scan_path_free(&pieces);
-	return rc;
-}
-
-static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t *st, int solid)
+/* A stroke's subpaths, solid: the framework has dashed it already (dash pieces, windowed to
+ * the page, as open subpaths), or the instance ignores dashes (dash=solid claims DEV_CAP_DASH). */
+static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t *st)
 {
 	hpgl_dev_t *h = d->priv;
 	long pen = pen_for(h, st->colour);
@@ -285,10 +231,6 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 	/* width 1 (the default, and the minimum of spec 4) is a hairline: one pass of the pen */
 	h->line_width_pu = st->width <= 1000 ? 0 : st->width / 1000.0 * h->map.pu_per_px;
 	h->line_cap = st->cap;
-	double pat[2 * META_MAX_DASH];
-	size_t npat = solid || !h->dash_split ? 0 : st->ndash;
-	for (size_t k = 0; k < npat; k++)
-		pat[k] = (double)st->dash[k];
 	for (size_t s = 0; s < f->nsubs; s++) {
 		const scan_subpath_t *sp = &f->subs[s];
 		if (sp->n == 0)
@@ -300,10 +242,8 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 		int rc;
 		if (sp->n == 1)   /* a dot */
 			rc = add_model(d, (hpgl_dpt_t[]){ h->tmp[0], h->tmp[0] }, 2, 0);
-		else if (npat && d->page && off_page(f, sp, d->page, st))
-			rc = dash_on_page(d, f, sp, st);
 		else
-			rc = hpgl_dash_poly(h->tmp, sp->n, sp->closed, pat, npat, add_model, d);
+			rc = add_model(d, h->tmp, sp->n, sp->closed);
 		if (rc)
 			return cb_fail(d);
 	}
@@ -312,7 +252,7 @@ static int stroke_flat(dev_device_t *d, const scan_path_t *f, const dev_state_t 
 
 static int h_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
-	return stroke_flat(d, p->flat, st, 0);
+	return stroke_flat(d, p->flat, st);
 }
 
 static int hatch_seg(void *user, double x0, double y0, double x1, double y1)
@@ -404,7 +344,15 @@ static int fill_mapped(dev_device_t *d, const scan_path_t *f, int rule, meta_rgb
 	return rc ? cb_fail(d) : 0;
 }
 
+/* fill_path: claimed (DEV_CAP_FILL) only with fill=native: HP-GL/2 FP, HP-GL RA, else hatched */
 static int h_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
+{
+	return fill_mapped(d, p->flat, st->rule, st->colour);
+}
+
+/* The device's hatch op: the framework's way to a fill on an instance without native fills
+ * (fill=hatch, outline or none): hpgl_hatch.c's lines by the path's rule, and the outline. */
+static int h_hatch(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
 	return fill_mapped(d, p->flat, st->rule, st->colour);
 }
@@ -415,7 +363,7 @@ static int h_text(dev_device_t *d, const dev_text_t *t, const dev_state_t *st)
 	if (!h->text_label) {
 		scan_path_t p = { 0 };
 		int rc = scan_text_path(&p, t->str, t->len, t->x, t->y, t->size, t->angle) ? hpgl_dev_nomem(d)
-			: stroke_flat(d, &p, st, 1);
+			: stroke_flat(d, &p, st);
 		scan_path_free(&p);
 		return rc;
 	}
@@ -529,6 +477,12 @@ static int h_begin(dev_device_t *d, const dev_page_t *pg)
 	h->em = hpgl_emit_new(d->out, &h->prof);
 	if (!h->em)
 		return hpgl_dev_nomem(d);
+	int pauses = h->pause_all;
+	for (int k = 1; k <= HPGL_MAX_PENS && !pauses; k++)
+		pauses = h->penset[k].pause;
+	if (pauses && d->out && !io_in_place(d->out))
+		hpgl_dev_warn(&h->warned_pause, "pauses before pens happen only when the job goes to a device "
+			"(a file is plotted later, whole)");
 	return hpgl_page_begin(d, pg);
 }
 
@@ -545,19 +499,22 @@ static int h_close(dev_device_t *d)
 	free(h->fpts);
 	free(h->fstarts);
 	free(h->tmp);
+	free(h->mpts);
 	free(h->kpts);
 	free(h->spts);
 	free(h->rep);
 	free(h->ipts);
 	hpgl_emit_free(h->em);
+	hpgl_dev_pen_free(h);
 	memset(h, 0, sizeof *h);
 	return 0;
 }
 
 const dev_ops_t dev_hpgl_ops = {
 	.name = "hpgl", .description = "HP-GL and HP-GL/2 pen plotters and cutters (profiles, pens, path optimisation)",
-	.extension = ".hpgl", .caps = DEV_CAP_VECTOR | DEV_CAP_TEXT | DEV_CAP_FILL | DEV_CAP_DASH | DEV_CAP_WIDTH,
+	.extension = ".hpgl", .caps = DEV_CAP_VECTOR | DEV_CAP_TEXT | DEV_CAP_WIDTH | DEV_CAP_ONLY,
 	.priv_size = sizeof(hpgl_dev_t), .option_list = hpgl_options,
 	.open = h_open, .begin_page = h_begin, .clear = h_clear, .stroke_path = h_stroke, .fill_path = h_fill,
-	.text = h_text, .put_span = h_span, .end_page = hpgl_page_write, .close = h_close,
+	.hatch = h_hatch, .text = h_text, .put_span = h_span, .end_page = hpgl_page_write, .close = h_close,
+	.comment = hpgl_dev_comment,
 };

@@ -23,6 +23,16 @@ enum { HPGL_PAPER_A4, HPGL_PAPER_A3, HPGL_PAPER_LETTER, HPGL_PAPER_B, HPGL_NPAPE
 /* Dialects. */
 enum { HPGL_DIALECT_1 = 1, HPGL_DIALECT_2 = 2 };
 
+/* Settings of one pen slot, sent when the pen is selected (SP): speed (VS, cm/s), force (FS)
+ * and acceleration (AS) in the plotter's own units (7550A: force levels 1-8, acceleration
+ * levels 1-4), 0 = not set (the profile's speed, the plotter's default force and
+ * acceleration); pause: the sender stops with the pen up before this pen is loaded and asks
+ * for it (docs/hpgl.md, "Per-pen settings and pauses"). */
+typedef struct {
+	double speed, force, accel;
+	int pause;
+} hpgl_penset_t;
+
 /* A device description: built in (hpgl_profile_find) or read from a profile file. */
 typedef struct {
 	char name[32];
@@ -44,6 +54,9 @@ typedef struct {
 	double knife_offset;        /* mm, cutters */
 	double overcut;             /* mm, cutters: closed paths are cut on past their start */
 	int newline;                /* 1: a newline after every command (USB printer-class cutters) */
+	int has_fs, has_as;         /* 1: takes FS (force select) / AS (acceleration select) */
+	int pause_all;              /* 1: hand-fed: a pause before every pen change */
+	hpgl_penset_t penset[HPGL_MAX_PENS + 1];   /* per slot (pen.N = ... in a profile file) */
 } hpgl_profile_t;
 
 /* Built-in profiles: count, k-th, and lookup by name (NULL when unknown). */
@@ -57,6 +70,29 @@ int hpgl_profile_parse(const char *text, size_t len, const char *name, hpgl_prof
 /* Load a profile file from disk (reads it whole, then hpgl_profile_parse). -1 also when the
  * file cannot be read (err says so). */
 int hpgl_profile_load(const char *path, hpgl_profile_t *p, char *err, size_t errlen);
+/* Per-pen settings: "N:speed=V;force=F;accel=A;pause/N:..." (pens apart by '/' or blanks,
+ * settings by ';' or ','; "pause" alone or pause=yes|no) merged into set[1..HPGL_MAX_PENS].
+ * Returns 0 or -1 with err naming the item. */
+int hpgl_penset_parse(const char *spec, hpgl_penset_t *set, char *err, size_t errlen);
+/* One pen's settings "speed=V,force=F,accel=A,pause" merged into *one. 0 or -1 with err. */
+int hpgl_penset_items(const char *items, hpgl_penset_t *one, char *err, size_t errlen);
+/* Pens to pause before: "2;3" or "2,3" or "all" (*all set) or "none" merged into set. 0 or -1. */
+int hpgl_pause_parse(const char *spec, hpgl_penset_t *set, int *all, char *err, size_t errlen);
+/* 0 when the profile takes every setting given in set (FS only with has_fs, AS with has_as,
+ * a speed within (0, 1000]), else -1 with err saying which pen and what. */
+int hpgl_penset_check(const hpgl_profile_t *prof, const hpgl_penset_t *set, char *err, size_t errlen);
+
+/* A pause before a pen (the program asks for the pen to be loaded). */
+typedef struct {
+	int slot;                   /* the pen to load */
+	const char *layer;          /* its layer's name from the meta file (import --pens by-layer), or NULL */
+	unsigned page;              /* 0-based */
+} hpgl_pause_t;
+/* A program's hook for pauses: ask for the pen; return 0 to go on, 1 to stop (the job then
+ * ends as a temporary failure, its journal at the pen change: resumable), with a few words
+ * why in why. Process-wide; NULL removes it: every pause is then a stop. */
+void hpgl_set_pauser(int (*fn)(void *user, const hpgl_pause_t *p, char *why, size_t whylen), void *user);
+
 /* The paper index of a name ("a4", "a3", "letter", "b"), or -1. */
 int hpgl_paper_find(const char *name);
 /* The paper's name. */
@@ -128,10 +164,6 @@ typedef int (*hpgl_poly_fn)(void *user, const hpgl_dpt_t *pts, size_t n, int clo
 /* Clip the polyline to the rectangle r (x0 y0 x1 y1), Liang-Barsky per segment, handing on
  * the visible pieces (a closed polyline that stays whole is handed on closed). */
 int hpgl_clip_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double r[4],
-		hpgl_poly_fn fn, void *user);
-/* Dash a polyline by the meta-language's rules (spec §5.3: pattern restarts per subpath, a
- * boundary at a vertex starts the next segment), pattern in the same units as the points. */
-int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pat, size_t npat,
 		hpgl_poly_fn fn, void *user);
 /* Offset a polyline sideways by dist (left positive): mitred joins (at most 4 x dist), bevelled
  * on the outer side of turns sharper than 120 degrees. Writes up to 2n points to out and returns the count. */

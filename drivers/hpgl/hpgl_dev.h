@@ -48,6 +48,8 @@ typedef struct {
 	size_t nfstarts, capfstarts;
 	hpgl_dpt_t *tmp;
 	size_t captmp;
+	hpgl_dpt_t *mpts;           /* add_model: a piece mapped to plotter units */
+	size_t capmpts;
 	popt_pt_t *ipts;
 	size_t capipts;
 	size_t cur_pen;             /* the pen the current primitive goes to */
@@ -66,8 +68,21 @@ typedef struct {
 	size_t capkpts;
 	popt_pt_t *k_at;            /* emit_knife: the pen position and the pen's report */
 	hpgl_pen_report_t *k_pr;
+	/* per-pen settings and pauses (hpgl_pause.c) */
+	hpgl_penset_t penset[HPGL_MAX_PENS + 1];   /* the profile's, then the options' */
+	int pause_all;              /* a pause before every pen change (hand-fed) */
+	int loaded;                 /* the slot in the pen holder across pages, -1 unknown */
+	double vs_page, vs_now, fs_now, as_now;   /* VS at the page's start; VS/FS/AS in force (0: default) */
+	uint64_t job_base;          /* job bytes written before this page's emitter (one in-place output) */
+	char *layer[HPGL_MAX_PENS + 1];   /* layer names from "pen N: layer \"NAME\"" comments */
+	int warned_pause;
+	hpgl_profile_t tprof;       /* the time model's profile: v_down the selected pen's speed */
 } hpgl_dev_t;
 
+/* ---- hpgl_devutil.c: shared by dev_hpgl.c, hpgl_page.c and hpgl_pause.c ---- */
+
+/* Hand a page's report (or a warning) to the program's reporter, if any. */
+void hpgl_dev_report(const hpgl_report_t *r);
 /* Grow *p (cap elements of size bytes) to hold need; 0 or -1. */
 int hpgl_dev_grow(void **p, size_t *cap, size_t need, size_t size);
 /* Record "hpgl: out of memory"; returns META_ENOMEM. */
@@ -78,6 +93,18 @@ int hpgl_dev_need_tmp(hpgl_dev_t *h, size_t n);
 int hpgl_dev_emit_fail(dev_device_t *d);
 /* One warning of a kind per run (*flag remembers it), through the reporter. */
 void hpgl_dev_warn(int *flag, const char *msg);
+/* Select carousel pen k for drawing: a pause first when the pen is to be loaded by hand (PU,
+ * everything sent, the program's pauser asked; a stop ends the job resumably), then SP, PW
+ * (HP-GL/2) and the pen's VS/FS/AS where they differ from those in force (hpgl_pause.c). */
+int hpgl_dev_pen(dev_device_t *d, size_t k);
+/* The device's comment op: keeps "pen N: layer \"NAME\"" for the pauses' question. */
+int hpgl_dev_comment(dev_device_t *d, const char *text, size_t len);
+/* Read the options pen=, pause=, over the profile's settings (h_open). */
+int hpgl_dev_pen_options(dev_device_t *d);
+/* Free the layer names. */
+void hpgl_dev_pen_free(hpgl_dev_t *h);
+/* ---- hpgl_page.c ---- */
+
 /* Start a page after the emitter is made: IN, VS, the pen's position; without the optimiser
  * the page is streamed (h->rep collects its report). */
 int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg);

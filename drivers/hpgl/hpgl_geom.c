@@ -94,55 +94,6 @@ int hpgl_clip_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double r[4
 	return rc;
 }
 
-static double R(double v)
-{
-	return v < 0 ? -floor(-v + 0.5) : floor(v + 0.5);
-}
-
-int hpgl_dash_poly(const hpgl_dpt_t *pts, size_t n, int closed, const double *pat, size_t npat,
-		hpgl_poly_fn fn, void *user)
-{
-	if (npat == 0)
-		return fn(user, pts, n, closed);
-	buf_t b = { 0 };
-	int rc = 0, on = 1;
-	size_t k = 0;
-	double rest = pat[0];
-	if (put(&b, pts[0].x, pts[0].y))
-		return -1;
-	size_t segs = closed ? n : n - 1;
-	for (size_t i = 0; i < segs && !rc; i++) {
-		hpgl_dpt_t P = pts[i], Q = pts[(i + 1) % n];
-		double Dx = Q.x - P.x, Dy = Q.y - P.y, L = sqrt(Dx * Dx + Dy * Dy), t = 0;
-		if (L == 0)
-			continue;
-		while (rest < L - t && !rc) {
-			t += rest;
-			double f = t / L, Bx = P.x + R(Dx * f), By = P.y + R(Dy * f);
-			if (on) {
-				if (put(&b, Bx, By))
-					rc = -1;
-				else
-					rc = flush(&b, fn, user, 0);
-			} else {
-				b.n = 0;
-				if (put(&b, Bx, By))
-					rc = -1;
-			}
-			on = !on;
-			k = (k + 1) % npat;
-			rest = pat[k];
-		}
-		rest -= L - t;
-		if (on && !rc && put(&b, Q.x, Q.y))
-			rc = -1;
-	}
-	if (!rc && on)
-		rc = flush(&b, fn, user, 0);
-	free(b.p);
-	return rc;
-}
-
 size_t hpgl_offset_poly(const hpgl_dpt_t *pts, size_t n, int closed, double dist, hpgl_dpt_t *out)
 {
 	size_t m = 0;

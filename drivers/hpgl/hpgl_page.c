@@ -6,35 +6,6 @@
 #include <string.h>
 #include "hpgl/hpgl_dev.h"
 
-static void (*reporter)(void *, const hpgl_report_t *);
-static void *reporter_user;
-
-void hpgl_set_reporter(void (*fn)(void *user, const hpgl_report_t *r), void *user)
-{
-	reporter = fn;
-	reporter_user = user;
-}
-
-void hpgl_dev_warn(int *flag, const char *msg)
-{
-	if (!*flag && reporter) {
-		hpgl_report_t *r = calloc(1, sizeof *r);
-		if (r) {
-			r->warning = msg;
-			reporter(reporter_user, r);
-			free(r);
-		}
-	}
-	*flag = 1;
-}
-
-int hpgl_dev_emit_fail(dev_device_t *d)
-{
-	hpgl_dev_t *h = d->priv;
-	const char *e = hpgl_emit_error(h->em);
-	return dev_fail(d, META_EIO, "%s", e[0] ? e : "hpgl: out of memory");
-}
-
 /* The knife's tool path: round and write it. */
 static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 {
@@ -53,7 +24,7 @@ static int emit_knife(void *user, const hpgl_dpt_t *pts, size_t n, int closed)
 	if (m == 1)
 		q[m++] = q[0];
 	double dx = (double)q[0].x - h->k_at->x, dy = (double)q[0].y - h->k_at->y;
-	hpgl_time_add(&h->k_pr->time, &h->prof, sqrt(dx * dx + dy * dy), q, m);
+	hpgl_time_add(&h->k_pr->time, &h->tprof, sqrt(dx * dx + dy * dy), q, m);
 	int rc = hpgl_emit_poly(h->em, q, m);
 	*h->k_at = q[m - 1];
 	free(q);
@@ -82,7 +53,7 @@ static int put_path(dev_device_t *d, hpgl_pen_report_t *pr, popt_pt_t *at, popt_
 		return 0;
 	}
 	double dx = (double)pts[0].x - at->x, dy = (double)pts[0].y - at->y, t = sqrt(dx * dx + dy * dy);
-	hpgl_time_add(&pr->time, &h->prof, t, pts, n);
+	hpgl_time_add(&pr->time, &h->tprof, t, pts, n);
 	if (hpgl_emit_poly(h->em, pts, n))
 		return hpgl_dev_emit_fail(d);
 	*at = pts[n - 1];
@@ -105,11 +76,9 @@ static int emit_pen(dev_device_t *d, size_t k, popt_pt_t *at, hpgl_report_t *r)
 	memset(pr, 0, sizeof *pr);
 	pr->slot = h->pens.pen[k].slot;
 	pr->paths_in = s->npaths;
-	if (hpgl_emit_pen(h->em, pr->slot))
-		return hpgl_dev_emit_fail(d);
+	if (hpgl_dev_pen(d, k))
+		return -1;
 	r->pen_changes++;
-	if (h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, pr->slot))
-		return hpgl_dev_emit_fail(d);
 	for (size_t i = 0; i < h->nfills; i++) {
 		const hpgl_nfill_t *f = &h->fills[i];
 		if (f->pen == k && hpgl_emit_fill(h->em, h->fpts, h->fstarts + f->first, f->ncont, 0, f->even_odd))
@@ -173,6 +142,10 @@ int hpgl_page_begin(dev_device_t *d, const dev_page_t *pg)
 	if ((h->pcl && hpgl_emit_raw(h->em, "\033%-1B", 5)) || hpgl_emit_cmd(h->em, "IN") ||
 			(h->prof.v_down > 0 && !h->prof.cutter && hpgl_emit_cmd(h->em, "VS%g", h->prof.v_down)))
 		return hpgl_dev_emit_fail(d);
+	/* IN set the plotter's defaults: the speed just sent, its own force and acceleration */
+	h->vs_page = h->vs_now = h->prof.v_down > 0 && !h->prof.cutter ? h->prof.v_down : 0;
+	h->fs_now = h->as_now = 0;
+	h->tprof = h->prof;   /* hpgl_dev_pen gives it each pen's own speed */
 	if (h->optimise)
 		return 0;
 	h->rep = calloc(1, sizeof *h->rep);
@@ -190,9 +163,8 @@ int hpgl_page_pen(dev_device_t *d, size_t k)
 		return 0;
 	h->stream_pen = k;
 	int slot = h->pens.pen[k].slot;
-	if (hpgl_emit_pen(h->em, slot) ||
-			(h->prof.dialect == HPGL_DIALECT_2 && hpgl_emit_cmd(h->em, "PW%.2f,%d", h->pens.pen[k].width_mm, slot)))
-		return hpgl_dev_emit_fail(d);
+	if (hpgl_dev_pen(d, k))
+		return -1;
 	r->pen_changes++;
 	for (h->stream_pr = r->pen; h->stream_pr < r->pen + r->npens && h->stream_pr->slot != slot; h->stream_pr++)
 		;
@@ -258,8 +230,8 @@ int hpgl_page_write(dev_device_t *d, const dev_page_t *pg)
 		}
 		r->plot_s += r->pen_changes * h->prof.t_change;
 		r->bytes = hpgl_emit_bytes(h->em);
-		if (reporter)
-			reporter(reporter_user, r);
+		h->job_base += r->bytes;   /* (pauses look at it only on one in-place output) */
+		hpgl_dev_report(r);
 	}
 	for (size_t i = 0; i < h->nlabels; i++)
 		free(h->labels[i].s);

@@ -25,26 +25,26 @@ static const hpgl_profile_t builtin[] = {
 	  .clip = { { 0, 0, 10870, 7600 }, { 0, 0, 15970, 10870 }, { 0, 0, 10170, 7840 }, { 0, 0, 16450, 10170 } },
 	  .paper = HPGL_PAPER_A4, .max_pairs = 64, .buffer = 12288, .npens = 8,
 	  .pens = "1=black;2=red;3=green;4=blue;5=magenta;6=cyan;7=yellow;8=brown",
-	  .v_down = 80, .v_up = 80, .accel = 39, .t_lift = 0.03, .t_change = 2.5 },
+	  .v_down = 80, .v_up = 80, .accel = 39, .t_lift = 0.03, .t_change = 2.5, .has_fs = 1, .has_as = 1 },
 	{ .name = "draftpro", .description = "HP DraftPro (7570A) eight-pen drafting plotter, HP-GL",
 	  .dialect = HPGL_DIALECT_1, .has_paper = { 1, 1, 1, 1 },
 	  .clip = { { 0, 0, 10880, 7580 }, { 0, 0, 15980, 10880 }, { 0, 0, 10180, 7820 }, { 0, 0, 16460, 10180 } },
 	  .paper = HPGL_PAPER_A3, .max_pairs = 64, .buffer = 4096, .npens = 8,
 	  .pens = "1=black;2=red;3=green;4=blue;5=magenta;6=cyan;7=yellow;8=brown",
-	  .v_down = 60, .v_up = 60, .accel = 20, .t_lift = 0.04, .t_change = 3 },
+	  .v_down = 60, .v_up = 60, .accel = 20, .t_lift = 0.04, .t_change = 3, .has_fs = 1 },
 	{ .name = "hpgl2", .description = "generic HP-GL/2 device: PE polylines, FP/PM fills, PW widths",
 	  .dialect = HPGL_DIALECT_2, .has_paper = { 1, 1, 1, 1 },
 	  .clip = { { 0, 0, 11480, 8000 }, { 0, 0, 16400, 11480 }, { 0, 0, 10776, 8236 }, { 0, 0, 16872, 10776 } },
 	  .paper = HPGL_PAPER_A4, .max_pairs = 256, .buffer = 65536, .npens = 8,
 	  .pens = "1=black;2=red;3=green;4=blue;5=magenta;6=cyan;7=yellow;8=brown",
-	  .v_down = 50, .v_up = 80, .accel = 30, .t_lift = 0.02, .t_change = 1 },
+	  .v_down = 50, .v_up = 80, .accel = 30, .t_lift = 0.02, .t_change = 1, .has_fs = 1, .has_as = 1 },
 	{ .name = "cutter", .description = "generic vinyl cutter: HP-GL PU/PD, drag knife, newline after commands",
 	  .dialect = HPGL_DIALECT_1, .cutter = 1, .has_paper = { 1, 1, 1, 1 },
 	  .clip = { { 0, 0, 11880, 8400 }, { 0, 0, 16800, 11880 }, { 0, 0, 11176, 8636 }, { 0, 0, 17272, 11176 } },
 	  .paper = HPGL_PAPER_A4, .max_pairs = 16, .buffer = 4096, .npens = 1,
 	  .pens = "1=black:0.1mm",
 	  .v_down = 20, .v_up = 40, .accel = 10, .t_lift = 0.08, .t_change = 0,
-	  .knife_offset = 0.25, .overcut = 1.0, .newline = 1 },
+	  .knife_offset = 0.25, .overcut = 1.0, .newline = 1, .has_fs = 1 },
 };
 
 size_t hpgl_profile_count(void)
@@ -143,13 +143,25 @@ static int set_key(hpgl_profile_t *p, const char *k, const char *v, const where_
 			p->dialect = HPGL_DIALECT_2;
 		else
 			return perr(w, "dialect is hpgl or hpgl2, not '%s'", v);
-	} else if (!strcmp(k, "cutter") || !strcmp(k, "newline")) {
+	} else if (!strcmp(k, "cutter") || !strcmp(k, "newline") || !strcmp(k, "force-select") ||
+			!strcmp(k, "accel-select") || !strcmp(k, "hand-fed")) {
 		if (yesno(v, &b))
 			return perr(w, "expected yes or no, not '%s'", v);
-		if (k[0] == 'c')
-			p->cutter = b;
-		else
-			p->newline = b;
+		*(k[0] == 'c' ? &p->cutter : k[0] == 'n' ? &p->newline : k[0] == 'f' ? &p->has_fs
+			: k[0] == 'a' ? &p->has_as : &p->pause_all) = b;
+	} else if (!strcmp(k, "pause-pens")) {
+		char e2[200];
+		if (hpgl_pause_parse(v, p->penset, &p->pause_all, e2, sizeof e2))
+			return perr(w, "%s", e2);
+	} else if (!strncmp(k, "pen.", 4)) {
+		char *e;
+		errno = 0;
+		long slot = strtol(k + 4, &e, 10);
+		char e2[200];
+		if (e == k + 4 || *e || errno || slot < 1 || slot > HPGL_MAX_PENS)
+			return perr(w, "pen.N takes a pen number N from 1 to 256, not '%s'", k);
+		if (hpgl_penset_items(v, &p->penset[slot], e2, sizeof e2))
+			return perr(w, "%s", e2);
 	} else if (!strcmp(k, "paper")) {
 		int q = hpgl_paper_find(v);
 		if (q < 0)
@@ -225,7 +237,7 @@ static int set_key(hpgl_profile_t *p, const char *k, const char *v, const where_
 		}
 		return perr(w, "unknown key '%s' (base, name, description, dialect, cutter, newline, paper, "
 			"papers, clip.PAPER, pens, pen-count, max-pairs, buffer, speed-down, speed-up, accel, lift-time, "
-			"change-time, knife-offset, overcut)", k);
+			"change-time, knife-offset, overcut, force-select, accel-select, hand-fed, pause-pens, pen.N)", k);
 	}
 	return 0;
 }

@@ -107,10 +107,7 @@ static int rec_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *s
 	rec_t *r = d->user;
 	if (hpgl_pens_pick(&r->pens, st->colour) < 0)   /* paper: not drawn */
 		return 0;
-	double pat[2 * META_MAX_DASH];
-	for (size_t k = 0; k < st->ndash; k++)
-		pat[k] = (double)st->dash[k];
-	const scan_path_t *f = p->flat;
+	const scan_path_t *f = p->flat;   /* dashed by the framework, as for the HP-GL device */
 	for (size_t s = 0; s < f->nsubs; s++) {
 		const scan_subpath_t *sp = &f->subs[s];
 		if (sp->n < 2)
@@ -118,14 +115,14 @@ static int rec_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *s
 		hpgl_dpt_t *t = malloc(sp->n * sizeof *t);
 		for (size_t i = 0; i < sp->n; i++)
 			t[i] = (hpgl_dpt_t){ (double)f->pts[sp->start + i].x, (double)f->pts[sp->start + i].y };
-		hpgl_dash_poly(t, sp->n, sp->closed, pat, st->ndash, rec_model, r);
+		rec_model(r, t, sp->n, sp->closed);
 		free(t);
 	}
 	return 0;
 }
 
 static const dev_ops_t rec_ops = {
-	.name = "rec", .caps = DEV_CAP_VECTOR | DEV_CAP_DASH | DEV_CAP_WIDTH | DEV_CAP_FILL,
+	.name = "rec", .caps = DEV_CAP_VECTOR | DEV_CAP_WIDTH | DEV_CAP_FILL | DEV_CAP_ONLY,
 	.begin_page = rec_begin, .stroke_path = rec_stroke,
 };
 

@@ -155,11 +155,7 @@ static void geometry_profiles(void)
 	CHECK(got[0].x == 0 && got[0].y == 0 && fabs(got[1].x - 30) < 1e-9 && fabs(got[1].y) < 1e-9 && got[2].x > 20,
 		"knife: starts at the path, swings corners, ends overcut + offset past the start (%.1f,%.1f; %g points)",
 		got[1].x, got[1].y, got[2].x);
-	/* dashes by spec 5.3: 10 on 10 off over 45 units: pieces 0-10, 20-30, 40-45 */
-	hpgl_dpt_t ln[] = { { 0, 0 }, { 45, 0 } };
-	double pat[] = { 10, 10 };
-	hpgl_dash_poly(ln, 2, 0, pat, 2, grab, got);
-	CHECK(got[0].x == 40 && got[1].x == 45, "dash: the last piece is 40..45");
+	/* (dashes are the framework's, geom/dash.c: tests/unit/test_dash*, t_dash.sh) */
 
 	char err[256];
 	hpgl_pens_t pens;
