@@ -1,5 +1,5 @@
-/* device.c: device instances, the meta replay loop dev_play(), and defaults for vector devices. */
-#include <stdarg.h>
+/* device.c: the meta replay loop dev_play() and defaults for vector devices (the instances and their
+ * errors are in instance.c, below this file and every other file of device/). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,47 +9,9 @@
 #include "device/vecsupply.h"
 #include "render/render.h"
 
-#define DEFAULT_BUDGET ((size_t)64 << 20)
 /* Memory guard: a path's points after flattening (16 bytes each): the spec's limit (§6), which
  * the reader already checks; kept here for paths built by the framework itself. */
 #define DEV_MAX_FLAT_POINTS META_MAX_FLAT_POINTS
-
-dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out)
-{
-	dev_device_t *d = calloc(1, sizeof *d);
-	if (!d)
-		return NULL;
-	d->ops = ops;
-	d->out = out;
-	d->mem_budget = DEFAULT_BUDGET;
-	if (ops->priv_size && !(d->priv = calloc(1, ops->priv_size))) {
-		free(d);
-		return NULL;
-	}
-	return d;
-}
-
-void dev_free(dev_device_t *d)
-{
-	if (!d)
-		return;
-	free(d->priv);
-	free(d);
-}
-
-int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(d->err, sizeof d->err, fmt, ap);
-	va_end(ap);
-	return code;
-}
-
-const char *dev_error(const dev_device_t *d)
-{
-	return d->err;
-}
 
 /* Everything one replay needs. */
 typedef struct {
