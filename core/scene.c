@@ -230,8 +230,9 @@ int scene_read(const char *path, char **text, char *err, size_t errlen)
 	const char *name = strcmp(path, "-") ? path : "<stdin>";
 	*text = NULL;
 	if (!f) {
-		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-		return -2;
+		int e = errno;
+		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(e));
+		return e == ENOMEM ? SCENE_ENOMEM : -2;
 	}
 	size_t cap = 1 << 16, n = 0;
 	char *buf = malloc(cap);

@@ -12,7 +12,6 @@
 command -v python3 >/dev/null 2>&1 || { ok "layer rule # SKIP python3 not found"; done_tests; }
 cat > "$T/allow" <<'LIST'
 # FILE -> HEADER it includes against the rule      # why it is still there, and what removes it
-drivers/ps/psdev.c -> cli/run.h   # dev_err_is_oom (out of memory told from message text) is in cli/run.c, the job runner issue 20 is changing; phase 2 makes errors travel as codes and drops it
 # circle: the files whose objects need each other  # why, and what breaks it
 circle: drivers/hpgl/dev_hpgl.c drivers/hpgl/hpgl_page.c   # hpgl_page.c calls hpgl_dev_grow and hpgl_dev_nomem, in dev_hpgl.c (issue 20's); phase 2 moves them to hpgl/hpgl_dev.c
 circle: drivers/printer/lp_drivers.c drivers/printer/lp_job.c drivers/printer/lp_main.c drivers/printer/lp_raster.c   # the printer application (merged after the move): lp_main's lock and spool directory, lp_job's filters and the driver table call each other; next: the shared state to lp_state.c and the driver table apart from its PAPPL callbacks

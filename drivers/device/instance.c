@@ -1,6 +1,7 @@
 /* instance.c: device instances (dev_new, dev_free) and their error (dev_fail, dev_error): the bottom
  * of device/, which options.c, fit.c, vecsupply.c, textout.c and the replay loop in device.c call
  * and which calls none of them. */
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -43,4 +44,9 @@ int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
 const char *dev_error(const dev_device_t *d)
 {
 	return d->err;
+}
+
+int dev_code_of_errno(int e)
+{
+	return e == ENOMEM ? META_ENOMEM : META_EIO;
 }

@@ -420,7 +420,10 @@ static int settle(io_transport_t *t, int commit, const char *target, int rc, cha
 	}
 	if (rc && err)
 		snprintf(err, errlen, "%s", t->err);
+	int e = rc ? io_errno(t) : 0;
 	destroy(t);
+	if (rc)
+		errno = e ? e : EIO;   /* the failure's code outlives the transport */
 	return rc;
 }
 
