@@ -2,7 +2,7 @@
 #include "mesh.h"
 #include "scene.h"
 #include "scene_lex.h"
-#include "transport.h"
+#include "io/transport.h"
 #include "meta_frames.h"
 
 #include <ctype.h>

@@ -8,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 #include "locus_meta.h"
-#include "transport.h"
-#include "meta_import.h"
+#include "io/transport.h"
+#include "import/meta_import.h"
 #include "meta_frames.h"
 
 #define EX_USAGE 64
