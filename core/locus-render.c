@@ -2,8 +2,7 @@
 #include "mesh.h"
 #include "scene.h"
 #include "scene_lex.h"
-#include "transport.h"
-#include "run.h"
+#include "io/transport.h"
 #include "meta_frames.h"
 
 #include <ctype.h>
@@ -258,7 +257,7 @@ static int parse_status(int rc, const char *err)
 {
 	/* memory running out while parsing is 70, whatever the parser returned: core/expr.c
 	 * reports it as "expected memory for the expression" (code -1) */
-	if (rc == SCENE_ENOMEM || dev_err_is_oom(err) || strstr(err, ": expected memory for "))
+	if (rc == SCENE_ENOMEM || strstr(err, ": expected memory for "))
 		return EX_SOFTWARE;
 	return EX_DATAERR;
 }
@@ -291,7 +290,7 @@ static int render_frame(job_t *j, scene_t *sc, long fr, meta_writer_t *w, io_tra
 	int rc = scene_render(sc, w, &j->o, &one, err, sizeof err);
 	if (rc < 0) {
 		say(io_failed(f) ? io_error(f) : err);
-		return io_failed(f) ? (dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR)
+		return io_failed(f) ? (io_errno(f) == ENOMEM ? EX_SOFTWARE : EX_IOERR)
 			: rc == SCENE_ENOMEM ? EX_SOFTWARE : EX_DATAERR;
 	}
 	if (j->records && meta_frame_end(w, fr) < 0)
@@ -303,7 +302,7 @@ static int render_frame(job_t *j, scene_t *sc, long fr, meta_writer_t *w, io_tra
 	return 0;
 wfail:
 	fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : meta_writer_error(w));
-	return io_failed(f) && dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : io_failed(f) ? EX_IOERR : EX_SOFTWARE;
+	return io_failed(f) && io_errno(f) == ENOMEM ? EX_SOFTWARE : io_failed(f) ? EX_IOERR : EX_SOFTWARE;
 }
 
 /* Close w and f: commit when status is 0; the final status */
@@ -312,11 +311,11 @@ static int finish(meta_writer_t *w, io_transport_t *f, int status)
 	char err[1024];
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(f) ? io_error(f) : "locus-render: write error");
-		status = io_failed(f) && dev_err_is_oom(io_error(f)) ? EX_SOFTWARE : EX_IOERR;
+		status = io_failed(f) && io_errno(f) == ENOMEM ? EX_SOFTWARE : EX_IOERR;
 	}
 	if (io_close_err(f, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && !status) {
+		status = errno == ENOMEM ? EX_SOFTWARE : EX_IOERR;   /* the close's cause (transport.h) */
 		say(err);
-		status = dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 	}
 	return status;
 }
@@ -340,9 +339,10 @@ static int run_one_file(job_t *j, const long *frames, size_t nframes)
 	 * written in place, never replaced (drivers/transport.h) */
 	io_transport_t *f = io_open_write(j->out, err, sizeof err);
 	if (!f) {
+		int st = errno == ENOMEM ? EX_SOFTWARE : EX_IOERR;   /* io_open_write's cause */
 		say(err);
 		scene_free(sc);
-		return dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
+		return st;
 	}
 	meta_writer_t *w = meta_writer_new(write_cb, f, j->binary ? META_ENC_BINARY : META_ENC_TEXT);
 	if (!w) {
@@ -409,8 +409,8 @@ static int run_per_frame(job_t *j, const long *frames, size_t nframes)
 		} else if (!status) {
 			io_transport_t *f = io_open_write(path, err, sizeof err);
 			if (!f) {
+				status = errno == ENOMEM ? EX_SOFTWARE : EX_IOERR;   /* before say() */
 				say(err);
-				status = dev_err_is_oom(err) ? EX_SOFTWARE : EX_IOERR;
 			} else {
 				meta_writer_t *w = meta_writer_new(write_cb, f, j->binary ? META_ENC_BINARY : META_ENC_TEXT);
 				if (!w) {
@@ -615,7 +615,7 @@ int main(int argc, char **argv)
 	if (rc < 0) {
 		say(err);
 		free(frames);
-		return rc == SCENE_ENOMEM || dev_err_is_oom(err) ? EX_SOFTWARE : rc == -2 ? EX_NOINPUT : EX_DATAERR;
+		return rc == SCENE_ENOMEM ? EX_SOFTWARE : rc == -2 ? EX_NOINPUT : EX_DATAERR;
 	}
 	j.o.threads = (unsigned)threads;
 	if (!j.quiet && isatty(2))

@@ -153,6 +153,24 @@ double model_elem_distance(const model_elem_t *e, const double q[3])
 	return model_elem_nearest(e, q, near);
 }
 
+static double mandel(const model_param_t *c, const double *q)
+{
+	return c->c0 + c->amp * model_count(c, q, c->smooth) / c->maxit;
+}
+
+/* The defining parameter; another shape's value recurses into model_eval. */
+double model_param(const model_shape_t *s, const double p[3], const double q[3])
+{
+	const model_param_t *c = &s->c;
+	switch (c->kind) {
+	case MODEL_C_CONST: return c->c0;
+	case MODEL_C_EXPR: return expr_eval(c->expr, q[0], q[1], q[2]);
+	case MODEL_C_NOISE: return c->c0 + c->amp * model_noise(c->seed, c->freq * q[0], c->freq * q[1], c->freq * q[2]);
+	case MODEL_C_MANDEL: return mandel(c, q);
+	default: return c->c0 + c->amp * model_eval(c->shape, p);
+	}
+}
+
 double model_eval(const model_shape_t *s, const double p[3])
 {
 	double q[3], near[3], sum = 0;

@@ -1,18 +1,9 @@
-/* model_param.c: the defining parameters: constant, expression, noise, Mandelbrot count, another shape. */
+/* model_param.c: the pieces of the defining parameters below model_eval.c: seeded value noise and the
+ * level of a smooth Mandelbrot process (model_param itself, which may evaluate another shape, is in
+ * model_eval.c). */
 #include "model.h"
 
 #include <math.h>
-#include "expr.h"
-
-static double mandel_count(const model_param_t *c, const double *q, int smooth)
-{
-	return model_count(c, q, smooth);
-}
-
-static double mandel(const model_param_t *c, const double *q)
-{
-	return c->c0 + c->amp * mandel_count(c, q, c->smooth) / c->maxit;
-}
 
 int model_de_level(const model_param_t *c, double *m0)
 {
@@ -46,16 +37,4 @@ double model_noise(unsigned seed, double x, double y, double z)
 	double x01 = v[4] + sx * (v[5] - v[4]), x11 = v[6] + sx * (v[7] - v[6]);
 	double y0 = x00 + sy * (x10 - x00), y1 = x01 + sy * (x11 - x01);
 	return y0 + sz * (y1 - y0);
-}
-
-double model_param(const model_shape_t *s, const double p[3], const double q[3])
-{
-	const model_param_t *c = &s->c;
-	switch (c->kind) {
-	case MODEL_C_CONST: return c->c0;
-	case MODEL_C_EXPR: return expr_eval(c->expr, q[0], q[1], q[2]);
-	case MODEL_C_NOISE: return c->c0 + c->amp * model_noise(c->seed, c->freq * q[0], c->freq * q[1], c->freq * q[2]);
-	case MODEL_C_MANDEL: return mandel(c, q);
-	default: return c->c0 + c->amp * model_eval(c->shape, p);
-	}
 }

@@ -10,26 +10,6 @@
 
 typedef scene_tok_t tok_t;
 
-int scene_parse_colour(scene_lex_t *lx, double *c)
-{
-	if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
-		return -1;
-	for (int i = 0; i < 3; i++)
-		if (c[i] < 0 || c[i] > 1)
-			return scene_lex_error(lx, lx->line, 1, "expected colour components between 0 and 1");
-	return 0;
-}
-
-void scene_warn(scene_t *sc, unsigned line, unsigned col, const char *msg)
-{
-	if (sc->nwarnings >= SCENE_MAX_WARNINGS)
-		return;
-	char *b = sc->warnbuf[sc->nwarnings], tmp[sizeof sc->warnbuf[0]];
-	snprintf(tmp, sizeof tmp, "%.180s:%u:%u: warning: %.300s", sc->name, line, col, msg);
-	memcpy(b, tmp, sizeof tmp);
-	sc->warnings[sc->nwarnings++] = b;
-}
-
 static int parse_view(scene_lex_t *lx, scene_t *sc)
 {
 	tok_t t;
@@ -250,8 +230,9 @@ int scene_read(const char *path, char **text, char *err, size_t errlen)
 	const char *name = strcmp(path, "-") ? path : "<stdin>";
 	*text = NULL;
 	if (!f) {
-		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-		return -2;
+		int e = errno;
+		snprintf(err, errlen, "%s: cannot open: %s", path, strerror(e));
+		return e == ENOMEM ? SCENE_ENOMEM : -2;
 	}
 	size_t cap = 1 << 16, n = 0;
 	char *buf = malloc(cap);

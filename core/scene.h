@@ -105,7 +105,8 @@ int scene_parse(const char *text, const char *name, scene_t **out, char *err, si
 int scene_parse_frame(const char *text, const char *name, double t, scene_t **out, char *err, size_t errlen);
 
 /* Read a scene file ("-" = stdin) into *text (NUL-terminated, malloc'd; free it). Returns 0,
- * -1 (not text: a NUL byte), -2 (cannot be read) or SCENE_ENOMEM, with a message. */
+ * -1 (not text: a NUL byte), -2 (cannot be read) or SCENE_ENOMEM (memory ran out, the open's
+ * included), with a message. */
 int scene_read(const char *path, char **text, char *err, size_t errlen);
 
 /* Read and parse a file ("-" = stdin). Returns 0, -1 (syntax: err holds the

@@ -1,4 +1,4 @@
-/* scene_int.h: internals shared by scene.c, scene_shape.c, scene_render.c and scene_2d.c (not part of the public API). */
+/* scene_int.h: internals shared by scene.c, scene_shape.c, scene_render.c, scene_2d.c and scene_warn.c (not part of the public API). */
 #ifndef LOCUS_SCENE_INT_H
 #define LOCUS_SCENE_INT_H
 
@@ -14,8 +14,6 @@
 /* Parse a `shape NAME` or `object NAME` block (kw its keyword; drawn for an object) into a new
  * sc->objs entry, up to its `end`. */
 int scene_parse_shape(scene_lex_t *lx, scene_t *sc, int drawn, const scene_tok_t *kw);
-/* Read three colour components 0..1 into c. */
-int scene_parse_colour(scene_lex_t *lx, double *c);
 /* Add "NAME:LINE:COL: warning: MSG" to the scene's warnings (dropped beyond SCENE_MAX_WARNINGS). */
 void scene_warn(scene_t *sc, unsigned line, unsigned col, const char *msg);
 

@@ -295,3 +295,13 @@ int scene_lex_eol(scene_lex_t *lx)
 		return scene_lex_expected(lx, &t, "the end of the line");
 	return 0;
 }
+
+int scene_parse_colour(scene_lex_t *lx, double *c)
+{
+	if (scene_lex_numbers(lx, c, 3, "a colour component 0..1") < 0)
+		return -1;
+	for (int i = 0; i < 3; i++)
+		if (c[i] < 0 || c[i] > 1)
+			return scene_lex_error(lx, lx->line, 1, "expected colour components between 0 and 1");
+	return 0;
+}

@@ -59,5 +59,7 @@ int scene_lex_points(scene_lex_t *lx, int dims, const char *const *stop, size_t 
                      double **pts, size_t *nnum);
 /* Require the end of the line. */
 int scene_lex_eol(scene_lex_t *lx);
+/* Read three colour components 0..1 into c. */
+int scene_parse_colour(scene_lex_t *lx, double *c);
 
 #endif

@@ -334,17 +334,6 @@ int scene_parse_render(scene_lex_t *lx, scene_t *sc, const tok_t *kw)
 
 /* ---- rendering ---- */
 
-void scene_add_warning(scene_t *s, const char *msg)
-{
-	if (s->nwarnings >= SCENE_MAX_WARNINGS)
-		return;
-	char tmp[sizeof s->warnbuf[0]];
-	snprintf(tmp, sizeof tmp, "%.200s: warning: %.250s", s->name, msg);
-	memcpy(s->warnbuf[s->nwarnings], tmp, sizeof tmp);
-	s->warnings[s->nwarnings] = s->warnbuf[s->nwarnings];
-	s->nwarnings++;
-}
-
 static int drawn_objects(const scene_t *s, rt_object_t *out)
 {
 	int n = 0;

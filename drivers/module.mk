@@ -8,9 +8,6 @@ PROGRAMS += $(DRV_MAINS:drivers/cli/main-%.c=$(BINDIR)/locus-%)
 $(BINDIR)/locus-%: $(B)/drivers/cli/main-%.o $(B)/libdrivers.a $(B)/libmeta.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_LDFLAGS) -o $@ $^ $(LDLIBS_ALL)
-# The two programs of core/ and meta/ that write through the drivers still name the headers
-# unqualified ("transport.h", "run.h", "meta_import.h"); until their next edit they find them here.
-$(B)/core/locus-render.o $(B)/meta/locus-meta.o: CFLAGS += -Idrivers/io -Idrivers/cli -Idrivers/import
 # A driver that needs another library adds "PKGS += NAME" (a pkg-config name) below.
 PKGS += libusb-1.0
 PKGS += hidapi-libusb

@@ -8,9 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 #include "locus_meta.h"
-#include "transport.h"
-#include "meta_import.h"
-#include "run.h"
+#include "io/transport.h"
+#include "import/meta_import.h"
 #include "meta_frames.h"
 
 #define EX_USAGE 64
@@ -56,10 +55,11 @@ static int stdout_status(void)
 	return EX_IOERR;
 }
 
-/* The status of an output failure whose message is msg: 70 when memory ran out, else 74. */
-static int io_status(const char *msg)
+/* The status of an output failure whose cause is the errno e (transport.h: io_errno, or errno
+ * after a failed open or close): 70 when memory ran out, else 74. */
+static int io_status(int e)
 {
-	return dev_err_is_oom(msg) ? EX_SOFTWARE : EX_IOERR;
+	return e == ENOMEM ? EX_SOFTWARE : EX_IOERR;
 }
 
 /* Map a reader/writer error code to an exit status. */
@@ -92,8 +92,8 @@ static io_transport_t *out_open(const char *path, int *status)
 	char err[600];
 	io_transport_t *o = io_open_write(path ? path : "-", err, sizeof err);
 	if (!o) {
+		*status = io_status(errno);
 		fprintf(stderr, "%s\n", err);
-		*status = io_status(err);
 	}
 	return o;
 }
@@ -103,8 +103,8 @@ static int out_close(io_transport_t *o, int status)
 {
 	char err[600];
 	if (io_close_err(o, status ? IO_ABORT : IO_COMMIT, err, sizeof err) < 0 && status == 0) {
+		status = io_status(errno);
 		fprintf(stderr, "%s\n", err);
-		status = io_status(err);
 	}
 	return status;
 }
@@ -157,7 +157,7 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 				fprintf(stderr, "%s\n", io_error(o));
 			else
 				fprintf(stderr, "%s: %s\n", io_is_std(o) ? "<stdout>" : io_name(o), meta_writer_error(w));
-			status = io_failed(o) ? io_status(io_error(o)) : status_of(rc);
+			status = io_failed(o) ? io_status(io_errno(o)) : status_of(rc);
 			break;
 		}
 	}
@@ -167,7 +167,7 @@ static int cmd_copy(const char *in, const char *outpath, int enc)
 	}
 	if (w && (rc = meta_writer_close(w)) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : "locus-meta: write error");
-		status = io_failed(o) ? io_status(io_error(o)) : EX_IOERR;
+		status = io_failed(o) ? io_status(io_errno(o)) : EX_IOERR;
 	}
 	meta_reader_free(r);
 	return out_close(o, status);
@@ -311,7 +311,7 @@ static int cmd_info(const char *path)
 	}
 	(void)imgrow;
 	if (rc < 0) {
-		status = io_flush(o) < 0 ? io_status(io_error(o)) : status_of(rc);   /* what was read so far, first */
+		status = io_flush(o) < 0 ? io_status(io_errno(o)) : status_of(rc);   /* what was read so far, first */
 		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : meta_reader_error(r));
 		meta_reader_free(r);
 		return out_close(o, status);
@@ -515,7 +515,7 @@ static int cmd_cat(char *const *files, size_t nfiles, const char *spec, const ch
 					fprintf(stderr, "%s\n", io_error(o));
 				else
 					fprintf(stderr, "%s: %s\n", io_is_std(o) ? "<stdout>" : io_name(o), meta_writer_error(w));
-				status = io_failed(o) ? io_status(io_error(o)) : status_of(rc);
+				status = io_failed(o) ? io_status(io_errno(o)) : status_of(rc);
 				break;
 			}
 		}
@@ -531,7 +531,7 @@ static int cmd_cat(char *const *files, size_t nfiles, const char *spec, const ch
 	}
 	if (w && meta_writer_close(w) < 0 && !status) {
 		fprintf(stderr, "%s\n", io_failed(o) ? io_error(o) : "locus-meta: write error");
-		status = io_failed(o) ? io_status(io_error(o)) : EX_IOERR;
+		status = io_failed(o) ? io_status(io_errno(o)) : EX_IOERR;
 	}
 	if (o)
 		status = out_close(o, status);

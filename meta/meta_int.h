@@ -58,7 +58,7 @@ void meta_fmt(char *buf, size_t n, const char *fmt, ...)
 #endif
 	;
 
-/* ---- Reader internals (reader.c, read_text.c, read_binary.c) ---------- */
+/* ---- Reader internals (reader.c, read_buf.c, read_text.c, read_binary.c) */
 
 #define META_READ_CHUNK (256 * 1024)
 

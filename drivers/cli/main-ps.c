@@ -1,5 +1,4 @@
 /* main-ps.c: locus-ps, replay a meta file as EPS, printable PostScript or PDF. */
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -90,66 +89,6 @@ static const char *suffix_form(const char *out)
 	return NULL;
 }
 
-static int status_of(int rc)
-{
-	switch (rc) {
-	case META_ESYNTAX: case META_ELIMIT: case META_EVERSION: case META_ESTATE: return 65;
-	case META_ENOMEM: return 70;
-	case DEV_EUSAGE: return 64;
-	default: return 74;
-	}
-}
-
-/* The status of a failed output, by its errno as dev_run decides it: 70 out of memory, 75 a device
- * link's failure that may pass (resumable), else 74. */
-static int tr_status(const io_transport_t *t)
-{
-	return io_errno(t) == ENOMEM ? 70 : io_temporary(t) ? 75 : 74;
-}
-
-/* PS and PDF: every page into one output (dev_run gives each page a file of its own). */
-static int run_document(const dev_job_t *job, char *err, size_t errlen)
-{
-	meta_reader_t *r = meta_reader_open(job->in, err, errlen);
-	if (!r)
-		return errno == ENOMEM ? 70 : 66;
-	io_transport_t *t = io_open_write(job->out, err, errlen);
-	if (!t) {
-		meta_reader_free(r);
-		return dev_err_is_oom(err) ? 70 : 74;
-	}
-	dev_device_t *d = dev_new(job->ops, t);
-	if (!d) {
-		io_close(t, IO_ABORT);
-		meta_reader_free(r);
-		snprintf(err, errlen, "out of memory");
-		return 70;
-	}
-	d->options = job->options;
-	int status = 0, rc = dev_play(r, d);
-	if (rc) {
-		status = status_of(rc);
-		if (status == 74 && io_failed(t)) {
-			snprintf(err, errlen, "%s", io_error(t));   /* names the output and the cause */
-			status = tr_status(t);
-		} else if (d->reader_error || status != 65)
-			snprintf(err, errlen, "%s", dev_error(d));
-		else
-			snprintf(err, errlen, "%s: %s", strcmp(job->in, "-") ? job->in : "<stdin>", dev_error(d));
-	}
-	/* as dev_run does: the last bytes go out and a device link confirms them before the close, so
-	 * that a printer that went away at the end is still a temporary failure (75, resumable) */
-	if (status == 0 && io_drain(t)) {
-		snprintf(err, errlen, "%s", io_error(t));
-		status = tr_status(t);
-	}
-	if (io_close_err(t, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen) && status == 0)
-		status = dev_err_is_oom(err) ? 70 : 74;   /* err names the output and the cause */
-	dev_free(d);
-	meta_reader_free(r);
-	return status;
-}
-
 int main(int argc, char **argv)
 {
 	prog_t pr = { NULL };
@@ -169,9 +108,10 @@ int main(int argc, char **argv)
 	if (!form)
 		form = "ps";
 	const dev_ops_t *ops = !strcmp(form, "eps") ? &dev_eps_ops : !strcmp(form, "pdf") ? &dev_pdf_ops : &dev_ps_ops;
+	/* PS and PDF hold every page in one output; EPS has a file per page */
 	dev_job_t job = { c.in[0], out, ops, 0, 0, c.options[0] ? c.options : NULL };
 	char err[600];
-	st = ops == &dev_eps_ops ? dev_run(&job, err, sizeof err) : run_document(&job, err, sizeof err);
+	st = ops == &dev_eps_ops ? dev_run(&job, err, sizeof err) : dev_run_document(&job, err, sizeof err);
 	if (st == 65)
 		fprintf(stderr, "%s\n", err);   /* already "FILE:LINE:COL: ..." or "FILE: line N: ..." */
 	else if (st)

@@ -26,20 +26,11 @@ char *dev_page_name(const char *out, unsigned page)
 	return s;
 }
 
-int dev_err_is_oom(const char *msg)
+/* The status of a failure whose cause is the errno e (a rename's, a close's: transport.h leaves
+ * it in errno): 70 when memory ran out, else 74. */
+static int errno_status(int e)
 {
-	static const char tail[] = "out of memory";
-	size_t n = msg ? strlen(msg) : 0;
-	if (n >= sizeof tail - 1 && strcmp(msg + n - (sizeof tail - 1), tail) == 0)
-		return 1;
-	return n && strstr(msg, strerror(ENOMEM)) != NULL;
-}
-
-/* The status of a failure whose message is err: 70 when it says memory ran out, else io (for
- * the messages of renames and page names, which no transport object carries). */
-static int io_status(const char *err, int io)
-{
-	return dev_err_is_oom(err) ? 70 : io;
+	return e == ENOMEM ? 70 : 74;
 }
 
 /* The status of a failed transport, by its errno: 70 out of memory, 75 a failure that may pass
@@ -59,7 +50,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 		io_transport_t *t = d->out;
 		d->out = NULL;
 		if (io_close(t, IO_KEEP)) {
-			int rc = dev_fail(d, io_errno(t) == ENOMEM ? META_ENOMEM : META_EIO, "%s", io_error(t));
+			int rc = dev_fail(d, dev_code_of_errno(io_errno(t)), "%s", io_error(t));
 			io_finish(t, 0, NULL, NULL, 0);
 			return rc;
 		}
@@ -77,7 +68,7 @@ static int on_page(dev_device_t *d, const dev_page_t *pg, int end)
 	char err[512];
 	d->out = io_open_write(js->job->out, err, sizeof err);
 	if (!d->out)
-		return dev_fail(d, errno == ENOMEM ? META_ENOMEM : META_EIO, "%s", err);
+		return dev_fail(d, dev_code_of_errno(errno), "%s", err);
 	if (io_in_place(d->out))
 		js->shared = d->out;   /* no file per page to rename: pages follow one another */
 	return 0;
@@ -93,7 +84,8 @@ static int status_of(int rc)
 	}
 }
 
-int dev_run(const dev_job_t *job, char *err, size_t errlen)
+/* The job runner of dev_run (one_output 0) and dev_run_document (1). */
+static int run_job(const dev_job_t *job, int one_output, char *err, size_t errlen)
 {
 	job_state_t js;
 	memset(&js, 0, sizeof js);
@@ -114,8 +106,8 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	if (job->budget)
 		d->mem_budget = job->budget;
 	d->options = job->options;
-	if (job->out && strcmp(job->out, "-") == 0) {
-		js.shared = io_open_write("-", err, errlen);
+	if (job->out && (one_output || strcmp(job->out, "-") == 0)) {
+		js.shared = io_open_write(job->out, err, errlen);
 		if (!js.shared)
 			status = errno == ENOMEM ? 70 : 74;
 		d->out = js.shared;
@@ -135,8 +127,6 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 			}
 		}
 	}
-	if (status == 74 && dev_err_is_oom(err))
-		status = 70;   /* a device's write path that ran out of memory (a PNG writer, say) */
 	if (d->out && d->out != js.shared)
 		io_close(d->out, IO_ABORT);   /* a page that failed half-way */
 	/* the last bytes of an in-place output (a device link) go out, and the device confirms them,
@@ -148,7 +138,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	}
 	if (js.shared && io_close_err(js.shared, status ? IO_ABORT : IO_COMMIT, status ? NULL : err, errlen)
 		&& status == 0)
-		status = io_status(err, 74);
+		status = errno_status(errno);
 	/* every page replayed: name them all first (a name that cannot be made renames nothing),
 	 * then rename them all, or remove them all */
 	char **names = NULL;
@@ -170,7 +160,7 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	for (size_t k = 0; k < js.npages; k++) {
 		int commit = status == 0;
 		if (io_finish(js.pages[k], commit, names ? names[k] : NULL, err, errlen) && commit)
-			status = io_status(err, 74);
+			status = errno_status(errno);
 		else if (commit)
 			done++;
 	}
@@ -185,4 +175,14 @@ int dev_run(const dev_job_t *job, char *err, size_t errlen)
 	dev_free(d);
 	meta_reader_free(r);
 	return status;
+}
+
+int dev_run(const dev_job_t *job, char *err, size_t errlen)
+{
+	return run_job(job, 0, err, errlen);
+}
+
+int dev_run_document(const dev_job_t *job, char *err, size_t errlen)
+{
+	return run_job(job, 1, err, errlen);
 }

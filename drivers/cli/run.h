@@ -24,10 +24,9 @@ typedef struct {
  * 74 I/O: the message then names the output and the cause; 75 a device link's failure that may
  * pass, io_temporary(): resumable) with a one-line message in err. */
 int dev_run(const dev_job_t *job, char *err, size_t errlen);
-/* 1 if a one-line message (a reader's, a rename's) says memory ran out: it ends in
- * "out of memory" or carries strerror(ENOMEM), so that a program maps it to exit 70 rather than
- * 74 (or 66 for an input). A transport's failure is decided by value instead: io_errno(). */
-int dev_err_is_oom(const char *msg);
+/* dev_run for a document format that holds every page in one output (PostScript, PDF): out,
+ * a file too, is opened once and takes the pages one after another; the same statuses. */
+int dev_run_document(const dev_job_t *job, char *err, size_t errlen);
 /* "pic.png", 3 -> "pic-003.png" (malloc'd). */
 char *dev_page_name(const char *out, unsigned page);
 

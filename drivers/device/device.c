@@ -1,5 +1,5 @@
-/* device.c: device instances, the meta replay loop dev_play(), and defaults for vector devices. */
-#include <stdarg.h>
+/* device.c: the meta replay loop dev_play() and defaults for vector devices (the instances and their
+ * errors are in instance.c, below this file and every other file of device/). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,52 +9,9 @@
 #include "device/vecsupply.h"
 #include "render/render.h"
 
-#define DEFAULT_BUDGET ((size_t)64 << 20)
 /* Memory guard: a path's points after flattening (16 bytes each): the spec's limit (§6), which
  * the reader already checks; kept here for paths built by the framework itself. */
 #define DEV_MAX_FLAT_POINTS META_MAX_FLAT_POINTS
-
-dev_device_t *dev_new(const dev_ops_t *ops, io_transport_t *out)
-{
-	dev_device_t *d = calloc(1, sizeof *d);
-	if (!d)
-		return NULL;
-	d->ops = ops;
-	d->out = out;
-	d->mem_budget = DEFAULT_BUDGET;
-	if (ops->priv_size && !(d->priv = calloc(1, ops->priv_size))) {
-		free(d);
-		return NULL;
-	}
-	return d;
-}
-
-void dev_free(dev_device_t *d)
-{
-	if (!d)
-		return;
-	free(d->priv);
-	free(d);
-}
-
-int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	vsnprintf(d->err, sizeof d->err, fmt, ap);
-	va_end(ap);
-	return code;
-}
-
-const char *dev_error(const dev_device_t *d)
-{
-	return d->err;
-}
-
-unsigned dev_caps(const dev_device_t *d)
-{
-	return d->caps ? d->caps : d->ops->caps;
-}
 
 /* Everything one replay needs. */
 typedef struct {
@@ -70,9 +27,9 @@ typedef struct {
 	unsigned img_x, img_y, img_h, img_row;   /* current image */
 	dev_map_t map;                   /* raster devices: the page on the device's raster */
 	int mapped;                      /* 1: a raster of its own, not the identity */
-	devres_img_t *img;               /* mapped: the image being resampled */
+	dev_fit_img_t *img;               /* mapped: the image being resampled */
 	scan_path_t pieces;              /* raster, mapped: dash pieces */
-	devvec_t vec;                    /* vector devices: scratch for what the framework supplies */
+	dev_vec_t vec;                    /* vector devices: scratch for what the framework supplies */
 	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
 	scan_ctx_t *sctx;                /* mapped, non-square pixels: stroke pieces */
 	scan_path_t iso, outline;        /* and their scratch paths */
@@ -93,7 +50,7 @@ static void default_state(dev_state_t *s)
 static void style_of(const play_t *p, scan_style_t *st, int text)
 {
 	const dev_state_t *s = &p->st;
-	st->width = p->mapped ? devres_width(&p->map, s->width) : s->width;
+	st->width = p->mapped ? dev_fit_width(&p->map, s->width) : s->width;
 	st->cap = text ? META_CAP_ROUND : s->cap;
 	st->join = text ? META_JOIN_ROUND : s->join;
 	st->miter_limit = s->miter_limit;
@@ -147,7 +104,7 @@ static int rect_path(play_t *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 	dev_state_t s = p->st;
 	s.colour = rgb;
 	s.rule = META_RULE_NON_ZERO;
-	rc = devvec_fill(p->d, &p->vec, &r, NULL, 0, &s);
+	rc = dev_vec_fill(p->d, &p->vec, &r, NULL, 0, &s);
 	scan_path_free(&r);
 	return rc;
 }
@@ -155,7 +112,7 @@ static int rect_path(play_t *p, int64_t x0, int64_t y0, int64_t x1, int64_t y1, 
 static int do_span(play_t *p, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	if (p->mapped)
-		return devres_span(&p->map, p->rr, x, y, n, rgb);
+		return dev_fit_span(&p->map, p->rr, x, y, n, rgb);
 	if (is_raster(p->d))
 		return dev_render_span(p->rr, x, y, n, rgb);
 	if (x >= p->page.width || y >= p->page.height)
@@ -171,11 +128,11 @@ static int do_row(play_t *p, const meta_cmd_t *c)
 {
 	int64_t y = (int64_t)p->img_y + p->img_h - 1 - p->img_row++;
 	if (p->mapped)
-		return p->img ? devres_image_row(p->img, p->rr, y, c->runs, c->nruns) : 0;
+		return p->img ? dev_fit_image_row(p->img, p->rr, y, c->runs, c->nruns) : 0;
 	if (is_raster(p->d))
 		return dev_render_row(p->rr, p->img_x, y, c->runs, c->nruns);
 	if (p->d->ops->put_image_row)
-		return devvec_row(p->d, &p->vec, p->img_x, y, c->runs, c->nruns);
+		return dev_vec_row(p->d, &p->vec, p->img_x, y, c->runs, c->nruns);
 	int64_t x = p->img_x;
 	for (size_t k = 0; k < c->nruns; k++) {
 		int rc = do_span(p, x, y, c->runs[k].count, c->runs[k].rgb);
@@ -209,11 +166,11 @@ static int path_elem(play_t *p, const meta_cmd_t *c)
 		break;
 	case META_ARC:
 		rc = scan_path_arc_res(&p->path, c->f[0], c->f[1], c->f[2], c->f[3], c->f[4],
-			p->mapped ? devres_chord_radius(&p->map, c->f[2]) : c->f[2]);
+			p->mapped ? dev_fit_chord_radius(&p->map, c->f[2]) : c->f[2]);
 		break;
 	case META_CIRCLE:
 		rc = scan_path_circle_res(&p->path, c->f[0], c->f[1], c->f[2],
-			p->mapped ? devres_chord_radius(&p->map, c->f[2]) : c->f[2]);
+			p->mapped ? dev_fit_chord_radius(&p->map, c->f[2]) : c->f[2]);
 		break;
 	case META_CLOSE: rc = scan_path_close(&p->path); break;
 	default: break;
@@ -251,11 +208,11 @@ static int paint_path(play_t *p, int kind, int text)
 				return nomem(p);
 			scan_style_t ms = st;
 			ms.width = p->st.width;   /* the model width: the pieces are scaled by sy */
-			rc = devres_stroke_aniso(&p->map, p->rr, p->sctx, path, &ms, p->st.colour, &p->iso, &p->outline);
+			rc = dev_fit_stroke_aniso(&p->map, p->rr, p->sctx, path, &ms, p->st.colour, &p->iso, &p->outline);
 			return rc ? render_fail(p, rc) : 0;
 		}
 		if (p->mapped)
-			devres_path(&p->map, path);
+			dev_fit_path(&p->map, path);
 		rc = kind == META_FILL ? dev_render_fill(p->rr, path, p->st.rule, p->st.colour)
 			: dev_render_stroke(p->rr, path, &st, p->st.colour);
 		return rc ? render_fail(p, rc) : 0;
@@ -263,15 +220,15 @@ static int paint_path(play_t *p, int kind, int text)
 	/* text has no raw elements of its own: NULL makes them from its strokes */
 	const dev_elem_t *el = text ? NULL : p->elems;
 	if (kind == META_FILL)
-		return devvec_fill(d, &p->vec, &p->path, el, p->nelems, &p->st);
+		return dev_vec_fill(d, &p->vec, &p->path, el, p->nelems, &p->st);
 	if (text) {
 		dev_state_t s = p->st;
 		s.cap = META_CAP_ROUND;
 		s.join = META_JOIN_ROUND;
 		s.ndash = 0;
-		return devvec_stroke(d, &p->vec, &p->path, NULL, 0, &s);
+		return dev_vec_stroke(d, &p->vec, &p->path, NULL, 0, &s);
 	}
-	return devvec_stroke(d, &p->vec, &p->path, el, p->nelems, &p->st);
+	return dev_vec_stroke(d, &p->vec, &p->path, el, p->nelems, &p->st);
 }
 
 static int do_text(play_t *p, const meta_cmd_t *c)
@@ -347,9 +304,9 @@ static int end_page(play_t *p)
 {
 	dev_device_t *d = p->d;
 	int rc = device_page(p);
-	devres_image_free(p->img);
+	dev_fit_image_free(p->img);
 	p->img = NULL;
-	if (!rc && p->mapped && (rc = devres_bars(&p->map, p->rr, d->letterbox)) != 0)
+	if (!rc && p->mapped && (rc = dev_fit_bars(&p->map, p->rr, d->letterbox)) != 0)
 		render_fail(p, rc);
 	if (!rc && is_raster(d)) {
 		rc = dev_render_finish(p->rr, emit_band, p);
@@ -429,8 +386,8 @@ static int statement(play_t *p, const meta_cmd_t *c)
 		p->img_h = c->u[3];
 		p->img_row = 0;
 		if (p->mapped) {
-			devres_image_free(p->img);
-			if (!(p->img = devres_image_new(&p->map, c->u[0], c->u[1], c->u[2], c->u[3])))
+			dev_fit_image_free(p->img);
+			if (!(p->img = dev_fit_image_new(&p->map, c->u[0], c->u[1], c->u[2], c->u[3])))
 				return nomem(p);
 		}
 		return 0;
@@ -520,10 +477,10 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 			rc = c2;
 	}
 	dev_render_free(p.rr);
-	devres_image_free(p.img);
+	dev_fit_image_free(p.img);
 	scan_path_free(&p.path);
 	scan_path_free(&p.pieces);
-	devvec_free(&p.vec);
+	dev_vec_free(&p.vec);
 	devaa_free(p.aa);
 	scan_ctx_free(p.sctx);
 	scan_path_free(&p.iso);

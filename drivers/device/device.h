@@ -236,6 +236,9 @@ int dev_fail(dev_device_t *d, int code, const char *fmt, ...)
 const char *dev_error(const dev_device_t *d);
 /* The instance's capabilities: d->caps when its open() set them, else d->ops->caps. */
 unsigned dev_caps(const dev_device_t *d);
+/* The code for dev_fail of a failure whose cause is the errno e (a writer's, a transport's):
+ * META_ENOMEM for ENOMEM (a program's exit 70), else META_EIO (74). */
+int dev_code_of_errno(int e);
 
 /* Replay a whole meta stream onto the device: open, pages, close. Returns 0, or <0 with
  * dev_error() set: a reader error verbatim ("f.meta:3:1: ...", reader_error = 1), a failure of

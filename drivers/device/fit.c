@@ -87,7 +87,7 @@ int dev_fit_map(dev_map_t *m, unsigned model_w, unsigned model_h, unsigned dev_w
 	return 0;
 }
 
-void devres_path(const dev_map_t *m, scan_path_t *p)
+void dev_fit_path(const dev_map_t *m, scan_path_t *p)
 {
 	int64_t ox = m->ox * 1000, oy = m->oy * 1000;
 	for (size_t k = 0; k < p->npts; k++) {
@@ -96,12 +96,12 @@ void devres_path(const dev_map_t *m, scan_path_t *p)
 	}
 }
 
-int64_t devres_width(const dev_map_t *m, int64_t w)
+int64_t dev_fit_width(const dev_map_t *m, int64_t w)
 {
 	return scan_round((double)(w < 1000 ? 1000 : w) * m->wscale);
 }
 
-int64_t devres_chord_radius(const dev_map_t *m, int64_t r)
+int64_t dev_fit_chord_radius(const dev_map_t *m, int64_t r)
 {
 	double s = m->sx > m->sy ? m->sx : m->sy;
 	double v = (double)r * s;
@@ -148,7 +148,7 @@ static int rect(dev_render_t *rr, int64_t x0, int64_t y0, int64_t x1, int64_t y1
 	return rc;
 }
 
-int devres_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb)
+int dev_fit_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb)
 {
 	int64_t w = m->width, h = m->height;
 	int64_t x0 = m->ox < 0 ? 0 : m->ox, x1 = m->ox + m->pw > w ? w : m->ox + m->pw;
@@ -163,7 +163,7 @@ int devres_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb)
 	return rc;
 }
 
-int devres_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+int dev_fit_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	int64_t xe = x + n;
 	if (x < 0)
@@ -185,7 +185,7 @@ int devres_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int6
 	return 0;
 }
 
-int devres_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
+int dev_fit_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
 		const scan_style_t *st, meta_rgb_t rgb, scan_path_t *iso, scan_path_t *pieces)
 {
 	/* iso: device coordinates with x in units of a device pixel's height (x * sy / sx), where
@@ -221,7 +221,7 @@ int devres_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, c
 
 /* ---- images ---- */
 
-struct devres_img {
+struct dev_fit_img {
 	const dev_map_t *m;
 	int64_t x;                  /* the image's left model column */
 	int64_t cx0, cx1, cy0, cy1; /* the image clipped to the model page (pixels) */
@@ -242,7 +242,7 @@ static float srgb_to_linear(double c)
 }
 
 /* The byte whose linear value is nearest (in linear light) to v. */
-static unsigned to_byte(const devres_img_t *im, double v)
+static unsigned to_byte(const dev_fit_img_t *im, double v)
 {
 	unsigned lo = 0, hi = 255;   /* answer in [lo, hi] */
 	while (lo < hi) {
@@ -255,9 +255,9 @@ static unsigned to_byte(const devres_img_t *im, double v)
 	return lo;
 }
 
-devres_img_t *devres_image_new(const dev_map_t *m, int64_t x, int64_t y, int64_t w, int64_t h)
+dev_fit_img_t *dev_fit_image_new(const dev_map_t *m, int64_t x, int64_t y, int64_t w, int64_t h)
 {
-	devres_img_t *im = calloc(1, sizeof *im);
+	dev_fit_img_t *im = calloc(1, sizeof *im);
 	if (!im)
 		return NULL;
 	im->m = m;
@@ -294,7 +294,7 @@ devres_img_t *devres_image_new(const dev_map_t *m, int64_t x, int64_t y, int64_t
 	im->accw = malloc(nu * sizeof *im->accw);
 	im->runs = malloc(nu * sizeof *im->runs);
 	if (!im->fa || !im->fb || !im->lin_row || !im->hs || !im->acc || !im->accw || !im->runs) {
-		devres_image_free(im);
+		dev_fit_image_free(im);
 		return NULL;
 	}
 	for (size_t k = 0; k < nu; k++) {
@@ -310,7 +310,7 @@ devres_img_t *devres_image_new(const dev_map_t *m, int64_t x, int64_t y, int64_t
 	return im;
 }
 
-void devres_image_free(devres_img_t *im)
+void dev_fit_image_free(dev_fit_img_t *im)
 {
 	if (!im)
 		return;
@@ -325,7 +325,7 @@ void devres_image_free(devres_img_t *im)
 }
 
 /* Hand the pending device row to the renderer, colours merged into runs. */
-static int emit(devres_img_t *im, dev_render_t *rr)
+static int emit(dev_fit_img_t *im, dev_render_t *rr)
 {
 	size_t nu = (size_t)(im->u1 - im->u0), nr = 0;
 	for (size_t k = 0; k < nu; k++) {
@@ -348,7 +348,7 @@ static int emit(devres_img_t *im, dev_render_t *rr)
 	return dev_render_row(rr, im->u0, v, im->runs, nr);
 }
 
-int devres_image_row(devres_img_t *im, dev_render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns)
+int dev_fit_image_row(dev_fit_img_t *im, dev_render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	const dev_map_t *m = im->m;
 	if (im->cx0 >= im->cx1 || y < im->cy0 || y >= im->cy1)

@@ -28,7 +28,7 @@ int dev_printf(dev_device_t *d, const char *fmt, ...)
 	}
 	int rc = io_write(d->out, buf, (size_t)n);
 	free(big);
-	return rc ? dev_fail(d, META_EIO, "%s", io_error(d->out)) : 0;
+	return rc ? dev_fail(d, dev_code_of_errno(io_errno(d->out)), "%s", io_error(d->out)) : 0;
 }
 
 const char *dev_fmt_fix(char *buf, int64_t v, int scale, int decimals)

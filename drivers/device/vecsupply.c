@@ -11,7 +11,7 @@ static unsigned caps_of(const dev_device_t *d)
 
 /* Raw elements for a path the framework made (dash pieces, outlines, text, rectangles), so that
  * a DEV_CAP_ARCS device reading elems draws it too. */
-static int synth(devvec_t *v, const scan_path_t *p, size_t *n)
+static int synth(dev_vec_t *v, const scan_path_t *p, size_t *n)
 {
 	size_t need = p->npts + p->nsubs;
 	if (need > v->cap_elems) {
@@ -40,7 +40,7 @@ static int synth(devvec_t *v, const scan_path_t *p, size_t *n)
 	return 0;
 }
 
-static int call(dev_device_t *d, devvec_t *v, int (*op)(dev_device_t *, const dev_path_t *, const dev_state_t *),
+static int call(dev_device_t *d, dev_vec_t *v, int (*op)(dev_device_t *, const dev_path_t *, const dev_state_t *),
 		const scan_path_t *path, const dev_elem_t *elems, size_t nelems, const dev_state_t *st)
 {
 	if (!op)
@@ -55,7 +55,7 @@ static int call(dev_device_t *d, devvec_t *v, int (*op)(dev_device_t *, const de
 	return op(d, &dp, st);
 }
 
-int devvec_fill(dev_device_t *d, devvec_t *v, const scan_path_t *path, const dev_elem_t *elems,
+int dev_vec_fill(dev_device_t *d, dev_vec_t *v, const scan_path_t *path, const dev_elem_t *elems,
 		size_t nelems, const dev_state_t *st)
 {
 	if (caps_of(d) & DEV_CAP_FILL)
@@ -85,7 +85,7 @@ int devvec_fill(dev_device_t *d, devvec_t *v, const scan_path_t *path, const dev
 	return call(d, v, d->ops->stroke_path, h, NULL, 0, &s);
 }
 
-int devvec_stroke(dev_device_t *d, devvec_t *v, const scan_path_t *path, const dev_elem_t *elems,
+int dev_vec_stroke(dev_device_t *d, dev_vec_t *v, const scan_path_t *path, const dev_elem_t *elems,
 		size_t nelems, const dev_state_t *st)
 {
 	unsigned caps = caps_of(d);
@@ -119,12 +119,12 @@ int devvec_stroke(dev_device_t *d, devvec_t *v, const scan_path_t *path, const d
 		s.rule = META_RULE_NON_ZERO;
 		s.width = 0;
 		s.line_width = 1000;
-		return devvec_fill(d, v, &v->outline, NULL, 0, &s);
+		return dev_vec_fill(d, v, &v->outline, NULL, 0, &s);
 	}
 	return call(d, v, d->ops->stroke_path, path, elems, nelems, &s);
 }
 
-int devvec_row(dev_device_t *d, devvec_t *v, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
+int dev_vec_row(dev_device_t *d, dev_vec_t *v, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	unsigned w = d->page->width;
 	if (y < 0 || y >= d->page->height || x >= w)
@@ -147,7 +147,7 @@ int devvec_row(dev_device_t *d, devvec_t *v, int64_t x, int64_t y, const meta_ru
 	return n ? d->ops->put_image_row(d, (unsigned)x, (unsigned)y, v->runs, n) : 0;
 }
 
-void devvec_free(devvec_t *v)
+void dev_vec_free(dev_vec_t *v)
 {
 	scan_ctx_free(v->ctx);
 	scan_path_free(&v->dashed);

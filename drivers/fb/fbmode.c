@@ -330,7 +330,7 @@ static int map_writing(dev_device_t *d, fbm_t *f, int fmt, const fbout_picture_t
 			pthread_mutex_unlock(&pp.mu);
 		}
 		pthread_join(th, NULL);
-		rc = mrc ? dev_fail(d, META_ENOMEM, "out of memory") : pp.rc ? dev_fail(d, META_EIO, "%s", pp.err) : 0;
+		rc = mrc ? dev_fail(d, META_ENOMEM, "out of memory") : pp.rc ? dev_fail(d, dev_code_of_errno(-pp.rc), "%s", pp.err) : 0;
 	}
 	pthread_cond_destroy(&pp.cv);
 	pthread_mutex_destroy(&pp.mu);
@@ -385,8 +385,9 @@ int fbm_end_page(dev_device_t *d, const dev_page_t *pg)
 	}
 	if (f->fb)
 		return show_on_fb(d, f, ncol);
-	if (fbout_write(d->out, fmt, &p, err, sizeof err))
-		return dev_fail(d, META_EIO, "%s", err);
+	int wrc = fbout_write(d->out, fmt, &p, err, sizeof err);
+	if (wrc)
+		return dev_fail(d, dev_code_of_errno(-wrc), "%s", err);
 	return 0;
 }
 

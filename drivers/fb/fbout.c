@@ -1,4 +1,5 @@
 /* fbout.c: write a framebuffer picture as a video memory dump, indexed PNG, PCX or BMP. */
+#include <errno.h>
 #include <png.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,6 +57,7 @@ typedef struct {
 	uint8_t buf[4096];
 	size_t n;
 	int failed;
+	int code;           /* the failure's errno, set where it is raised (fbout_write returns -code) */
 } wbuf_t;
 
 static void put(wbuf_t *w, const void *data, size_t n)
@@ -64,6 +66,7 @@ static void put(wbuf_t *w, const void *data, size_t n)
 		return;
 	if (io_write(w->t, data, n)) {
 		snprintf(w->err, w->errlen, "%s", io_error(w->t));
+		w->code = io_errno(w->t);
 		w->failed = 1;
 	}
 }
@@ -139,8 +142,10 @@ static void png_noflush(png_structp png) { (void)png; }
 static void png_err(png_structp png, png_const_charp msg)
 {
 	wbuf_t *w = png_get_error_ptr(png);
-	if (!w->failed)
-		snprintf(w->err, w->errlen, "png: %s", strstr(msg, "memory") ? "out of memory" : msg);   /* one wording: exit 70 */
+	if (!w->failed) {   /* libpng's handler gets only the text: its out-of-memory errors become the code */
+		w->code = strstr(msg, "memory") ? ENOMEM : EIO;
+		snprintf(w->err, w->errlen, "png: %s", w->code == ENOMEM ? "out of memory" : msg);
+	}
 	w->failed = 1;
 	png_longjmp(png, 1);
 }
@@ -155,6 +160,7 @@ static int write_png(wbuf_t *w, const fbout_picture_t *p)
 	int rc = -1;
 	if (!png || !info || !row) {
 		snprintf(w->err, w->errlen, "png: out of memory");
+		w->code = ENOMEM;
 		goto done;
 	}
 	if (setjmp(png_jmpbuf(png)))
@@ -235,6 +241,7 @@ static int write_pcx(wbuf_t *w, const fbout_picture_t *p)
 	uint8_t *line = calloc(bpl, 1);
 	if (!line) {
 		snprintf(w->err, w->errlen, "pcx: out of memory");
+		w->code = ENOMEM;
 		return -1;
 	}
 	uint8_t hdr[128];
@@ -337,7 +344,7 @@ int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *e
 	wbuf_t *w = calloc(1, sizeof *w);
 	if (!w) {
 		snprintf(err, errlen, "out of memory");
-		return -1;
+		return -ENOMEM;
 	}
 	w->t = t, w->err = err, w->errlen = errlen;
 	int rc;
@@ -346,7 +353,7 @@ int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *e
 		if (p->wait_row(p->wait_ctx, y)) {
 			snprintf(err, errlen, "the picture was not finished");
 			free(w);
-			return -1;
+			return -EIO;
 		}
 	switch (format) {
 	case FBOUT_DUMP: write_dump(w, p); rc = 0; break;
@@ -358,8 +365,8 @@ int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *e
 		rc = -1;
 	}
 	drain(w);
-	if (w->failed)
-		rc = -1;
+	if (w->failed || rc)
+		rc = -(w->code ? w->code : EIO);
 	free(w);
 	return rc;
 }

@@ -38,7 +38,8 @@ typedef struct {
  * FBOUT_UNKNOWN when none. */
 int fbout_format_by_name(const char *name);
 int fbout_format_by_suffix(const char *path);
-/* Write the picture as one file of the format. 0, or <0 with a message in err. */
+/* Write the picture as one file of the format. 0, or -errno with a message in err: -ENOMEM when
+ * memory ran out (a program's exit 70), the transport's -io_errno for a write, else -EIO. */
 int fbout_write(io_transport_t *t, int format, const fbout_picture_t *p, char *err, size_t errlen);
 
 #endif

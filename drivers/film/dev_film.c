@@ -228,7 +228,7 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 		if (f->channel >= 0 || f->planar)
 			return dev_fail(d, DEV_EUSAGE, "the RLE format holds 24-bit RGB frames, not separations");
 		f->rle = dev_imgw_new(DEV_FMT_RLE, d->out, pg->width, pg->height, err, sizeof err);
-		return f->rle ? 0 : dev_fail(d, META_EIO, "%s", err);
+		return f->rle ? 0 : dev_fail(d, dev_code_of_errno(errno), "%s", err);
 	}
 	if (f->kind == FILM_CINEON && f->little_endian)
 		return dev_fail(d, DEV_EUSAGE, "Cineon files are big-endian only (endian=little is for DPX)");
@@ -276,7 +276,7 @@ static int f_band(dev_device_t *d, const dev_band_t *b)
 	film_t *f = d->priv;
 	if (f->rle) {
 		if (dev_imgw_rows(f->rle, b->pix, b->stride, b->nrows))
-			return dev_fail(d, META_EIO, "%s", dev_imgw_error(f->rle));
+			return dev_fail(d, dev_code_of_errno(dev_imgw_errno(f->rle)), "%s", dev_imgw_error(f->rle));
 		f->rows += b->nrows;
 		return 0;
 	}
@@ -313,7 +313,7 @@ static int f_end(dev_device_t *d, const dev_page_t *pg)
 		rc = dev_fail(d, DEV_EDEVICE, "film: %u rows written of %u", f->rows, pg->height);
 	if (f->rle) {
 		if (!rc && dev_imgw_finish(f->rle))
-			rc = dev_fail(d, META_EIO, "%s", dev_imgw_error(f->rle));
+			rc = dev_fail(d, dev_code_of_errno(dev_imgw_errno(f->rle)), "%s", dev_imgw_error(f->rle));
 		else if (!rc)
 			f->rle = NULL;          /* finished and freed */
 		dev_imgw_abort(f->rle);

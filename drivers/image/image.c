@@ -1,4 +1,5 @@
 /* image.c: streaming PNG (libpng), PPM (P6) and RLE raster writers (readers: imgread.c). */
+#include <errno.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdio.h>
@@ -17,6 +18,7 @@ struct dev_imgw {
 	int io_failed, info_done;
 	double wmm, hmm;
 	unsigned char *rle;      /* one encoded row */
+	int errcode;             /* the failure's errno (dev_imgw_errno), set where it is raised */
 	char err[256];
 };
 
@@ -42,6 +44,7 @@ static void png_out(png_structp png, png_bytep data, size_t n)
 	dev_imgw_t *w = png_get_io_ptr(png);
 	if (w->sink ? w->sink(w->sink_user, data, n) : io_write(w->t, data, n)) {
 		w->io_failed = 1;   /* the transport's message names the output and the cause */
+		w->errcode = w->sink ? EIO : io_errno(w->t);
 		snprintf(w->err, sizeof w->err, "%s", w->sink ? "png: write failed" : io_error(w->t));
 		png_error(png, "write failed");
 	}
@@ -57,8 +60,11 @@ static void png_err(png_structp png, png_const_charp msg)
 	dev_imgw_t *w = png_get_error_ptr(png);
 	/* libpng says "Out of memory", "insufficient memory", ...: one wording, so that the
 	 * programs tell it from an I/O error (exit 70, not 74) */
-	if (!w->io_failed)
-		snprintf(w->err, sizeof w->err, "png: %s", strstr(msg, "memory") ? "out of memory" : msg);
+	if (!w->io_failed) {
+		/* libpng's error handler gets only the text: its out-of-memory errors become the code */
+		w->errcode = strstr(msg, "memory") ? ENOMEM : EIO;
+		snprintf(w->err, sizeof w->err, "png: %s", w->errcode == ENOMEM ? "out of memory" : msg);
+	}
 	png_longjmp(png, 1);
 }
 
@@ -78,6 +84,7 @@ static int png_start(dev_imgw_t *w)
 {
 	w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w, png_err, png_warn);
 	if (!w->png || !(w->info = png_create_info_struct(w->png))) {
+		w->errcode = ENOMEM;
 		snprintf(w->err, sizeof w->err, "png: out of memory");
 		return -1;
 	}
@@ -120,6 +127,7 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 	dev_imgw_t *w = calloc(1, sizeof *w);
 	if (!w) {
 		snprintf(err, errlen, "out of memory");
+		errno = ENOMEM;
 		return NULL;
 	}
 	w->fmt = fmt;
@@ -145,11 +153,14 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 	if (rc && fmt == DEV_FMT_RLE && !w->rle) {
 		snprintf(err, errlen, "out of memory");
 		dev_imgw_abort(w);
+		errno = ENOMEM;
 		return NULL;
 	}
 	if (rc) {
-		snprintf(err, errlen, "%s", w->io_failed || fmt != DEV_FMT_PNG ? io_error(t) : w->err);
+		int own = !w->io_failed && fmt == DEV_FMT_PNG, e = own ? w->errcode : io_errno(t);
+		snprintf(err, errlen, "%s", own ? w->err : io_error(t));
 		dev_imgw_abort(w);
+		errno = e ? e : EIO;
 		return NULL;
 	}
 	return w;
@@ -209,6 +220,7 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 {
 	int rc = 0;
 	if (w->rows + n > w->height) {
+		w->errcode = EINVAL;
 		snprintf(w->err, sizeof w->err, "too many rows");
 		return -1;
 	}
@@ -220,8 +232,10 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 		for (unsigned k = 0; k < n && rc == 0; k++)
 			rc = w->fmt == DEV_FMT_RLE ? rle_row(w, pix + k * stride)
 				: io_write(w->t, pix + k * stride, (size_t)w->width * 3);
-		if (rc)
+		if (rc) {
+			w->errcode = io_errno(w->t);
 			snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+		}
 	}
 	w->rows += n;
 	return rc;
@@ -239,13 +253,16 @@ int dev_imgw_finish(dev_imgw_t *w)
 {
 	int rc = 0;
 	if (w->rows != w->height) {
+		w->errcode = EINVAL;
 		snprintf(w->err, sizeof w->err, "image incomplete (%u of %u rows)", w->rows, w->height);
 		rc = -1;
 	} else if (w->fmt == DEV_FMT_PNG) {
 		rc = png_end(w);
 	}
-	if (rc == 0 && !w->sink && (rc = io_flush(w->t)) != 0)
+	if (rc == 0 && !w->sink && (rc = io_flush(w->t)) != 0) {
+		w->errcode = io_errno(w->t);
 		snprintf(w->err, sizeof w->err, "%s", io_error(w->t));
+	}
 	if (rc)
 		return rc;   /* caller reads the message, then aborts */
 	dev_imgw_abort(w);
@@ -260,6 +277,11 @@ void dev_imgw_abort(dev_imgw_t *w)
 		png_destroy_write_struct(&w->png, w->info ? &w->info : NULL);
 	free(w->rle);
 	free(w);
+}
+
+int dev_imgw_errno(const dev_imgw_t *w)
+{
+	return w->errcode ? w->errcode : EIO;
 }
 
 const char *dev_imgw_error(const dev_imgw_t *w)

@@ -20,7 +20,8 @@ int dev_format_by_suffix(const char *path);
 
 typedef struct dev_imgw dev_imgw_t;
 
-/* Start writing a width x height image of format fmt to t (borrowed). NULL + err on failure. */
+/* Start writing a width x height image of format fmt to t (borrowed). NULL + err on failure,
+ * errno then the cause (ENOMEM when memory ran out, the transport's io_errno for a write). */
 dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
 		size_t errlen);
 /* Where dev_imgw_new_png_fn's bytes go: write n bytes, 0 or <0 (the callback keeps its own
@@ -45,6 +46,9 @@ int dev_imgw_finish(dev_imgw_t *w);
 void dev_imgw_abort(dev_imgw_t *w);
 /* Message of the last failure. */
 const char *dev_imgw_error(const dev_imgw_t *w);
+/* Its cause as an errno, set where it was raised: ENOMEM when memory ran out (a program's exit
+ * 70), the transport's io_errno for a write, EINVAL for rows that do not fit, else EIO. */
+int dev_imgw_errno(const dev_imgw_t *w);
 
 /* Readers. A reader decodes one image a row at a time from a stream, so its memory is one row
  * and one input buffer whatever the size of the file. The header is checked against these limits

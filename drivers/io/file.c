@@ -259,8 +259,9 @@ int io_file_commit(io_transport_t *t, const char *target)
 		io_signals_restore(&old);
 	}
 	if (rc < 0) {
+		t->io_errno = errno;
 		snprintf(t->err, sizeof t->err, "%s: %s: %s", shown, tg.kind == KIND_REGULAR ||
-			tg.kind == KIND_NEW ? "cannot rename into place" : "not replaced", strerror(errno));
+			tg.kind == KIND_NEW ? "cannot rename into place" : "not replaced", strerror(t->io_errno));
 		t->failed = 1;
 		io_file_discard(t);
 	}

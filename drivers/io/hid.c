@@ -284,15 +284,17 @@ int tr_hid_close(io_transport_t *t)
 	return rc;
 }
 
-void tr_hid_list(io_transport_t *out)
+int tr_hid_list(io_list_put_fn *put, void *user, char *err, size_t errlen)
 {
+	(void)err, (void)errlen;
 	if (hid_init() < 0)
-		return;
+		return 0;   /* no hidapi here: no bridge to list */
 	struct hid_device_info *l = hid_enumerate(0x10c4, 0xea80), *d;   /* CP2110 */
 	for (d = l; d; d = d->next)
-		io_printf(out, "hid:%04x:%04x%s%ls  HID UART bridge  %ls %ls\n", d->vendor_id, d->product_id,
+		put(user, "hid:%04x:%04x%s%ls  HID UART bridge  %ls %ls\n", d->vendor_id, d->product_id,
 			d->serial_number && d->serial_number[0] ? ":" : "", d->serial_number ? d->serial_number : L"",
 			d->manufacturer_string ? d->manufacturer_string : L"", d->product_string ? d->product_string : L"");
 	hid_free_enumeration(l);
 	hid_exit();
+	return 0;
 }

@@ -1,4 +1,4 @@
-/* tr_link.h: the device links (serial:, tcp:, usb:, hid:) as transport.c calls them, and the
+/* link.h: the device links (serial:, tcp:, usb:, hid:) as transport.c calls them, and the
  * helpers they share (not public: programs use transport.h). */
 #ifndef LOCUS_TR_LINK_H
 #define LOCUS_TR_LINK_H
@@ -29,8 +29,10 @@ int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 long tr_usb_write(io_transport_t *t, const void *buf, size_t n);
 long tr_usb_read(io_transport_t *t, void *buf, size_t n);
 int tr_usb_close(io_transport_t *t);
+/* One line per attached USB printer-class device (io_link_t.list); -1 when libusb cannot start. */
+int tr_usb_list(io_list_put_fn *put, void *user, char *err, size_t errlen);
 
-/* The link's own error line, "NAME: " + the formatted words; sets failed. Returns -1. */
+/* link_util.c: the link's own error line, "NAME: " + the formatted words; sets failed. Returns -1. */
 int io_link_fail(io_transport_t *t, const char *fmt, ...)
 #ifdef __GNUC__
 	__attribute__((format(printf, 2, 3)))
@@ -42,8 +44,8 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
 long tr_hid_read(io_transport_t *t, void *buf, size_t n);
 int tr_hid_close(io_transport_t *t);
-/* One line per attached CP2110 bridge, as --list-devices prints them. */
-void tr_hid_list(io_transport_t *out);
+/* One line per attached CP2110 bridge, as --list-devices prints them (io_link_t.list). */
+int tr_hid_list(io_list_put_fn *put, void *user, char *err, size_t errlen);
 
 /* io_link_fail for a failure that may pass (a device unplugged, off, busy, out of paper, a
  * dropped connection): io_temporary() is 1 afterwards. Returns -1. */

@@ -1,37 +1,19 @@
 /* transport.c: the buffered transport object (write, printf, read, flush, close) over stdio,
- * files (tr-file.c) and device links (the io_link_t table: tr-serial.c, tr-tcp.c, tr-usb.c, tr-hid.c;
- * their journal in link_journal.c, signals during a job in link_signals.c). */
+ * files (file.c) and device links (the io_link_t table: serial.c, tcp.c, usb.c, hid.c; their
+ * journal in link_journal.c, signals during a job in signals.c), and the device listing, a
+ * per-link operation. The top of io/: the links and the files below it use link_util.c (error
+ * lines, query strings, the clock) and call nothing here. */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 #include "io/journal.h"
 #include "io/link.h"
 
 #define IOBUF (1 << 16)
-
-int io_set_err(io_transport_t *t, const char *what)
-{
-	const char *name = t->std ? (t->writing ? "<stdout>" : "<stdin>") : t->name;
-	t->io_errno = errno;
-	snprintf(t->err, sizeof t->err, "%s: %s: %s", name, what, strerror(errno));
-	t->failed = 1;
-	return -1;
-}
-
-/* The errno an open that returned NULL leaves (ENOMEM from io_oom, else EIO). */
-static _Thread_local int open_errno;
-
-int io_oom(char *err, size_t errlen, const char *name)
-{
-	snprintf(err, errlen, "%s: out of memory", name);
-	open_errno = ENOMEM;
-	return -1;
-}
 
 void io_set_resume_command(const char *cmd)
 {
@@ -47,77 +29,41 @@ int io_is_link_name(const char *name)
 	return 0;
 }
 
-/* "NAME: message" into t->err; the transport has failed (temporary: the failure may pass). */
-static int link_fail(io_transport_t *t, int temporary, const char *fmt, va_list ap)
-{
-	int n = snprintf(t->err, sizeof t->err, "%s: ", t->name);
-	if (n > 0 && (size_t)n < sizeof t->err)
-		vsnprintf(t->err + n, sizeof t->err - (size_t)n, fmt, ap);
-	t->failed = 1;
-	t->temporary |= temporary;   /* a later message does not make a passing failure final */
-	t->io_errno = errno = EIO;
-	return -1;
-}
-
-int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	int rc = link_fail(t, 1, fmt, ap);
-	va_end(ap);
-	return rc;
-}
-
-int io_link_fail(io_transport_t *t, const char *fmt, ...)
-{
-	va_list ap;
-	va_start(ap, fmt);
-	int rc = link_fail(t, 0, fmt, ap);
-	va_end(ap);
-	return rc;
-}
-
 /* The device links (a NULL open: reserved, "not supported yet"). */
 static const io_link_t links[] = {
-	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close, NULL, NULL },
-	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close, tr_tcp_acked, tr_tcp_drain },
-	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close, NULL, NULL },
-	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close, NULL, NULL },
+	{ "serial:", tr_serial_open, tr_serial_write, tr_serial_read, tr_serial_close, NULL, NULL, NULL },
+	{ "tcp:", tr_tcp_open, tr_tcp_write, tr_tcp_read, tr_tcp_close, tr_tcp_acked, tr_tcp_drain, NULL },
+	{ "usb:", tr_usb_open, tr_usb_write, tr_usb_read, tr_usb_close, NULL, NULL, tr_usb_list },
+	{ "hid:", tr_hid_open, tr_hid_write, tr_hid_read, tr_hid_close, NULL, NULL, tr_hid_list },
 };
 
-int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen)
+/* A listing line of a link, formatted whole and written to the transport (user). */
+static void list_put(void *user, const char *fmt, ...)
 {
-	const char *s = *p;
-	if (!*s)
-		return 0;
-	const char *amp = strchr(s, '&'), *end = amp ? amp : s + strlen(s);
-	const char *eq = memchr(s, '=', (size_t)(end - s));
-	*p = amp ? amp + 1 : end;
-	if (!eq || eq == s || (size_t)(eq - s) >= klen || (size_t)(end - eq - 1) >= vlen)
-		return -1;
-	memcpy(key, s, (size_t)(eq - s));
-	key[eq - s] = 0;
-	memcpy(val, eq + 1, (size_t)(end - eq - 1));
-	val[end - eq - 1] = 0;
-	return 1;
+	va_list ap, aq;
+	va_start(ap, fmt);
+	va_copy(aq, ap);
+	int n = vsnprintf(NULL, 0, fmt, aq);
+	va_end(aq);
+	char *line = n >= 0 ? malloc((size_t)n + 1) : NULL;
+	if (line) {
+		vsnprintf(line, (size_t)n + 1, fmt, ap);
+		io_write(user, line, (size_t)n);
+		free(line);
+	} else if (!io_failed(user)) {   /* as io_printf fails */
+		if (n >= 0)
+			errno = ENOMEM;
+		io_set_err(user, "cannot format");
+	}
+	va_end(ap);
 }
 
-int tr_parse_long(const char *s, long lo, long hi, long *out)
+int io_list_devices(io_transport_t *out, char *err, size_t errlen)
 {
-	char *e;
-	errno = 0;
-	long v = strtol(s, &e, 10);
-	if (!*s || *e || errno || v < lo || v > hi)
-		return -1;
-	*out = v;
+	for (size_t k = 0; k < sizeof links / sizeof links[0]; k++)
+		if (links[k].list && links[k].list(list_put, out, err, errlen) < 0)
+			return -1;
 	return 0;
-}
-
-long long tr_now_ms(void)
-{
-	struct timespec ts;
-	clock_gettime(CLOCK_MONOTONIC, &ts);
-	return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
 }
 
 static const io_link_t *link_of(const char *name)
@@ -199,7 +145,7 @@ static io_transport_t *open_link(const io_link_t *l, const char *name, int writi
 	if (jpath[0] && writing) {
 		t->journal = resume ? jn_resume(jpath, name, err, errlen) : jn_create(jpath, name, err, errlen);
 		if (!t->journal) {
-			open_errno = errno == ENOMEM ? ENOMEM : EIO;
+			io_open_errno = errno == ENOMEM ? ENOMEM : EIO;
 			destroy(t);
 			return NULL;
 		}
@@ -232,8 +178,8 @@ static io_transport_t *open_write(const char *name, char *err, size_t errlen)
 	if (io_file_open(t, err, errlen) < 0) {
 		int e = errno;   /* the cause the file's open met */
 		destroy(t);
-		if (!open_errno)
-			open_errno = e;
+		if (!io_open_errno)
+			io_open_errno = e;
 		return NULL;
 	}
 	return t;
@@ -241,10 +187,10 @@ static io_transport_t *open_write(const char *name, char *err, size_t errlen)
 
 io_transport_t *io_open_write(const char *name, char *err, size_t errlen)
 {
-	open_errno = 0;
+	io_open_errno = 0;
 	io_transport_t *t = open_write(name, err, errlen);
 	if (!t)
-		errno = open_errno ? open_errno : EIO;
+		errno = io_open_errno ? io_open_errno : EIO;
 	return t;
 }
 
@@ -474,7 +420,10 @@ static int settle(io_transport_t *t, int commit, const char *target, int rc, cha
 	}
 	if (rc && err)
 		snprintf(err, errlen, "%s", t->err);
+	int e = rc ? io_errno(t) : 0;
 	destroy(t);
+	if (rc)
+		errno = e ? e : EIO;   /* the failure's code outlives the transport */
 	return rc;
 }
 

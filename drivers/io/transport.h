@@ -67,12 +67,14 @@ int io_drain(io_transport_t *t);
  * IO_COMMIT and IO_ABORT the transport is freed anyway, so copy the message first with
  * io_close_err). After IO_KEEP the caller still owns t, failed or not: io_finish() frees it. */
 int io_close(io_transport_t *t, int how);
-/* io_close that copies the error line into err (when err is not NULL) before freeing. */
+/* io_close that copies the error line into err (when err is not NULL) before freeing. A failure
+ * leaves errno the failure's code (as io_errno: ENOMEM when memory ran out), so that a program
+ * decides 70 or 74 by value after the transport is gone. */
 int io_close_err(io_transport_t *t, int how, char *err, size_t errlen);
 /* For a transport closed with IO_KEEP: rename its temporary to target (NULL = the original
  * name; a target chosen now follows the same rules as at open: the mode of a file it replaces
  * is kept, a device or directory is refused) when commit is 1, else remove it; then free it.
- * 0, or <0 with one line in err (when not NULL). */
+ * 0, or <0 with one line in err (when not NULL) and errno the failure's code (as io_close_err). */
 int io_finish(io_transport_t *t, int commit, const char *target, char *err, size_t errlen);
 /* The last error, one line naming the transport ("" if none). */
 const char *io_error(const io_transport_t *t);

@@ -1,5 +1,5 @@
-/* transport_int.h: the transport object and the live-temporary table, shared by transport.c,
- * tr-file.c and tempfiles.c (not public). */
+/* transport_int.h: the transport object, the link table's entry and the live-temporary table,
+ * shared by the files of io/ (not public). */
 #ifndef LOCUS_TRANSPORT_INT_H
 #define LOCUS_TRANSPORT_INT_H
 
@@ -9,6 +9,13 @@
 
 /* One temporary that a signal must remove (tempfiles.c). */
 typedef struct io_temp io_temp_t;
+
+/* A listing line of io_list_devices: printf-like, to the listing's user. */
+typedef void io_list_put_fn(void *user, const char *fmt, ...)
+#ifdef __GNUC__
+	__attribute__((format(printf, 2, 3)))
+#endif
+	;
 
 /* A device link (serial:, usb:, hid:): the scheme's own open, byte moves and close. A link
  * whose open is NULL is reserved: naming it gives "not supported yet". write and read return
@@ -26,6 +33,9 @@ typedef struct io_link {
 	/* Optional: the job is complete; wait (bounded) until the device confirms all of it (TCP:
 	 * half-close, then the peer's close). 0, or -1 with the message set. */
 	int (*drain)(io_transport_t *t);
+	/* Optional: one line per attached device this link can open (io_list_devices), through
+	 * put(user, ...). 0, or -1 with a message in err (the listing stops there). */
+	int (*list)(io_list_put_fn *put, void *user, char *err, size_t errlen);
 } io_link_t;
 
 struct io_transport {
@@ -61,6 +71,9 @@ int io_set_err(io_transport_t *t, const char *what);
 
 /* "NAME: out of memory" into err; the failed open leaves errno ENOMEM (io_open_write). -1. */
 int io_oom(char *err, size_t errlen, const char *name);
+/* link_util.c: the errno the open under way (io_open_write) leaves when it returns NULL: set to
+ * ENOMEM by io_oom, 0 (then EIO) else. */
+extern _Thread_local int io_open_errno;
 
 /* tr-file.c: open t->name for writing: a regular file (or a name that does not exist yet)
  * through a new temporary beside it, anything else in place. 0, or -1 with a message in err. */

@@ -305,7 +305,7 @@ int tr_usb_close(io_transport_t *t)
 	return 0;
 }
 
-int io_list_devices(io_transport_t *out, char *err, size_t errlen)
+int tr_usb_list(io_list_put_fn *put, void *user, char *err, size_t errlen)
 {
 	libusb_context *ctx;
 	if (libusb_init(&ctx) < 0) {
@@ -335,7 +335,7 @@ int io_list_devices(io_transport_t *out, char *err, size_t errlen)
 				libusb_attach_kernel_driver(h, iface);
 			libusb_close(h);
 		}
-		io_printf(out, "usb:%04x:%04x%s%s  %s  %s\n", dd.idVendor, dd.idProduct, sn[0] ? ":" : "", sn,
+		put(user, "usb:%04x:%04x%s%s  %s  %s\n", dd.idVendor, dd.idProduct, sn[0] ? ":" : "", sn,
 			in ? "bidirectional" : "one-way",
 			r == LIBUSB_ERROR_ACCESS ? "(no permission to read its device ID: see docs/60-locus-usb.rules)"
 			: id[0] ? id : "(no device ID)");
@@ -343,6 +343,5 @@ int io_list_devices(io_transport_t *out, char *err, size_t errlen)
 	if (n >= 0)
 		libusb_free_device_list(list, 1);
 	libusb_exit(ctx);
-	tr_hid_list(out);
 	return 0;
 }

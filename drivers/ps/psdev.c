@@ -6,7 +6,6 @@
 #include <strings.h>
 #include <time.h>
 #include "ps/psdev.h"
-#include "cli/run.h"
 
 #define MM_PT (72.0 / 25.4)
 #define BLOCK_MAX ((size_t)4 << 20)    /* bytes of merged image rows held before emitting */
@@ -300,8 +299,7 @@ int psd_out_fail(psd_t *p)
 	if (p->out.err == META_ENOMEM)
 		return dev_fail(p->dev, META_ENOMEM, "out of memory");
 	if (t && io_failed(t)) {
-		const char *m = io_error(t);
-		return dev_fail(p->dev, dev_err_is_oom(m) ? META_ENOMEM : META_EIO, "%s", m);
+		return dev_fail(p->dev, dev_code_of_errno(io_errno(t)), "%s", io_error(t));
 	}
 	return dev_fail(p->dev, META_EIO, "%s: write failed", t ? io_name(t) : "<output>");
 }

@@ -1,4 +1,5 @@
 /* dev_raster.c: the reference raster devices (PNG, PPM, RLE at 24 bits) and the null device. */
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include "device/device.h"
@@ -21,7 +22,7 @@ static int r_begin(dev_device_t *d, const dev_page_t *pg)
 		return dev_fail(d, DEV_EDEVICE, "%s: no output", d->ops->name);
 	r->w = dev_imgw_new(fmt_of(d), d->out, pg->width, pg->height, err, sizeof err);
 	if (!r->w)
-		return dev_fail(d, META_EIO, "%s", err);
+		return dev_fail(d, dev_code_of_errno(errno), "%s", err);
 	if (pg->has_size)
 		dev_imgw_physical(r->w, pg->width_mm / 1000.0, pg->height_mm / 1000.0);
 	return 0;
@@ -31,7 +32,7 @@ static int r_band(dev_device_t *d, const dev_band_t *b)
 {
 	raster_t *r = d->priv;
 	if (dev_imgw_rows(r->w, b->pix, b->stride, b->nrows))
-		return dev_fail(d, META_EIO, "%s", dev_imgw_error(r->w));
+		return dev_fail(d, dev_code_of_errno(dev_imgw_errno(r->w)), "%s", dev_imgw_error(r->w));
 	return 0;
 }
 
@@ -40,7 +41,7 @@ static int r_end(dev_device_t *d, const dev_page_t *pg)
 	raster_t *r = d->priv;
 	(void)pg;
 	if (dev_imgw_finish(r->w)) {
-		int rc = dev_fail(d, META_EIO, "%s", dev_imgw_error(r->w));
+		int rc = dev_fail(d, dev_code_of_errno(dev_imgw_errno(r->w)), "%s", dev_imgw_error(r->w));
 		dev_imgw_abort(r->w);
 		r->w = NULL;
 		return rc;
