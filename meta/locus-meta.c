@@ -24,9 +24,8 @@ static const char usage_text[] =
 	"       locus-meta fmt [IN] [-o OUT]\n"
 	"       locus-meta info FILE\n"
 	"       locus-meta convert [IN] [-o OUT] [--text|--binary]\n"
-	"       locus-meta import [IN] [-o OUT] [--pens SPEC] [--strict]   (HP-GL, HP-GL/2,\n"
-	"         plotutils metafiles; SPEC the pens a file sets no PC/PW for: \"1=black:0.5mm,2=red\";\n"
-	"         --strict refuses HP-GL junk that is otherwise skipped with a warning)\n"
+	"       locus-meta import [IN] [-o OUT] [OPTIONS]   (HP-GL, HP-GL/2, plotutils metafiles\n"
+	"         and SVG, told apart by their content; 'locus-meta import --help' lists OPTIONS)\n"
 "       locus-meta cat FILES... [-o OUT] [--frames LIST] [--text|--binary]\n"
 	"         join an animation's per-frame files (locus-render --frames -o NAME-%04d.meta)\n"
 	"         into the file one run writes; every frame of LIST (default: the first found to\n"
@@ -543,16 +542,13 @@ static int cmd_cat(char *const *files, size_t nfiles, const char *spec, const ch
 
 int main(int argc, char **argv)
 {
-	const char *in = NULL, *out = NULL, *pens = NULL, *frames = NULL, *sub;
-	int strict = 0;
+	const char *in = NULL, *out = NULL, *frames = NULL, *sub;
 	int enc = -1, c;
 	static const struct option longopts[] = {
 		{ "help", no_argument, NULL, 'h' },
 		{ "version", no_argument, NULL, 'V' },
 		{ "text", no_argument, NULL, 't' },
 		{ "binary", no_argument, NULL, 'b' },
-		{ "pens", required_argument, NULL, 'p' },
-		{ "strict", no_argument, NULL, 's' },
 		{ "frames", required_argument, NULL, 'F' },
 		{ NULL, 0, NULL, 0 }
 	};
@@ -590,16 +586,6 @@ int main(int argc, char **argv)
 				return usage("--text and --binary belong to 'convert' and 'cat'");
 			enc = c == 't' ? META_ENC_TEXT : META_ENC_BINARY;
 			break;
-		case 'p':
-			if (strcmp(sub, "import") != 0)
-				return usage("--pens belongs to 'import'");
-			pens = optarg;
-			break;
-		case 's':   /* issue 22: import refuses what it would skip with a warning */
-			if (strcmp(sub, "import") != 0)
-				return usage("--strict belongs to 'import'");
-			strict = 1;
-			break;
 		case 'F':
 			if (strcmp(sub, "cat") != 0)
 				return usage("--frames belongs to 'cat'");
@@ -632,8 +618,6 @@ int main(int argc, char **argv)
 		return cmd_copy(in ? in : "-", out, META_ENC_TEXT);
 	if (strcmp(sub, "convert") == 0)
 		return cmd_copy(in ? in : "-", out, enc);
-	if (strcmp(sub, "import") == 0)
-		return mimp_run_strict(in ? in : "-", out, pens, strict);   /* drivers/import.c */
 	fprintf(stderr, "locus-meta: unknown subcommand '%s'\n", sub);
 	return usage(NULL);
 }
