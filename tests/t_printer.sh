@@ -72,7 +72,7 @@ PY
 }
 # start_server: in the foreground of a background job, ready when it answers (10 s at most)
 start_server() {
-	"$P" server -o server-port="$PORT" -o spool-directory="$T/spool" -o log-file="$T/log" -o log-level=info -o resume-wait=20 \
+	"$P" server -o server-port="$PORT" -o spool-directory="$T/spool" -o log-file="$T/log" -o log-level=info -o resume-wait=20 -o max-document-size=1M \
 		> "$T/server.out" 2>&1 &
 	SPID=$!
 	n=0
@@ -181,6 +181,9 @@ print() {
 }
 # jobstate JOBFILE: the last job-state the wait test displayed
 jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
+# msg.test: print-job-and-wait.test that also shows the job's message
+sed 's/^\tDISPLAY job-state-reasons$/\tDISPLAY job-state-reasons\n\tDISPLAY job-state-message/' \
+	"$IPPT/print-job-and-wait.test" > "$T/msg.test"
 # newest DIR: the file the last job made
 newest() { ls -t "$1" | head -1; }
 
@@ -299,15 +302,16 @@ cat > "$T/unsup.test" <<'EOF'
 	STATUS successful-ok
 	EXPECT job-state WITH-VALUE >5 REPEAT-NO-MATCH
 	DISPLAY job-state
+	DISPLAY job-state-reasons
 }
 EOF
 # unsupported DESC FILE FORMAT PRINTER
 unsupported() {
-	ipptool -T 30 -t -f "$2" -d filetype="$3" "$URI/$4" "$T/unsup.test" > "$T/unsup.out" 2>&1
+	timeout 60 ipptool -T 30 -t -f "$2" -d filetype="$3" "$URI/$4" "$T/unsup.test" > "$T/unsup.out" 2>&1
 	if grep -q "client-error-document-format-not-supported" "$T/unsup.out"; then
 		ok "$1: refused with client-error-document-format-not-supported"
 	elif [ "$(jobstate "$T/unsup.out")" = aborted ]; then
-		ok "$1: the job is aborted alone (PAPPL 1.3 takes it first; see the comment above)"
+		ok "$1: the job is aborted alone (PAPPL 1.3 takes it first; see the comment above): job-state-reasons $(sed -n 's/.*job-state-reasons ([^)]*) = //p' "$T/unsup.out" | tail -1)"
 	else
 		notok "$1: $(grep -i "fail\|status\|job-state" "$T/unsup.out" | head -4)"
 	fi
@@ -317,6 +321,22 @@ unsupported "text/plain to the plotter" "$T/plain.txt" text/plain plot
 unsupported "HP-GL to the PostScript printer" "$T/odd.hpgl" application/vnd.hp-HPGL ps
 print "$M" application/vnd.locus-meta plot "$T/j9" && [ "$(jobstate "$T/j9")" = completed ] \
 	&& ok "the plotter's queue goes on after them" || notok "after unsupported: $(jobstate "$T/j9")"
+
+# A document larger than max-document-size (1M for this server): PAPPL spools every document
+# before the application sees it and has no size check of its own, so the job is aborted before
+# anything is read or sent, with a job-state-message that says why; the queue goes on.
+{ cat "$M"; n=0; while [ $n -lt 20000 ]; do echo "# padding to make the document larger than the server's limit: $n"; n=$((n + 1)); done; } > "$T/big.meta"
+timeout 10 "$P" server -o max-document-size=12Q > /dev/null 2> "$T/badsize"; rc=$?
+[ $rc != 0 ] && grep -q "max-document-size=12Q: expected a size" "$T/badsize" \
+	&& ok "server -o max-document-size=12Q: refused ($(head -1 "$T/badsize"))" || notok "bad max-document-size: exit $rc: $(cat "$T/badsize")"
+rm -f "$T/out-plot"/*
+timeout 90 ipptool -T 60 -t -f "$T/big.meta" -d filetype=application/vnd.locus-meta "$URI/plot" "$T/msg.test" > "$T/jbig" 2>&1
+[ "$(jobstate "$T/jbig")" = aborted ] && grep -q "job-state-message (textWithoutLanguage) = the document is $(wc -c < "$T/big.meta") bytes, more than this server takes (max-document-size=1048576)" "$T/jbig" \
+	&& grep -q "document-unprintable-error" "$T/jbig" && [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
+	&& ok "a $(wc -c < "$T/big.meta")-byte document over max-document-size=1M: aborted, document-unprintable-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jbig")" \
+	|| notok "oversized document: $(grep "job-state" "$T/jbig" | head -4)"
+print "$M" application/vnd.locus-meta plot "$T/j11" && [ "$(jobstate "$T/j11")" = completed ] \
+	&& ok "the plotter's queue goes on after it" || notok "after the oversized one: $(jobstate "$T/j11")"
 
 # IPP Everywhere: ipp-everywhere.test with a meta document for its Print-Job checks (its raster
 # print tests need the PWG's raster samples, which Debian does not ship: ipptool skips them).

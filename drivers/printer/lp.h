@@ -12,10 +12,11 @@
 #include <pappl/pappl.h>
 #include "device/device.h"
 
-/* The formats Locus reads; the SVG importer will add LP_FMT_SVG here and a filter in lp_job.c
- * (lp_filters_add): see "Adding a format" in docs/printer.md. */
+/* The formats Locus reads (each a filter in lp_job.c, lp_filters_add; "Adding a format" in
+ * docs/printer.md). */
 #define LP_FMT_META "application/vnd.locus-meta"
 #define LP_FMT_HPGL "application/vnd.hp-HPGL"
+#define LP_FMT_SVG "image/svg+xml"
 
 /* The families of drivers: what the device writes, and so which native format PAPPL sends raw. */
 enum { LP_HPGL, LP_PS, LP_PDF, LP_FILM, LP_RASTER, LP_SVG };
@@ -46,7 +47,8 @@ void lp_create_cb(pappl_printer_t *printer, void *cbdata);
 /* The driver of a job's printer. */
 const lp_driver_t *lp_job_driver(pappl_job_t *job);
 
-/* Register the job filters (meta and HP-GL to each native format) and the MIME sniffer. */
+/* Register the job filters (meta and SVG to each native format, HP-GL to HP-GL) and the MIME
+ * sniffer. */
 void lp_filters_add(pappl_system_t *system);
 /* Replay the meta file at path onto the job's device: the Locus device of the printer's
  * driver, with the job's options; the output goes to device (or, for serial:/hid: printers,
@@ -56,6 +58,14 @@ void lp_filters_add(pappl_system_t *system);
 bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path, int count);
 /* How long (seconds) a job on a serial:/hid: printer waits for its device to come back. */
 void lp_set_resume_wait(int seconds);
+/* The largest document (bytes, 0: no limit) a job may bring: server option max-document-size.
+ * PAPPL spools the whole document before any of its callbacks sees the job, so a larger one
+ * is aborted (job-state-message says why, job-state-reasons document-unprintable-error) before
+ * anything is read or sent. */
+#define LP_MAX_DOC_DEFAULT (100LL << 20)
+void lp_set_max_document(long long bytes);
+/* true when the job's document is within the limit; false with the job's message set. */
+bool lp_job_size_ok(pappl_job_t *job);
 
 /* The raster callbacks (IPP Everywhere: image/pwg-raster, image/urf). */
 bool lp_rstartjob(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t *device);

@@ -15,10 +15,31 @@
 
 static int resume_wait = 600;      /* seconds a job waits for a link device to come back */
 static pthread_mutex_t link_lock = PTHREAD_MUTEX_INITIALIZER;
+static long long max_doc = LP_MAX_DOC_DEFAULT;   /* bytes; 0: no limit */
 
 void lp_set_resume_wait(int seconds)
 {
 	resume_wait = seconds;
+}
+
+void lp_set_max_document(long long bytes)
+{
+	max_doc = bytes;
+}
+
+bool lp_job_size_ok(pappl_job_t *job)
+{
+	struct stat st;
+	const char *path = papplJobGetFilename(job);
+	if (!max_doc || !path || stat(path, &st) || (long long)st.st_size <= max_doc)
+		return true;
+	char msg[256];
+	snprintf(msg, sizeof msg, "the document is %lld bytes, more than this server takes (max-document-size=%lld)",
+		(long long)st.st_size, max_doc);
+	papplLogJob(job, PAPPL_LOGLEVEL_ERROR, "%s", msg);
+	papplJobSetMessage(job, "%s", msg);
+	papplJobSetReasons(job, PAPPL_JREASON_DOCUMENT_UNPRINTABLE_ERROR, PAPPL_JREASON_NONE);
+	return false;
 }
 
 /* What the first bytes of an application/octet-stream document say it is. */
@@ -277,6 +298,8 @@ bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path, in
 static bool meta_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 {
 	(void)data;
+	if (!lp_job_size_ok(job))
+		return false;
 	return lp_play_meta(job, device, papplJobGetFilename(job), 1);
 }
 
@@ -289,6 +312,8 @@ static bool hpgl_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 	const char *path = papplJobGetFilename(job), *name = papplJobGetName(job) ? papplJobGetName(job) : "document";
 	if (!d || d->family != LP_HPGL)
 		return doc_error(job, "HP-GL goes to HP-GL printers only");
+	if (!lp_job_size_ok(job))
+		return false;
 	FILE *f = fopen(path, "rb");
 	if (!f)
 		return job_error(job, "cannot open the spooled document");
@@ -324,6 +349,4 @@ void lp_filters_add(pappl_system_t *system)
 			papplSystemAddMIMEFilter(system, LP_FMT_META, f, meta_filter, NULL);
 	}
 	papplSystemAddMIMEFilter(system, LP_FMT_HPGL, LP_FMT_HPGL, hpgl_filter, NULL);
-	/* image/svg+xml: when the SVG importer lands, a filter here that imports the document to a
-	 * meta file in the spool directory and calls lp_play_meta (docs/printer.md) */
 }

@@ -1,5 +1,6 @@
 /* lp_main.c: locus-printer, an IPP Everywhere printer application (PAPPL) for the Locus devices. */
 #include <errno.h>
+#include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,6 +57,7 @@ static void usage(void *data)
 		"  admin-group=GROUP       who may add, change and delete printers (with auth-service)\n"
 		"  auth-service=SERVICE    the PAM service that checks administrators' passwords\n"
 		"  resume-wait=SECONDS     how long a serial:/hid: job waits for its device (600)\n"
+		"  max-document-size=SIZE  larger documents are refused (default 100M; k, M, G; 0 none)\n"
 		"  server-options=LIST     PAPPL's: no-web-interface, web-security, no-tls, ...\n"
 		"Formats: application/vnd.locus-meta (text and binary), application/vnd.hp-HPGL,\n"
 		"image/pwg-raster and image/urf (IPP Everywhere), and each device's own format raw.\n"
@@ -148,6 +150,22 @@ static bool private_socket(pappl_system_t *sys, void *data)
 	return false;   /* once */
 }
 
+/* A size: bytes, or with k, M or G (1024, 1024^2, 1024^3); 0 is no limit. -1 when malformed. */
+static long long parse_size(const char *v)
+{
+	char *end;
+	errno = 0;
+	long long n = strtoll(v, &end, 10);
+	if (end == v || n < 0 || errno)
+		return -1;
+	int shift = *end == 'k' || *end == 'K' ? 10 : *end == 'M' ? 20 : *end == 'G' ? 30 : 0;
+	if (shift)
+		end++;
+	if (*end || n > (LLONG_MAX >> shift))
+		return -1;
+	return n << shift;
+}
+
 /* PAPPL's system for every subcommand that needs one; the server also listens (localhost unless
  * told otherwise) and keeps its state in the spool directory. */
 static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *data)
@@ -165,6 +183,12 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 		}
 		port = (int)p;
 	}
+	long long maxdoc = LP_MAX_DOC_DEFAULT;
+	if ((v = cupsGetOption("max-document-size", num_options, options)) && (maxdoc = parse_size(v)) < 0) {
+		fprintf(stderr, "locus-printer: max-document-size=%s: expected a size in bytes (k, M or G after it), 0 for none\n", v);
+		return NULL;
+	}
+	lp_set_max_document(maxdoc);
 	if (is_server && make_spool(cupsGetOption("spool-directory", num_options, options)))
 		return NULL;
 	if (!is_server)   /* a client subcommand: nothing is spooled here */
