@@ -163,15 +163,16 @@ EOF
 ipptool -T 10 -t "$URI/plot" "$T/formats.test" > "$T/gpa.v" 2>&1
 fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.v")
 case ",$fmts," in
-*,application/vnd.locus-meta,*application/vnd.hp-HPGL,* | *,application/vnd.hp-HPGL,*application/vnd.locus-meta,*)
-	ok "document-format-supported on the plotter: $fmts" ;;
+*,application/vnd.locus-meta,*) case ",$fmts," in *,application/vnd.hp-HPGL,*) case ",$fmts," in *,image/svg+xml,*)
+	ok "document-format-supported on the plotter: $fmts" ;; *) notok "no SVG on the plotter: $fmts" ;; esac ;;
+	*) notok "no HP-GL on the plotter: $fmts" ;; esac ;;
 *) notok "document-format-supported on the plotter: $fmts" ;;
 esac
 ipptool -T 10 -t "$URI/ps" "$T/formats.test" > "$T/gpa.ps" 2>&1
 fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.ps")
 case ",$fmts," in
 *,application/vnd.hp-HPGL,*) notok "the PostScript printer claims HP-GL: $fmts" ;;
-*,application/vnd.locus-meta,*) ok "document-format-supported on the PostScript printer: $fmts" ;;
+*,application/vnd.locus-meta,*image/svg+xml,* | *,image/svg+xml,*application/vnd.locus-meta,*) ok "document-format-supported on the PostScript printer: $fmts" ;;
 *) notok "PostScript printer formats: $fmts" ;;
 esac
 
@@ -225,6 +226,36 @@ if [ -d "$CORPUS" ]; then
 else
 	ok "HP-GL corpus job # SKIP ../shared is absent"
 fi
+
+# SVG (image/svg+xml): the SVG importer of locus-meta import makes it a meta file, which the
+# plotter replays: the file is what locus-meta import then locus-hpgl --profile 7475a write
+cat > "$T/drawing.svg" <<'SVG'
+<?xml version="1.0" encoding="UTF-8"?>
+<svg xmlns="http://www.w3.org/2000/svg" width="120mm" height="80mm" viewBox="0 0 120 80">
+  <rect x="5" y="5" width="110" height="70" fill="none" stroke="black" stroke-width="0.5"/>
+  <circle cx="40" cy="40" r="25" fill="none" stroke="red" stroke-width="0.3"/>
+  <path d="M 70 60 C 80 10, 100 10, 110 60" fill="none" stroke="blue" stroke-width="0.3"/>
+  <polyline points="10,70 30,50 50,70 70,50" fill="none" stroke="green" stroke-width="0.3"/>
+</svg>
+SVG
+"$BIN/locus-meta" import "$T/drawing.svg" -o "$T/drawing.meta" 2> /dev/null && "$BIN/locus-hpgl" --profile 7475a "$T/drawing.meta" -o "$T/drawing.hpgl" 2> /dev/null \
+	|| notok "locus-meta import and locus-hpgl make the SVG's HP-GL"
+rm -f "$T/out-plot"/*
+print "$T/drawing.svg" image/svg+xml plot "$T/js" && f=$(newest "$T/out-plot") && [ -n "$f" ] && cmp -s "$T/out-plot/$f" "$T/drawing.hpgl" \
+	&& "$SEG" "$T/out-plot/$f" > "$T/svg.seg" 2> /dev/null && [ -s "$T/svg.seg" ] \
+	&& ok "an SVG job (image/svg+xml) plots: locus-meta import then locus-hpgl --profile 7475a's bytes ($(wc -c < "$T/drawing.hpgl") bytes, $(wc -l < "$T/svg.seg") segments)" \
+	|| notok "SVG job: $(grep -i "fail\|job-state" "$T/js" | head -3) $(cmp "$T/out-plot/$f" "$T/drawing.hpgl" 2>&1)"
+rm -f "$T/out-plot"/*
+print "$T/drawing.svg" application/octet-stream plot "$T/js2" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/drawing.hpgl" \
+	&& ok "the SVG sent as application/octet-stream is typed by its first bytes and plots the same" \
+	|| notok "SVG as octet-stream: $(grep -i "fail\|job-state" "$T/js2" | head -3)"
+printf '<?xml version="1.0"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">\n<path d="M 1 1 L 5 5"\n</svg>\n' > "$T/broken.svg"
+rm -f "$T/out-plot"/*
+timeout 90 ipptool -T 60 -t -f "$T/broken.svg" -d filetype=image/svg+xml "$URI/plot" "$T/msg.test" > "$T/jsb" 2>&1
+[ "$(jobstate "$T/jsb")" = aborted ] && grep -q "document-format-error" "$T/jsb" && grep -q "job-state-message.*:[0-9]*:[0-9]*:" "$T/jsb" \
+	&& [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
+	&& ok "a broken SVG: aborted with document-format-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jsb" | cut -c1-150)" \
+	|| notok "broken SVG: $(grep "job-state" "$T/jsb" | head -4)"
 
 # A PostScript Level 2 printer: what locus-play -d ps -O level=2 writes
 "$BIN/locus-play" -d ps -O level=2 "$M" -o "$T/strokes.ps" 2> /dev/null

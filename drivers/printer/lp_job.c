@@ -10,6 +10,7 @@
 #include <unistd.h>
 #include "hpgl/hpgl.h"
 #include "hpgl/read/hpgl_read.h"
+#include "import/svg_import.h"
 #include "printer/lp.h"
 #include "cli/run.h"
 
@@ -59,6 +60,10 @@ static const char *sniff(const unsigned char *h, size_t n, void *data)
 	for (size_t i = 0; i < sizeof first / sizeof first[0]; i++)
 		if (k + strlen(first[i]) <= n && !memcmp(h + k, first[i], strlen(first[i])))
 			return LP_FMT_HPGL;
+	/* SVG: XML (the importer's own test) with an <svg element in the first bytes PAPPL shows */
+	for (size_t i = 0; svgimp_is(h, n) && i + 4 <= n; i++)
+		if (!memcmp(h + i, "<svg", 4))
+			return LP_FMT_SVG;
 	return NULL;
 }
 
@@ -337,6 +342,86 @@ static bool hpgl_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 	return ok;
 }
 
+static int file_write(void *user, const void *buf, size_t n)
+{
+	return fwrite(buf, 1, n, user) == n ? 0 : -1;
+}
+
+/* An SVG document: imported by the SVG importer (drivers/import, as `locus-meta import` does
+ * with its defaults: curves flattened to 0.0125 mm, one meta pixel per CSS px, pens by colour
+ * from the 7475A's carousel) into a meta file in the spool directory, then replayed as any meta
+ * job. A broken document fails alone with the importer's line (NAME:LINE:COL). */
+static bool svg_filter(pappl_job_t *job, pappl_device_t *device, void *data)
+{
+	(void)data;
+	const char *path = papplJobGetFilename(job), *name = papplJobGetName(job) ? papplJobGetName(job) : "document";
+	if (!lp_job_size_ok(job))
+		return false;
+	FILE *in = fopen(path, "rb");
+	struct stat st;
+	if (!in || fstat(fileno(in), &st)) {
+		if (in)
+			fclose(in);
+		return job_error(job, "cannot open the spooled document");
+	}
+	size_t n = (size_t)st.st_size;
+	unsigned char *buf = malloc(n ? n : 1);
+	size_t got = buf ? fread(buf, 1, n, in) : 0;
+	fclose(in);
+	if (!buf || got != n) {
+		free(buf);
+		return job_error(job, buf ? "cannot read the spooled document" : "out of memory reading the document");
+	}
+	char err[1024];
+	if (!svgimp_is(buf, n)) {
+		free(buf);
+		snprintf(err, sizeof err, "%s: not an SVG document (expected XML: '<' after blanks at byte 0)", name);
+		return doc_error(job, err);
+	}
+	char tmp[1200];
+	snprintf(tmp, sizeof tmp, "%s/locus-svg-XXXXXX", lp_spool_dir());
+	int fd = mkstemp(tmp);
+	if (fd >= 0)
+		unlink(tmp);
+	FILE *f = fd >= 0 ? fdopen(fd, "w+") : NULL;
+	if (!f) {
+		if (fd >= 0)
+			close(fd);
+		free(buf);
+		return job_error(job, "cannot make a temporary in the spool directory");
+	}
+	svgimp_opts_t o = { .tol_mm = 0.0125, .dpi = 96, .dedupe_mm = 0.05, .quiet = 1 };
+	meta_writer_t *w = meta_writer_new(file_write, f, META_ENC_TEXT);
+	int rc = -70;
+	snprintf(err, sizeof err, "out of memory importing the SVG document");
+	lp_lock();   /* the importer and libxml2 run one document at a time */
+	if (w)
+		rc = svgimp_import(buf, n, name, &o, w, err, sizeof err);
+	lp_unlock();
+	free(buf);
+	if (w && meta_writer_close(w) < 0 && !rc) {
+		rc = -74;
+		snprintf(err, sizeof err, "cannot write the imported meta file in the spool directory");
+	}
+	if (fflush(f) && !rc) {
+		rc = -74;
+		snprintf(err, sizeof err, "cannot write the imported meta file in the spool directory");
+	}
+	bool ok;
+	if (rc == -65)
+		ok = doc_error(job, err);
+	else if (rc)
+		ok = job_error(job, err);
+	else {
+		char meta[32];
+		snprintf(meta, sizeof meta, "/dev/fd/%d", fileno(f));
+		papplLogJob(job, PAPPL_LOGLEVEL_INFO, "SVG document imported");
+		ok = lp_play_meta(job, device, meta, 1);
+	}
+	fclose(f);
+	return ok;
+}
+
 void lp_filters_add(pappl_system_t *system)
 {
 	papplSystemSetMIMECallback(system, sniff, NULL);
@@ -345,8 +430,10 @@ void lp_filters_add(pappl_system_t *system)
 		int seen = 0;
 		for (size_t j = 0; j < k; j++)
 			seen |= !strcmp(lp_driver_at(j)->format, f);
-		if (!seen)
+		if (!seen) {
 			papplSystemAddMIMEFilter(system, LP_FMT_META, f, meta_filter, NULL);
+			papplSystemAddMIMEFilter(system, LP_FMT_SVG, f, svg_filter, NULL);
+		}
 	}
 	papplSystemAddMIMEFilter(system, LP_FMT_HPGL, LP_FMT_HPGL, hpgl_filter, NULL);
 }

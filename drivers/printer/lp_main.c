@@ -59,7 +59,7 @@ static void usage(void *data)
 		"  resume-wait=SECONDS     how long a serial:/hid: job waits for its device (600)\n"
 		"  max-document-size=SIZE  larger documents are refused (default 100M; k, M, G; 0 none)\n"
 		"  server-options=LIST     PAPPL's: no-web-interface, web-security, no-tls, ...\n"
-		"Formats: application/vnd.locus-meta (text and binary), application/vnd.hp-HPGL,\n"
+		"Formats: application/vnd.locus-meta (text and binary), image/svg+xml, application/vnd.hp-HPGL,\n"
 		"image/pwg-raster and image/urf (IPP Everywhere), and each device's own format raw.\n"
 		"  --help, --version\n", stdout);
 }
