@@ -75,6 +75,25 @@ bool lp_rwriteline(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t
 bool lp_rendpage(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t *device, unsigned page);
 bool lp_rendjob(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t *device);
 
+/* One device link open at a time, server-wide (lp_link.c says why): jobs, status probes and
+ * PAPPL's writes through the schemes hold it. trylock: 1 when taken. */
+void lp_link_lock(void);
+int lp_link_trylock(void);
+void lp_link_unlock(void);
+/* The printer-state-reasons locus-printer keeps from a plotter's own answers. */
+#define LP_PLOT_REASONS (PAPPL_PREASON_MEDIA_NEEDED | PAPPL_PREASON_OTHER)
+/* The plotter's answers to ESC.O (32 paper lever raised, 16 VIEW pressed, 8 buffer empty), OS
+ * (32 error) and OE (error code; 8 a vector while the pinch wheels were raised) as reasons:
+ * media-needed for the lever, other for VIEW and errors; msg says it in words ("" if none). */
+pappl_preason_t lp_plot_reasons(long esc_o, long os, long oe, char *msg, size_t n);
+/* Ask the plotter on link (a Locus link name with flow=escb) for ESC.O, OS and OE, the link
+ * opened with flow=none for those few bytes (the caller holds the link lock): 1 with *reasons and
+ * msg, 0 when the link cannot answer (no flow=escb), -1 when the device is not there or did
+ * not answer (msg says which). */
+int lp_link_probe(const char *link, pappl_preason_t *reasons, char *msg, size_t n);
+/* PAPPL's status callback (driver data) for serial:/hid: printers: lp_link_probe when idle. */
+bool lp_status_cb(pappl_printer_t *printer);
+
 /* Locus's device links as PAPPL schemes: serial: and hid:. */
 void lp_links_add(void);
 /* 1 when the URI is one of them; then the Locus output name for it into name. */

@@ -130,7 +130,6 @@ static void identify(pappl_printer_t *printer, pappl_identify_actions_t actions,
 bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *device_uri,
 		const char *device_id, pappl_pr_driver_data_t *data, ipp_t **attrs, void *cbdata)
 {
-	(void)device_uri;
 	(void)device_id;
 	(void)cbdata;
 	const lp_driver_t *d = lp_driver_find(driver_name);
@@ -156,6 +155,10 @@ bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *d
 	data->scaling_default = PAPPL_SCALING_AUTO;
 	data->orient_default = IPP_ORIENT_PORTRAIT;
 	data->identify_cb = identify;
+	/* a plotter on a Locus link is asked for its state when idle (lp_link.c) */
+	char link[1024];
+	if (d->family == LP_HPGL && lp_link_name(device_uri, link, sizeof link))
+		data->status_cb = lp_status_cb;
 	data->identify_default = PAPPL_IDENTIFY_ACTIONS_DISPLAY;
 	data->identify_supported = PAPPL_IDENTIFY_ACTIONS_DISPLAY;
 	/* what IPP Everywhere asks for that PAPPL 1.3 leaves to the driver: no preferred-attributes

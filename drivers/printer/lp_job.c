@@ -15,7 +15,6 @@
 #include "cli/run.h"
 
 static int resume_wait = 600;      /* seconds a job waits for a link device to come back */
-static pthread_mutex_t link_lock = PTHREAD_MUTEX_INITIALIZER;
 static long long max_doc = LP_MAX_DOC_DEFAULT;   /* bytes; 0: no limit */
 
 void lp_set_resume_wait(int seconds)
@@ -181,10 +180,10 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 {
 	char name[2300];
 	snprintf(name, sizeof name, "%s%c%s=%s", link, strchr(link, '?') ? '&' : '?', resume ? "resume" : "journal", jnl);
-	pthread_mutex_lock(&link_lock);
+	lp_link_lock();
 	io_transport_t *t = io_open_write(name, err, n);
 	if (!t) {
-		pthread_mutex_unlock(&link_lock);
+		lp_link_unlock();
 		return 74;
 	}
 	char buf[1024];
@@ -212,7 +211,7 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 	}
 	if (io_close_err(t, st && st != 1 ? IO_ABORT : IO_COMMIT, st ? NULL : err, n) && !st)
 		st = 74;
-	pthread_mutex_unlock(&link_lock);
+	lp_link_unlock();
 	return st;
 }
 
@@ -230,29 +229,63 @@ static long journal_safe(const char *path)
 	return safe;
 }
 
+/* The plotter's own state before a try (ESC.O, OS, OE: lp_link_probe) as the printer's reasons.
+ * true when the job must wait: the paper lever is raised or VIEW is pressed (a plotter then
+ * drops or holds what it gets); msg says why. */
+static bool plotter_holds(pappl_printer_t *pr, const char *link, char *msg, size_t n)
+{
+	pappl_preason_t r;
+	lp_link_lock();
+	int rc = lp_link_probe(link, &r, msg, n);
+	lp_link_unlock();
+	if (rc <= 0)
+		return false;   /* no answer: the try says what is wrong */
+	papplPrinterSetReasons(pr, r, LP_PLOT_REASONS & ~r);
+	return (r & PAPPL_PREASON_MEDIA_NEEDED) || ((r & PAPPL_PREASON_OTHER) && strstr(msg, "VIEW"));
+}
+
 /* A job on a serial: or hid: printer: journaled; when the device goes away mid-job the job waits
  * (printer offline, the job's message saying so) and resumes at the journal's point when the
- * device is back, so no stroke is lost or drawn twice. */
+ * device is back, so no stroke is lost or drawn twice. Before each try the plotter is asked for
+ * its state (when its link answers, flow=escb): a raised paper lever shows as media-needed and
+ * the job waits for it to be lowered. */
 static bool play_link(pappl_job_t *job, int fd, const char *link, int hpgl)
 {
 	pappl_printer_t *pr = papplJobGetPrinter(job);
-	char jnl[1200], err[1024];
+	char jnl[1200], err[1024], why[512];
 	snprintf(jnl, sizeof jnl, "%s/%s-job%d.jnl", lp_spool_dir(), papplPrinterGetName(pr), papplJobGetID(job));
 	unlink(jnl);
-	int st = send_link(job, fd, link, jnl, 0, hpgl, err, sizeof err);
 	time_t give_up = time(NULL) + resume_wait;
-	int told = 0;
-	while ((st == 74 || st == 75) && !papplJobIsCanceled(job) && time(NULL) < give_up) {
+	int told = 0, held = 0, tries = 0, st = 74;
+	snprintf(err, sizeof err, "the device did not come back");
+	while (!papplJobIsCanceled(job)) {
+		if (plotter_holds(pr, link, why, sizeof why)) {
+			if (!held++)
+				papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s", why, resume_wait);
+			papplJobSetMessage(job, "waiting for the plotter: %s", why);
+			snprintf(err, sizeof err, "%s", why);
+			if (time(NULL) >= give_up)
+				break;
+			sleep(1);
+			continue;
+		}
+		if (held) {
+			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the plotter is ready again");
+			papplJobSetMessage(job, "printing");
+			held = 0;
+		}
+		long safe = tries ? journal_safe(jnl) : -1;
+		st = send_link(job, fd, link, jnl, safe >= 0, hpgl, err, sizeof err);
+		if (tries++ && st != 74)
+			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the device is back: %s at byte %ld of the job (the journal's point)",
+				safe >= 0 ? "resumed" : "started again", safe >= 0 ? safe : 0);
+		if ((st != 74 && st != 75) || time(NULL) >= give_up)
+			break;
 		papplPrinterSetReasons(pr, PAPPL_PREASON_OFFLINE, PAPPL_PREASON_NONE);
 		papplJobSetMessage(job, "waiting for the device: %s", err);
 		if (st == 75 || !told++)
 			papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s for the device to resume", err, resume_wait);
 		sleep(1);
-		long safe = journal_safe(jnl);
-		st = send_link(job, fd, link, jnl, safe >= 0, hpgl, err, sizeof err);
-		if (st != 74)
-			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the device is back: %s at byte %ld of the job (the journal's point)",
-				safe >= 0 ? "resumed" : "started again", safe >= 0 ? safe : 0);
 	}
 	papplPrinterSetReasons(pr, PAPPL_PREASON_NONE, PAPPL_PREASON_OFFLINE);
 	unlink(jnl);
