@@ -265,6 +265,21 @@ print "$M" application/vnd.locus-meta ps "$T/j4" && f=$(newest "$T/out-ps") && c
 	&& ok "the PostScript Level 2 printer's output is locus-play -d ps -O level=2's, byte for byte" \
 	|| notok "PS job: $(grep -i "fail\|job-state" "$T/j4" | head -3) $(cmp "$T/out-ps/$f" "$T/strokes.ps" 2>&1)"
 
+# Jobs on two printers at once: PAPPL runs them in two threads; the device framework (one
+# replay at a time, lp_lock) and the device links (one open at a time, lp_link_lock) take them in
+# turn, and each device gets exactly its own bytes
+rm -f "$T/out-plot"/* "$T/out-ps"/*
+timeout 120 ipptool -T 60 -t -f "$META" -d filetype=application/vnd.locus-meta "$URI/plot" "$IPPT/print-job-and-wait.test" > "$T/jc1" 2>&1 &
+c1=$!
+timeout 120 ipptool -T 60 -t -f "$M" -d filetype=application/vnd.locus-meta "$URI/ps" "$IPPT/print-job-and-wait.test" > "$T/jc2" 2>&1 &
+c2=$!
+wait $c1; r1=$?
+wait $c2; r2=$?
+f1=$(newest "$T/out-plot") f2=$(newest "$T/out-ps")
+[ $r1 = 0 ] && [ $r2 = 0 ] && [ -n "$f1" ] && cmp -s "$T/out-plot/$f1" "$T/job.hpgl" && [ -n "$f2" ] && cmp -s "$T/out-ps/$f2" "$T/strokes.ps" \
+	&& ok "two jobs at once (the contour plot to the plotter, strokes to PostScript): both complete with their own bytes" \
+	|| notok "two jobs at once: $r1 $r2: $(grep -i "fail\|job-state" "$T/jc1" "$T/jc2" | head -4)"
+
 # IPP Everywhere raster: a PNG (PAPPL turns it into raster rows, lp_raster.c into a meta image)
 # plots as hatched rows: HP-GL that the HP-GL reader reads, with pen-down strokes
 "$BIN/locus-raster" "$M" -o "$T/strokes.png" 2> /dev/null

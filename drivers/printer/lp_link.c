@@ -320,8 +320,18 @@ static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_c
 	unlink(tmp);
 	char out[32];
 	snprintf(out, sizeof out, "/dev/fd/%d", fd);
+	/* hidapi and libusb are not called while a job holds a link: in the server the list then
+	 * leaves the bridges out and says so (the `devices` subcommand runs in its own process) */
+	if (!lp_link_trylock()) {
+		close(fd);
+		if (err_cb)
+			err_cb("hid: bridges not listed: a job is using a device link", err_data);
+		return false;
+	}
 	io_transport_t *t = io_open_write(out, err, sizeof err);
-	if (!t || io_list_devices(t, err, sizeof err) < 0) {
+	int listed = t && io_list_devices(t, err, sizeof err) >= 0;
+	lp_link_unlock();
+	if (!listed) {
 		if (t)
 			io_close(t, IO_ABORT);
 		if (err_cb && !strstr(err, "no "))
