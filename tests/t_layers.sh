@@ -20,7 +20,6 @@ circle: drivers/io/escb.c drivers/io/file.c drivers/io/hid.c drivers/io/link_jou
 circle: core/model_eval.c core/model_param.c   # core/ (not this phase): model_param and model_eval recurse into each other; fold model_param.c into model_eval.c
 circle: core/scene.c core/scene_shape.c   # core/ (not this phase): scene_parse_colour and scene_warn, in scene.c, go to scene_lex.c
 circle: core/scene_2d.c core/scene_render.c   # core/ (not this phase): scene_add_warning, in scene_render.c, goes to scene_lex.c
-circle: drivers/printer/lp_drivers.c drivers/printer/lp_job.c drivers/printer/lp_main.c drivers/printer/lp_raster.c   # the printer application (merged after the move): lp_main's lock and spool directory, lp_job's filters and the driver table call each other; next: the shared state to lp_state.c and the driver table apart from its PAPPL callbacks
 circle: meta/read_binary.c meta/read_text.c meta/reader.c   # meta/ (not this phase): meta_rd_fail, meta_rd_fill, meta_rd_runs go to a file of their own, as image/imgread_io.c
 LIST
 python3 tests/tools/layers.py check "$T/allow" "$(dirname "$TESTBIN")" || FAILED=1

@@ -1,5 +1,10 @@
 /* lp.h: locus-printer's parts: the driver table, the job filters, the raster path, device links.
  *
+ * Calls go one way: lp_main (the program, the system) -> lp_caps (IPP capabilities, PAPPL's
+ * driver callbacks) -> lp_raster (raster jobs) -> lp_job (filters, replay, sending) ->
+ * lp_drivers (the table), lp_link (serial:/hid: schemes, status, the link lock), lp_state
+ * (spool directory, replay lock); no file calls one above it.
+ *
  * locus-printer is a PAPPL printer application (papplMainloop): every Locus device is a driver
  * (lp_drivers.c), a job in a Locus format is replayed onto the printer's device through the same
  * device framework as the locus-* programs (lp_job.c), IPP Everywhere raster (PWG raster, Apple
@@ -33,12 +38,12 @@ typedef struct {
 	int dpi;                    /* raster jobs are rendered at this resolution */
 } lp_driver_t;
 
-/* The driver table (built once by lp_drivers_init) and lookup by name. */
+/* The driver table (built once by lp_drivers_init) and lookup by name (lp_drivers.c). */
 void lp_drivers_init(void);
 size_t lp_driver_count(void);
 const lp_driver_t *lp_driver_at(size_t k);
 const lp_driver_t *lp_driver_find(const char *name);
-/* The PAPPL callbacks of the driver table. */
+/* The PAPPL callbacks of the driver table (lp_caps.c). */
 bool lp_driver_cb(pappl_system_t *system, const char *driver_name, const char *device_uri,
 		const char *device_id, pappl_pr_driver_data_t *data, ipp_t **attrs, void *cbdata);
 const char *lp_autoadd_cb(const char *device_info, const char *device_uri, const char *device_id,
@@ -99,7 +104,8 @@ void lp_links_add(void);
 /* 1 when the URI is one of them; then the Locus output name for it into name. */
 int lp_link_name(const char *uri, char *name, size_t n);
 
-/* The spool directory (set by the system callback), for journals and temporaries. */
+/* The spool directory (set by the system callback), for journals and temporaries (lp_state.c). */
+void lp_set_spool_dir(const char *dir);
 const char *lp_spool_dir(void);
 /* One device link replay at a time (the device framework's per-process hooks). */
 void lp_lock(void);

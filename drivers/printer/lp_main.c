@@ -1,7 +1,6 @@
 /* lp_main.c: locus-printer, an IPP Everywhere printer application (PAPPL) for the Locus devices. */
 #include <errno.h>
 #include <limits.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,22 +15,6 @@
 static char spool_dir[1024];
 static char state_file[1100];
 static int is_server;
-static pthread_mutex_t replay_lock = PTHREAD_MUTEX_INITIALIZER;
-
-const char *lp_spool_dir(void)
-{
-	return spool_dir[0] ? spool_dir : papplGetTempDir();
-}
-
-void lp_lock(void)
-{
-	pthread_mutex_lock(&replay_lock);
-}
-
-void lp_unlock(void)
-{
-	pthread_mutex_unlock(&replay_lock);
-}
 
 static void usage(void *data)
 {
@@ -123,6 +106,7 @@ static int make_spool(const char *opt)
 	}
 	chmod(spool_dir, 0700);
 	snprintf(state_file, sizeof state_file, "%s/locus-printer.state", spool_dir);
+	lp_set_spool_dir(spool_dir);
 	return 0;
 }
 
@@ -191,8 +175,10 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 	lp_set_max_document(maxdoc);
 	if (is_server && make_spool(cupsGetOption("spool-directory", num_options, options)))
 		return NULL;
-	if (!is_server)   /* a client subcommand: nothing is spooled here */
+	if (!is_server) {   /* a client subcommand: nothing is spooled here */
 		snprintf(spool_dir, sizeof spool_dir, "%s", papplGetTempDir());
+		lp_set_spool_dir(spool_dir);
+	}
 	pappl_system_t *sys = papplSystemCreate(server_options(cupsGetOption("server-options", num_options, options)),
 		"locus-printer", port, "_print,_universal", spool_dir,
 		cupsGetOption("log-file", num_options, options), log_level(cupsGetOption("log-level", num_options, options)),
