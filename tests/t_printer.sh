@@ -115,6 +115,10 @@ if command -v umockdev-wrapper > /dev/null && [ -x "$EMU_USB" ]; then
 	"$EMU_USB" -- "$P" devices > "$T/dev.usb" 2>&1
 	grep -q '^usb://' "$T/dev.usb" && grep -q "CMD:HPGL" "$T/dev.usb" \
 		&& ok "devices lists the emulated USB plotter through PAPPL's usb: scheme, with its IEEE-1284 ID" || notok "devices (usb): $(cat "$T/dev.usb")"
+	"$EMU_USB" -- "$BIN/locus-play" --list-devices > "$T/lpl.usb" 2>&1
+	uname=$(grep -o '^usb:[^ ]*' "$T/lpl.usb" | head -1)
+	[ -n "$uname" ] && grep -qx "locus-$uname" "$T/dev.usb" \
+		&& ok "and as locus-$uname, Locus's journaled USB link, named as locus-play --list-devices names it" || notok "devices (locus-usb): $(cat "$T/dev.usb" "$T/lpl.usb")"
 else
 	ok "devices # SKIP umockdev or the USB emulator is missing"
 fi
@@ -256,7 +260,7 @@ rm -f "$T/out-plot"/*
 timeout 90 ipptool -T 60 -t -f "$T/broken.svg" -d filetype=image/svg+xml "$URI/plot" "$T/msg.test" > "$T/jsb" 2>&1
 [ "$(jobstate "$T/jsb")" = aborted ] && grep -q "document-format-error" "$T/jsb" && grep -q "job-state-message.*:[0-9]*:[0-9]*:" "$T/jsb" \
 	&& [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
-	&& ok "a broken SVG: aborted with document-format-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jsb" | cut -c1-150)" \
+	&& ok "a broken SVG: aborted with document-format-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jsb" | tail -1 | cut -c1-150)" \
 	|| notok "broken SVG: $(grep "job-state" "$T/jsb" | head -4)"
 
 # A PostScript Level 2 printer: what locus-play -d ps -O level=2 writes
@@ -381,7 +385,7 @@ rm -f "$T/out-plot"/*
 timeout 90 ipptool -T 60 -t -f "$T/big.meta" -d filetype=application/vnd.locus-meta "$URI/plot" "$T/msg.test" > "$T/jbig" 2>&1
 [ "$(jobstate "$T/jbig")" = aborted ] && grep -q "job-state-message (textWithoutLanguage) = the document is $(wc -c < "$T/big.meta") bytes, more than this server takes (max-document-size=1048576)" "$T/jbig" \
 	&& grep -q "document-unprintable-error" "$T/jbig" && [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
-	&& ok "a $(wc -c < "$T/big.meta")-byte document over max-document-size=1M: aborted, document-unprintable-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jbig")" \
+	&& ok "a $(wc -c < "$T/big.meta")-byte document over max-document-size=1M: aborted, document-unprintable-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jbig" | tail -1)" \
 	|| notok "oversized document: $(grep "job-state" "$T/jbig" | head -4)"
 print "$M" application/vnd.locus-meta plot "$T/j11" && [ "$(jobstate "$T/j11")" = completed ] \
 	&& ok "the plotter's queue goes on after it" || notok "after the oversized one: $(jobstate "$T/j11")"
@@ -503,6 +507,50 @@ EOF
 		|| notok "cancel: state $(jobstate "$T/wait3.out"), $n3 bytes, ends '$(tail -c 12 "$T/p3")': $(cat "$T/e3" "$T/cancel.out" | head -3)"
 else
 	ok "serial plotter # SKIP the emulator ($EMU_PLOTTER) is not built: make the test programs"
+fi
+
+# A USB printer-class plotter through Locus's own usb: link (locus-usb:VID:PID, journaled like
+# serial:), with the emulated USB plotter of tests/emu (umockdev). The emulator runs one program,
+# so a second server runs under it (its own port, socket, spool and log), gets the printer from
+# the CLI and one job, and is shut down. The emulator cannot plug a device back in within one
+# run, so the unplug shows the job waiting (offline) and, after resume-wait, aborted with the
+# link's line; the resume itself is the serial case's and t_usb.sh's.
+if command -v umockdev-wrapper > /dev/null && [ -x "$EMU_USB" ]; then
+	PORT2=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+	mkdir -p "$T/tmpu"
+	cat > "$T/usbjob.sh" <<EOF
+TMPDIR=$T/tmpu SNAP_COMMON=$T/tmpu
+export TMPDIR SNAP_COMMON
+"$P" server -o server-port=$PORT2 -o spool-directory=$T/spoolu.\$1 -o log-file=$T/logu.\$1 -o log-level=info -o resume-wait=3 > "$T/serveru.\$1" 2>&1 &
+s=\$!
+n=0
+while ! python3 -c 'import socket, sys; socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=1).close()' $PORT2 2> /dev/null && [ \$n -lt 100 ]; do sleep 0.1; n=\$((n + 1)); done
+sleep 0.5
+"$P" add -d usbplot -v locus-usb:03f0:0107 -m hpgl-7475a > "$T/addu.\$1" 2>&1
+timeout 90 ipptool -T 60 -t -f "$META" -d filetype=application/vnd.locus-meta ipp://localhost:$PORT2/ipp/print/usbplot "$T/msg.test" > "$T/usb.\$1" 2>&1 &
+c=\$!
+n=0
+while ! grep -q "waiting up to" "$T/logu.\$1" 2> /dev/null && kill -0 \$c 2> /dev/null && [ \$n -lt 300 ]; do sleep 0.1; n=\$((n + 1)); done
+ipptool -T 5 -t ipp://localhost:$PORT2/ipp/print/usbplot "$T/formats.test" > "$T/usbgpa.\$1" 2>&1
+wait \$c
+"$P" shutdown > /dev/null 2>&1
+n=0
+while kill -0 \$s 2> /dev/null && [ \$n -lt 100 ]; do sleep 0.1; n=\$((n + 1)); done
+kill \$s 2> /dev/null
+wait \$s
+exit 0
+EOF
+	"$EMU_USB" --expect "$T/job.hpgl" -- sh "$T/usbjob.sh" whole > "$T/eu1" 2>&1
+	[ "$(jobstate "$T/usb.whole")" = completed ] && grep -q "bytes=same" "$T/eu1" \
+		&& ok "a job on locus-usb:03f0:0107 (Locus's USB link, journaled) completes: the emulated USB plotter got locus-hpgl's bytes" \
+		|| notok "locus-usb job: $(jobstate "$T/usb.whole"); $(tail -1 "$T/eu1"); $(cat "$T/addu.whole"); $(grep "^[EW]" "$T/logu.whole" | tail -3)"
+	"$EMU_USB" --unplug-at 6000 -- sh "$T/usbjob.sh" unplug > "$T/eu2" 2>&1
+	[ "$(jobstate "$T/usb.unplug")" = aborted ] && grep -q "printer-state-reasons.*offline" "$T/usbgpa.unplug" \
+		&& grep -q "went away after 6000 bytes.*waiting up to 3 s" "$T/logu.unplug" \
+		&& ok "unplugged at byte 6000: the job waits (offline), then after resume-wait is aborted: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/usb.unplug" | tail -1 | cut -c1-160)" \
+		|| notok "locus-usb unplug: $(jobstate "$T/usb.unplug"); $(grep printer-state-reasons "$T/usbgpa.unplug"); $(grep "^[EW]" "$T/logu.unplug" | tail -3)"
+else
+	ok "locus-usb: printer # SKIP umockdev or the USB emulator is missing"
 fi
 
 # The plotter's own state (ESC.O, OS, OE) in printer-state-reasons. The emulator of tests/emu has

@@ -291,6 +291,11 @@ static bool play_link(pappl_job_t *job, int fd, const char *link, int hpgl)
 	unlink(jnl);
 	if (st == 1 || papplJobIsCanceled(job))
 		return true;   /* PAPPL marks it canceled */
+	if ((st == 74 || st == 75) && tries > 1) {
+		char msg[1200];
+		snprintf(msg, sizeof msg, "gave up after waiting resume-wait=%d s for the device: %s", resume_wait, err);
+		return job_error(job, msg);
+	}
 	if (st)
 		return job_error(job, err);
 	papplJobSetMessage(job, "delivered");

@@ -37,15 +37,17 @@ int lp_link_name(const char *uri, char *name, size_t n)
 {
 	if (!uri)
 		return 0;
-	const char *scheme = !strncmp(uri, "serial:", 7) ? "serial:" : !strncmp(uri, "hid:", 4) ? "hid:" : NULL;
+	/* locus-usb:VID:PID[:SERIAL] is Locus's usb: link (PAPPL keeps usb: for its own code) */
+	const char *scheme = !strncmp(uri, "serial:", 7) ? "serial:" : !strncmp(uri, "hid:", 4) ? "hid:"
+		: !strncmp(uri, "locus-usb:", 10) ? "locus-usb:" : NULL;
 	if (!scheme)
 		return 0;
 	const char *rest = uri + strlen(scheme);
 	if (!strncmp(rest, "//", 2))
 		rest += 2;
-	if (!strcmp(scheme, "hid:") && *rest == '/')
+	if (strcmp(scheme, "serial:") && *rest == '/')
 		rest++;
-	return snprintf(name, n, "%s%s", scheme, rest) < (int)n;
+	return snprintf(name, n, "%s%s", strcmp(scheme, "locus-usb:") ? scheme : "usb:", rest) < (int)n;
 }
 
 /* A PAPPL device over a Locus link: opened on the first write (a job on such a printer goes
@@ -308,9 +310,12 @@ static bool list_serial(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t er
 	return stop;
 }
 
-/* hid: the CP2110 bridges, listed by the code behind locus-play --list-devices (io_list_devices):
- * its "hid:..." lines, name first, then maker and product. */
-static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+/* The links io_list_devices finds (the code behind locus-play --list-devices): its lines for
+ * prefix ("hid:" the CP2110 bridges, "usb:" USB printer-class devices), name first, then the
+ * description; a usb: line's IEEE-1284 ID (from "MFG:") goes to PAPPL as the device ID. The URI
+ * is the line's name, usb: ones as locus-usb:. */
+static bool list_links(const char *prefix, pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb,
+		void *err_data)
 {
 	char tmp[1200], err[512], line[1024];
 	snprintf(tmp, sizeof tmp, "%s/locus-devices-XXXXXX", papplGetTempDir());
@@ -321,11 +326,11 @@ static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_c
 	char out[32];
 	snprintf(out, sizeof out, "/dev/fd/%d", fd);
 	/* hidapi and libusb are not called while a job holds a link: in the server the list then
-	 * leaves the bridges out and says so (the `devices` subcommand runs in its own process) */
+	 * leaves the devices out and says so (the `devices` subcommand runs in its own process) */
 	if (!lp_link_trylock()) {
 		close(fd);
 		if (err_cb)
-			err_cb("hid: bridges not listed: a job is using a device link", err_data);
+			err_cb("Locus links not listed: a job is using a device link", err_data);
 		return false;
 	}
 	io_transport_t *t = io_open_write(out, err, sizeof err);
@@ -345,18 +350,42 @@ static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_c
 	bool stop = false;
 	while (f && !stop && fgets(line, sizeof line, f)) {
 		line[strcspn(line, "\n")] = 0;
-		if (strncmp(line, "hid:", 4))
+		if (strncmp(line, prefix, strlen(prefix)))
 			continue;
 		size_t k = strcspn(line, " \t");
-		const char *info = line + k + strspn(line + k, " \t");
+		char *info = line + k + strspn(line + k, " \t");
 		line[k] = 0;
-		stop = cb(*info ? info : "CP2110 HID UART bridge", line, NULL, data);
+		char *id = strstr(info, "MFG:");
+		char uri[1100];
+		snprintf(uri, sizeof uri, "%s%s", strcmp(prefix, "usb:") ? "" : "locus-", line);
+		if (id && id > info)
+			id[-1] = 0;
+		size_t m = strlen(info);
+		while (m && (info[m - 1] == ' ' || info[m - 1] == '\t'))
+			info[--m] = 0;
+		char desc[600];
+		if (!strcmp(prefix, "usb:"))
+			snprintf(desc, sizeof desc, "USB printer-class device%s%s%s (Locus link: journaled, resumable)",
+				*info ? " (" : "", info, *info ? ")" : "");
+		else
+			snprintf(desc, sizeof desc, "%s", *info ? info : "CP2110 HID UART bridge");
+		stop = cb(desc, uri, id, data);
 	}
 	if (f)
 		fclose(f);
 	else
 		close(fd);
 	return stop;
+}
+
+static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+{
+	return list_links("hid:", cb, data, err_cb, err_data);
+}
+
+static bool list_usb(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+{
+	return list_links("usb:", cb, data, err_cb, err_data);
 }
 
 void lp_links_add(void)
@@ -367,5 +396,9 @@ void lp_links_add(void)
 	papplDeviceAddScheme("serial", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_serial, link_open, link_close, link_read,
 		link_write, link_status, NULL);
 	papplDeviceAddScheme("hid", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_hid, link_open, link_close, link_read,
+		link_write, link_status, NULL);
+	/* Locus's own USB printer-class link (libusb), journaled and resumable like serial: and hid:
+	 * (PAPPL's usb: scheme sends without a journal) */
+	papplDeviceAddScheme("locus-usb", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_usb, link_open, link_close, link_read,
 		link_write, link_status, NULL);
 }
