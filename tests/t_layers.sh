@@ -13,7 +13,6 @@ command -v python3 >/dev/null 2>&1 || { ok "layer rule # SKIP python3 not found"
 cat > "$T/allow" <<'LIST'
 # FILE -> HEADER it includes against the rule      # why it is still there, and what removes it
 # circle: the files whose objects need each other  # why, and what breaks it
-circle: drivers/printer/lp_drivers.c drivers/printer/lp_job.c drivers/printer/lp_main.c drivers/printer/lp_raster.c   # the printer application (merged after the move): lp_main's lock and spool directory, lp_job's filters and the driver table call each other; next: the shared state to lp_state.c and the driver table apart from its PAPPL callbacks
 LIST
 python3 tests/tools/layers.py check "$T/allow" "$(dirname "$TESTBIN")" || FAILED=1
 done_tests

@@ -48,7 +48,9 @@ stop_server() {
 }
 # a private server the CLI may have started (see up) is shut down too, by its socket
 C=
+LPID=
 stop_all() {
+	[ -n "$LPID" ] && kill "$LPID" 2> /dev/null
 	stop_cupsd
 	[ -n "$C" ] && rm -rf "$C"
 	stop_server
@@ -72,7 +74,7 @@ PY
 }
 # start_server: in the foreground of a background job, ready when it answers (10 s at most)
 start_server() {
-	"$P" server -o server-port="$PORT" -o spool-directory="$T/spool" -o log-file="$T/log" -o log-level=info -o resume-wait=20 \
+	"$P" server -o server-port="$PORT" -o spool-directory="$T/spool" -o log-file="$T/log" -o log-level=info -o resume-wait=20 -o max-document-size=1M \
 		> "$T/server.out" 2>&1 &
 	SPID=$!
 	n=0
@@ -113,6 +115,10 @@ if command -v umockdev-wrapper > /dev/null && [ -x "$EMU_USB" ]; then
 	"$EMU_USB" -- "$P" devices > "$T/dev.usb" 2>&1
 	grep -q '^usb://' "$T/dev.usb" && grep -q "CMD:HPGL" "$T/dev.usb" \
 		&& ok "devices lists the emulated USB plotter through PAPPL's usb: scheme, with its IEEE-1284 ID" || notok "devices (usb): $(cat "$T/dev.usb")"
+	"$EMU_USB" -- "$BIN/locus-play" --list-devices > "$T/lpl.usb" 2>&1
+	uname=$(grep -o '^usb:[^ ]*' "$T/lpl.usb" | head -1)
+	[ -n "$uname" ] && grep -qx "locus-$uname" "$T/dev.usb" \
+		&& ok "and as locus-$uname, Locus's journaled USB link, named as locus-play --list-devices names it" || notok "devices (locus-usb): $(cat "$T/dev.usb" "$T/lpl.usb")"
 else
 	ok "devices # SKIP umockdev or the USB emulator is missing"
 fi
@@ -163,15 +169,16 @@ EOF
 ipptool -T 10 -t "$URI/plot" "$T/formats.test" > "$T/gpa.v" 2>&1
 fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.v")
 case ",$fmts," in
-*,application/vnd.locus-meta,*application/vnd.hp-HPGL,* | *,application/vnd.hp-HPGL,*application/vnd.locus-meta,*)
-	ok "document-format-supported on the plotter: $fmts" ;;
+*,application/vnd.locus-meta,*) case ",$fmts," in *,application/vnd.hp-HPGL,*) case ",$fmts," in *,image/svg+xml,*)
+	ok "document-format-supported on the plotter: $fmts" ;; *) notok "no SVG on the plotter: $fmts" ;; esac ;;
+	*) notok "no HP-GL on the plotter: $fmts" ;; esac ;;
 *) notok "document-format-supported on the plotter: $fmts" ;;
 esac
 ipptool -T 10 -t "$URI/ps" "$T/formats.test" > "$T/gpa.ps" 2>&1
 fmts=$(sed -n 's/.*document-format-supported (1setOf mimeMediaType) = //p' "$T/gpa.ps")
 case ",$fmts," in
 *,application/vnd.hp-HPGL,*) notok "the PostScript printer claims HP-GL: $fmts" ;;
-*,application/vnd.locus-meta,*) ok "document-format-supported on the PostScript printer: $fmts" ;;
+*,application/vnd.locus-meta,*image/svg+xml,* | *,image/svg+xml,*application/vnd.locus-meta,*) ok "document-format-supported on the PostScript printer: $fmts" ;;
 *) notok "PostScript printer formats: $fmts" ;;
 esac
 
@@ -181,6 +188,9 @@ print() {
 }
 # jobstate JOBFILE: the last job-state the wait test displayed
 jobstate() { sed -n 's/.*job-state (enum) = //p' "$1" | tail -1; }
+# msg.test: print-job-and-wait.test that also shows the job's message
+sed 's/^\tDISPLAY job-state-reasons$/\tDISPLAY job-state-reasons\n\tDISPLAY job-state-message/' \
+	"$IPPT/print-job-and-wait.test" > "$T/msg.test"
 # newest DIR: the file the last job made
 newest() { ls -t "$1" | head -1; }
 
@@ -223,11 +233,56 @@ else
 	ok "HP-GL corpus job # SKIP ../shared is absent"
 fi
 
+# SVG (image/svg+xml): the SVG importer of locus-meta import makes it a meta file, which the
+# plotter replays: the file is what locus-meta import then locus-hpgl --profile 7475a write
+cat > "$T/drawing.svg" <<'SVG'
+<?xml version="1.0" encoding="UTF-8"?>
+<svg xmlns="http://www.w3.org/2000/svg" width="120mm" height="80mm" viewBox="0 0 120 80">
+  <rect x="5" y="5" width="110" height="70" fill="none" stroke="black" stroke-width="0.5"/>
+  <circle cx="40" cy="40" r="25" fill="none" stroke="red" stroke-width="0.3"/>
+  <path d="M 70 60 C 80 10, 100 10, 110 60" fill="none" stroke="blue" stroke-width="0.3"/>
+  <polyline points="10,70 30,50 50,70 70,50" fill="none" stroke="green" stroke-width="0.3"/>
+</svg>
+SVG
+"$BIN/locus-meta" import "$T/drawing.svg" -o "$T/drawing.meta" 2> /dev/null && "$BIN/locus-hpgl" --profile 7475a "$T/drawing.meta" -o "$T/drawing.hpgl" 2> /dev/null \
+	|| notok "locus-meta import and locus-hpgl make the SVG's HP-GL"
+rm -f "$T/out-plot"/*
+print "$T/drawing.svg" image/svg+xml plot "$T/js" && f=$(newest "$T/out-plot") && [ -n "$f" ] && cmp -s "$T/out-plot/$f" "$T/drawing.hpgl" \
+	&& "$SEG" "$T/out-plot/$f" > "$T/svg.seg" 2> /dev/null && [ -s "$T/svg.seg" ] \
+	&& ok "an SVG job (image/svg+xml) plots: locus-meta import then locus-hpgl --profile 7475a's bytes ($(wc -c < "$T/drawing.hpgl") bytes, $(wc -l < "$T/svg.seg") segments)" \
+	|| notok "SVG job: $(grep -i "fail\|job-state" "$T/js" | head -3) $(cmp "$T/out-plot/$f" "$T/drawing.hpgl" 2>&1)"
+rm -f "$T/out-plot"/*
+print "$T/drawing.svg" application/octet-stream plot "$T/js2" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/drawing.hpgl" \
+	&& ok "the SVG sent as application/octet-stream is typed by its first bytes and plots the same" \
+	|| notok "SVG as octet-stream: $(grep -i "fail\|job-state" "$T/js2" | head -3)"
+printf '<?xml version="1.0"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="10" height="10">\n<path d="M 1 1 L 5 5"\n</svg>\n' > "$T/broken.svg"
+rm -f "$T/out-plot"/*
+timeout 90 ipptool -T 60 -t -f "$T/broken.svg" -d filetype=image/svg+xml "$URI/plot" "$T/msg.test" > "$T/jsb" 2>&1
+[ "$(jobstate "$T/jsb")" = aborted ] && grep -q "document-format-error" "$T/jsb" && grep -q "job-state-message.*:[0-9]*:[0-9]*:" "$T/jsb" \
+	&& [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
+	&& ok "a broken SVG: aborted with document-format-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jsb" | tail -1 | cut -c1-150)" \
+	|| notok "broken SVG: $(grep "job-state" "$T/jsb" | head -4)"
+
 # A PostScript Level 2 printer: what locus-play -d ps -O level=2 writes
 "$BIN/locus-play" -d ps -O level=2 "$M" -o "$T/strokes.ps" 2> /dev/null
 print "$M" application/vnd.locus-meta ps "$T/j4" && f=$(newest "$T/out-ps") && cmp -s "$T/out-ps/$f" "$T/strokes.ps" \
 	&& ok "the PostScript Level 2 printer's output is locus-play -d ps -O level=2's, byte for byte" \
 	|| notok "PS job: $(grep -i "fail\|job-state" "$T/j4" | head -3) $(cmp "$T/out-ps/$f" "$T/strokes.ps" 2>&1)"
+
+# Jobs on two printers at once: PAPPL runs them in two threads; the device framework (one
+# replay at a time, lp_lock) and the device links (one open at a time, lp_link_lock) take them in
+# turn, and each device gets exactly its own bytes
+rm -f "$T/out-plot"/* "$T/out-ps"/*
+timeout 120 ipptool -T 60 -t -f "$META" -d filetype=application/vnd.locus-meta "$URI/plot" "$IPPT/print-job-and-wait.test" > "$T/jc1" 2>&1 &
+c1=$!
+timeout 120 ipptool -T 60 -t -f "$M" -d filetype=application/vnd.locus-meta "$URI/ps" "$IPPT/print-job-and-wait.test" > "$T/jc2" 2>&1 &
+c2=$!
+wait $c1; r1=$?
+wait $c2; r2=$?
+f1=$(newest "$T/out-plot") f2=$(newest "$T/out-ps")
+[ $r1 = 0 ] && [ $r2 = 0 ] && [ -n "$f1" ] && cmp -s "$T/out-plot/$f1" "$T/job.hpgl" && [ -n "$f2" ] && cmp -s "$T/out-ps/$f2" "$T/strokes.ps" \
+	&& ok "two jobs at once (the contour plot to the plotter, strokes to PostScript): both complete with their own bytes" \
+	|| notok "two jobs at once: $r1 $r2: $(grep -i "fail\|job-state" "$T/jc1" "$T/jc2" | head -4)"
 
 # IPP Everywhere raster: a PNG (PAPPL turns it into raster rows, lp_raster.c into a meta image)
 # plots as hatched rows: HP-GL that the HP-GL reader reads, with pen-down strokes
@@ -299,15 +354,16 @@ cat > "$T/unsup.test" <<'EOF'
 	STATUS successful-ok
 	EXPECT job-state WITH-VALUE >5 REPEAT-NO-MATCH
 	DISPLAY job-state
+	DISPLAY job-state-reasons
 }
 EOF
 # unsupported DESC FILE FORMAT PRINTER
 unsupported() {
-	ipptool -T 30 -t -f "$2" -d filetype="$3" "$URI/$4" "$T/unsup.test" > "$T/unsup.out" 2>&1
+	timeout 60 ipptool -T 30 -t -f "$2" -d filetype="$3" "$URI/$4" "$T/unsup.test" > "$T/unsup.out" 2>&1
 	if grep -q "client-error-document-format-not-supported" "$T/unsup.out"; then
 		ok "$1: refused with client-error-document-format-not-supported"
 	elif [ "$(jobstate "$T/unsup.out")" = aborted ]; then
-		ok "$1: the job is aborted alone (PAPPL 1.3 takes it first; see the comment above)"
+		ok "$1: the job is aborted alone (PAPPL 1.3 takes it first; see the comment above): job-state-reasons $(sed -n 's/.*job-state-reasons ([^)]*) = //p' "$T/unsup.out" | tail -1)"
 	else
 		notok "$1: $(grep -i "fail\|status\|job-state" "$T/unsup.out" | head -4)"
 	fi
@@ -317,6 +373,22 @@ unsupported "text/plain to the plotter" "$T/plain.txt" text/plain plot
 unsupported "HP-GL to the PostScript printer" "$T/odd.hpgl" application/vnd.hp-HPGL ps
 print "$M" application/vnd.locus-meta plot "$T/j9" && [ "$(jobstate "$T/j9")" = completed ] \
 	&& ok "the plotter's queue goes on after them" || notok "after unsupported: $(jobstate "$T/j9")"
+
+# A document larger than max-document-size (1M for this server): PAPPL spools every document
+# before the application sees it and has no size check of its own, so the job is aborted before
+# anything is read or sent, with a job-state-message that says why; the queue goes on.
+{ cat "$M"; n=0; while [ $n -lt 20000 ]; do echo "# padding to make the document larger than the server's limit: $n"; n=$((n + 1)); done; } > "$T/big.meta"
+timeout 10 "$P" server -o max-document-size=12Q > /dev/null 2> "$T/badsize"; rc=$?
+[ $rc != 0 ] && grep -q "max-document-size=12Q: expected a size" "$T/badsize" \
+	&& ok "server -o max-document-size=12Q: refused ($(head -1 "$T/badsize"))" || notok "bad max-document-size: exit $rc: $(cat "$T/badsize")"
+rm -f "$T/out-plot"/*
+timeout 90 ipptool -T 60 -t -f "$T/big.meta" -d filetype=application/vnd.locus-meta "$URI/plot" "$T/msg.test" > "$T/jbig" 2>&1
+[ "$(jobstate "$T/jbig")" = aborted ] && grep -q "job-state-message (textWithoutLanguage) = the document is $(wc -c < "$T/big.meta") bytes, more than this server takes (max-document-size=1048576)" "$T/jbig" \
+	&& grep -q "document-unprintable-error" "$T/jbig" && [ -z "$(find "$T/out-plot" -type f -size +0)" ] \
+	&& ok "a $(wc -c < "$T/big.meta")-byte document over max-document-size=1M: aborted, document-unprintable-error, nothing sent: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/jbig" | tail -1)" \
+	|| notok "oversized document: $(grep "job-state" "$T/jbig" | head -4)"
+print "$M" application/vnd.locus-meta plot "$T/j11" && [ "$(jobstate "$T/j11")" = completed ] \
+	&& ok "the plotter's queue goes on after it" || notok "after the oversized one: $(jobstate "$T/j11")"
 
 # IPP Everywhere: ipp-everywhere.test with a meta document for its Print-Job checks (its raster
 # print tests need the PWG's raster samples, which Debian does not ship: ipptool skips them).
@@ -394,7 +466,9 @@ EOF
 	# part 2: plugged in again (a new terminal behind the same name): the job resumes and completes
 	cat > "$T/part2.sh" <<EOF
 ln -sf "\$1" "$T/tty"
-timeout 60 ipptool -T 10 -t -d jobid=$jobid "$URI/plotter" "$T/wait.test" > "$T/wait.out" 2>&1
+timeout 60 ipptool -T 10 -t -d jobid=$jobid "$URI/plotter" "$T/wait.test" > "$T/wait.out" 2>&1 || exit 1
+sleep 2   # (PAPPL asks an idle printer's status at most every two seconds)
+ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/online" 2>&1
 EOF
 	"$EMU_PLOTTER" --handshake n --pen-scale 4 --deadline 70 --record "$T/p2" -- sh "$T/part2.sh" @TTY@ > "$T/e2" 2> "$T/e2.err"
 	[ "$(word child "$T/e2")" = 0 ] && [ "$(jobstate "$T/wait.out")" = completed ] \
@@ -406,8 +480,13 @@ EOF
 	else
 		notok "no resume point in the log"
 	fi
-	ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/online" 2>&1
-	grep -q "printer-state-reasons.*offline" "$T/online" && notok "still offline after the job" || ok "and the printer is no longer offline"
+	grep -q "printer-state-reasons" "$T/online" && ! grep -q "printer-state-reasons.*offline" "$T/online" \
+		&& ok "and the printer is no longer offline; asked while idle, the plotter says: $(sed -n 's/.*printer-state-reasons ([^)]*) = //p' "$T/online")" \
+		|| notok "after the job: $(grep printer-state-reasons "$T/online")"
+	sleep 2
+	ipptool -T 5 -t "$URI/plotter" "$T/formats.test" > "$T/gone" 2>&1
+	grep -q "printer-state-reasons.*offline" "$T/gone" && ok "with the plotter gone while idle, printer-state-reasons says offline" \
+		|| notok "idle, plotter gone: $(grep printer-state-reasons "$T/gone")"
 	# cancel mid-plot: the job stops at a command boundary and the pen is lifted and parked
 	cat > "$T/part3.sh" <<EOF
 ln -sf "\$1" "$T/tty"
@@ -428,6 +507,135 @@ EOF
 		|| notok "cancel: state $(jobstate "$T/wait3.out"), $n3 bytes, ends '$(tail -c 12 "$T/p3")': $(cat "$T/e3" "$T/cancel.out" | head -3)"
 else
 	ok "serial plotter # SKIP the emulator ($EMU_PLOTTER) is not built: make the test programs"
+fi
+
+# A USB printer-class plotter through Locus's own usb: link (locus-usb:VID:PID, journaled like
+# serial:), with the emulated USB plotter of tests/emu (umockdev). The emulator runs one program,
+# so a second server runs under it (its own port, socket, spool and log), gets the printer from
+# the CLI and one job, and is shut down. The emulator cannot plug a device back in within one
+# run, so the unplug shows the job waiting (offline) and, after resume-wait, aborted with the
+# link's line; the resume itself is the serial case's and t_usb.sh's.
+if command -v umockdev-wrapper > /dev/null && [ -x "$EMU_USB" ]; then
+	PORT2=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+	mkdir -p "$T/tmpu"
+	cat > "$T/usbjob.sh" <<EOF
+TMPDIR=$T/tmpu SNAP_COMMON=$T/tmpu
+export TMPDIR SNAP_COMMON
+"$P" server -o server-port=$PORT2 -o spool-directory=$T/spoolu.\$1 -o log-file=$T/logu.\$1 -o log-level=info -o resume-wait=3 > "$T/serveru.\$1" 2>&1 &
+s=\$!
+n=0
+while ! python3 -c 'import socket, sys; socket.create_connection(("127.0.0.1", int(sys.argv[1])), timeout=1).close()' $PORT2 2> /dev/null && [ \$n -lt 100 ]; do sleep 0.1; n=\$((n + 1)); done
+sleep 0.5
+"$P" add -d usbplot -v locus-usb:03f0:0107 -m hpgl-7475a > "$T/addu.\$1" 2>&1
+timeout 90 ipptool -T 60 -t -f "$META" -d filetype=application/vnd.locus-meta ipp://localhost:$PORT2/ipp/print/usbplot "$T/msg.test" > "$T/usb.\$1" 2>&1 &
+c=\$!
+n=0
+while ! grep -q "waiting up to" "$T/logu.\$1" 2> /dev/null && kill -0 \$c 2> /dev/null && [ \$n -lt 300 ]; do sleep 0.1; n=\$((n + 1)); done
+ipptool -T 5 -t ipp://localhost:$PORT2/ipp/print/usbplot "$T/formats.test" > "$T/usbgpa.\$1" 2>&1
+wait \$c
+"$P" shutdown > /dev/null 2>&1
+n=0
+while kill -0 \$s 2> /dev/null && [ \$n -lt 100 ]; do sleep 0.1; n=\$((n + 1)); done
+kill \$s 2> /dev/null
+wait \$s
+exit 0
+EOF
+	"$EMU_USB" --expect "$T/job.hpgl" -- sh "$T/usbjob.sh" whole > "$T/eu1" 2>&1
+	[ "$(jobstate "$T/usb.whole")" = completed ] && grep -q "bytes=same" "$T/eu1" \
+		&& ok "a job on locus-usb:03f0:0107 (Locus's USB link, journaled) completes: the emulated USB plotter got locus-hpgl's bytes" \
+		|| notok "locus-usb job: $(jobstate "$T/usb.whole"); $(tail -1 "$T/eu1"); $(cat "$T/addu.whole"); $(grep "^[EW]" "$T/logu.whole" | tail -3)"
+	"$EMU_USB" --unplug-at 6000 -- sh "$T/usbjob.sh" unplug > "$T/eu2" 2>&1
+	[ "$(jobstate "$T/usb.unplug")" = aborted ] && grep -q "printer-state-reasons.*offline" "$T/usbgpa.unplug" \
+		&& grep -q "went away after 6000 bytes.*waiting up to 3 s" "$T/logu.unplug" \
+		&& ok "unplugged at byte 6000: the job waits (offline), then after resume-wait is aborted: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/usb.unplug" | tail -1 | cut -c1-160)" \
+		|| notok "locus-usb unplug: $(jobstate "$T/usb.unplug"); $(grep printer-state-reasons "$T/usbgpa.unplug"); $(grep "^[EW]" "$T/logu.unplug" | tail -3)"
+else
+	ok "locus-usb: printer # SKIP umockdev or the USB emulator is missing"
+fi
+
+# The plotter's own state (ESC.O, OS, OE) in printer-state-reasons. The emulator of tests/emu has
+# no paper lever, so a plotter that has one is played here by a small pseudo-terminal program:
+# it answers ESC.B/ESC.L/OI as the 7475A does, and ESC.O with 40 (buffer empty, paper lever
+# raised) while the file $T/lever exists, else 8; it records the HP-GL it gets (queries left out).
+cat > "$T/lever.py" <<'PY'
+import os, select, sys, time, tty
+link, lever, rec, stop = sys.argv[1:5]
+master, slave = os.openpty()
+tty.setraw(slave)
+if os.path.lexists(link):
+    os.unlink(link)
+os.symlink(os.ttyname(slave), link)
+out = open(rec, 'wb')
+end = time.time() + 60
+esc = 0
+cmd = b''
+while time.time() < end and not os.path.exists(stop):
+    r, _, _ = select.select([master], [], [], 0.1)
+    if not r:
+        continue
+    for c in os.read(master, 4096):
+        b = bytes([c])
+        if esc == 0 and c == 27:
+            esc = 1
+        elif esc == 1:
+            esc = 2 if b == b'.' else 0
+        elif esc == 2:
+            esc = 0
+            raised = os.path.exists(lever)
+            answer = {b'B': b'1024', b'L': b'1024', b'O': b'40' if raised else b'8', b'E': b'0'}.get(b)
+            if answer is not None:
+                os.write(master, answer + b'\r')
+            elif b not in b'R':
+                esc = 3
+        elif esc == 3:
+            esc = 0 if b == b':' else 3
+        else:
+            cmd = (cmd + b)[-3:]
+            out.write(b)
+            if cmd in (b'OS;', b'OE;', b'OI;'):
+                out.seek(out.tell() - 3)
+                out.truncate()
+                os.write(master, {b'OS;': b'24', b'OE;': b'0', b'OI;': b'7475A'}[cmd] + b'\r')
+            out.flush()
+PY
+if command -v python3 > /dev/null && [ -f "$T/submit.test" ]; then
+	touch "$T/lever"
+	rm -f "$T/lever.stop"
+	python3 "$T/lever.py" "$T/tty2" "$T/lever" "$T/lever.rec" "$T/lever.stop" > "$T/lever.out" 2>&1 &
+	LPID=$!
+	n=0
+	while [ ! -e "$T/tty2" ] && [ $n -lt 50 ]; do sleep 0.1; n=$((n + 1)); done
+	"$P" add -d lever -v "serial:$T/tty2?baud=9600&flow=escb" -m hpgl-7475a > "$T/add.lever" 2>&1 || notok "add lever: $(cat "$T/add.lever")"
+	sleep 2   # (PAPPL asks a printer's status at most every two seconds)
+	ipptool -T 10 -t "$URI/lever" "$T/formats.test" > "$T/lever.gpa" 2>&1
+	grep -q "printer-state-reasons.*media-needed" "$T/lever.gpa" \
+		&& ok "idle, paper lever raised (ESC.O 40): printer-state-reasons $(sed -n 's/.*printer-state-reasons ([^)]*) = //p' "$T/lever.gpa")" \
+		|| notok "lever raised, idle: $(grep printer-state-reasons "$T/lever.gpa")"
+	ipptool -T 10 -t -v -f "$M" "$URI/lever" "$T/submit.test" > "$T/lever.sub" 2>&1
+	jl=$(sed -n 's/.*job-id (integer) = //p' "$T/lever.sub" | head -1)
+	n=0
+	while ! grep -q "paper lever is raised.*waiting up to" "$T/log" && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+	ipptool -T 10 -t "$URI/lever" "$T/formats.test" > "$T/lever.gpa2" 2>&1
+	[ -n "$jl" ] && grep -q "paper lever is raised.*waiting up to" "$T/log" && grep -q "printer-state-reasons.*media-needed" "$T/lever.gpa2" \
+		&& [ ! -s "$T/lever.rec" ] \
+		&& ok "a job on it waits, nothing sent, media-needed shown: $(grep -m1 "paper lever is raised.*waiting up to" "$T/log" | sed 's/.*\] //')" \
+		|| notok "lever raised, job $jl: $(grep "Job $jl" "$T/log" | tail -2); $(grep printer-state-reasons "$T/lever.gpa2"); $(wc -c < "$T/lever.rec") bytes sent"
+	rm -f "$T/lever"
+	timeout 60 ipptool -T 10 -t -d jobid="$jl" "$URI/lever" "$T/wait.test" > "$T/lever.wait" 2>&1
+	sleep 2
+	ipptool -T 10 -t "$URI/lever" "$T/formats.test" > "$T/lever.gpa3" 2>&1
+	[ "$(jobstate "$T/lever.wait")" = completed ] && cmp -s "$T/lever.rec" "$T/strokes.hpgl" && ! grep -q "media-needed" "$T/lever.gpa3" \
+		&& ok "lever lowered: the job completes, the plotter got locus-hpgl's bytes, the reason is cleared ($(sed -n 's/.*printer-state-reasons ([^)]*) = //p' "$T/lever.gpa3"))" \
+		|| notok "lever lowered: $(jobstate "$T/lever.wait"); $(cmp "$T/lever.rec" "$T/strokes.hpgl" 2>&1); $(grep printer-state-reasons "$T/lever.gpa3")"
+	touch "$T/lever.stop"
+	n=0
+	while kill -0 "$LPID" 2> /dev/null && [ $n -lt 30 ]; do sleep 0.1; n=$((n + 1)); done
+	kill "$LPID" 2> /dev/null
+	wait "$LPID" 2> /dev/null
+	# (kept: PAPPL 1.3.1 answers printer-id 0 for a printer made since the server started, so
+	# its delete subcommand cannot find it until a restart; the restart below deletes one)
+else
+	ok "plotter status # SKIP python3 is not installed, or the serial part above was skipped"
 fi
 
 # CUPS in front: a cupsd started here with its own configuration (its own port, socket, spool
@@ -526,7 +734,7 @@ fi
 stop_server
 if start_server; then
 	"$P" printers > "$T/printers2" 2>&1
-	[ "$(sort "$T/printers2" | tr '\n' ' ')" = "pdf plot plotter ps " ] && ok "after a restart the printers are there (state file in the spool directory)" \
+	[ "$(sort "$T/printers2" | grep -vx lever | tr '\n' ' ')" = "pdf plot plotter ps " ] && ok "after a restart the printers are there (state file in the spool directory)" \
 		|| notok "after restart: $(cat "$T/printers2")"
 	rm -f "$T/out-plot"/*
 	print "$M" application/vnd.locus-meta plot "$T/j10" && f=$(newest "$T/out-plot") && cmp -s "$T/out-plot/$f" "$T/strokes.hpgl" \

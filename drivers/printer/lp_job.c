@@ -10,15 +10,36 @@
 #include <unistd.h>
 #include "hpgl/hpgl.h"
 #include "hpgl/read/hpgl_read.h"
+#include "import/svg_import.h"
 #include "printer/lp.h"
 #include "cli/run.h"
 
 static int resume_wait = 600;      /* seconds a job waits for a link device to come back */
-static pthread_mutex_t link_lock = PTHREAD_MUTEX_INITIALIZER;
+static long long max_doc = LP_MAX_DOC_DEFAULT;   /* bytes; 0: no limit */
 
 void lp_set_resume_wait(int seconds)
 {
 	resume_wait = seconds;
+}
+
+void lp_set_max_document(long long bytes)
+{
+	max_doc = bytes;
+}
+
+bool lp_job_size_ok(pappl_job_t *job)
+{
+	struct stat st;
+	const char *path = papplJobGetFilename(job);
+	if (!max_doc || !path || stat(path, &st) || (long long)st.st_size <= max_doc)
+		return true;
+	char msg[256];
+	snprintf(msg, sizeof msg, "the document is %lld bytes, more than this server takes (max-document-size=%lld)",
+		(long long)st.st_size, max_doc);
+	papplLogJob(job, PAPPL_LOGLEVEL_ERROR, "%s", msg);
+	papplJobSetMessage(job, "%s", msg);
+	papplJobSetReasons(job, PAPPL_JREASON_DOCUMENT_UNPRINTABLE_ERROR, PAPPL_JREASON_NONE);
+	return false;
 }
 
 /* What the first bytes of an application/octet-stream document say it is. */
@@ -38,6 +59,10 @@ static const char *sniff(const unsigned char *h, size_t n, void *data)
 	for (size_t i = 0; i < sizeof first / sizeof first[0]; i++)
 		if (k + strlen(first[i]) <= n && !memcmp(h + k, first[i], strlen(first[i])))
 			return LP_FMT_HPGL;
+	/* SVG: XML (the importer's own test) with an <svg element in the first bytes PAPPL shows */
+	for (size_t i = 0; svgimp_is(h, n) && i + 4 <= n; i++)
+		if (!memcmp(h + i, "<svg", 4))
+			return LP_FMT_SVG;
 	return NULL;
 }
 
@@ -155,10 +180,10 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 {
 	char name[2300];
 	snprintf(name, sizeof name, "%s%c%s=%s", link, strchr(link, '?') ? '&' : '?', resume ? "resume" : "journal", jnl);
-	pthread_mutex_lock(&link_lock);
+	lp_link_lock();
 	io_transport_t *t = io_open_write(name, err, n);
 	if (!t) {
-		pthread_mutex_unlock(&link_lock);
+		lp_link_unlock();
 		return 74;
 	}
 	char buf[1024];
@@ -186,7 +211,7 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 	}
 	if (io_close_err(t, st && st != 1 ? IO_ABORT : IO_COMMIT, st ? NULL : err, n) && !st)
 		st = 74;
-	pthread_mutex_unlock(&link_lock);
+	lp_link_unlock();
 	return st;
 }
 
@@ -204,34 +229,73 @@ static long journal_safe(const char *path)
 	return safe;
 }
 
+/* The plotter's own state before a try (ESC.O, OS, OE: lp_link_probe) as the printer's reasons.
+ * true when the job must wait: the paper lever is raised or VIEW is pressed (a plotter then
+ * drops or holds what it gets); msg says why. */
+static bool plotter_holds(pappl_printer_t *pr, const char *link, char *msg, size_t n)
+{
+	pappl_preason_t r;
+	lp_link_lock();
+	int rc = lp_link_probe(link, &r, msg, n);
+	lp_link_unlock();
+	if (rc <= 0)
+		return false;   /* no answer: the try says what is wrong */
+	papplPrinterSetReasons(pr, r, LP_PLOT_REASONS & ~r);
+	return (r & PAPPL_PREASON_MEDIA_NEEDED) || ((r & PAPPL_PREASON_OTHER) && strstr(msg, "VIEW"));
+}
+
 /* A job on a serial: or hid: printer: journaled; when the device goes away mid-job the job waits
  * (printer offline, the job's message saying so) and resumes at the journal's point when the
- * device is back, so no stroke is lost or drawn twice. */
+ * device is back, so no stroke is lost or drawn twice. Before each try the plotter is asked for
+ * its state (when its link answers, flow=escb): a raised paper lever shows as media-needed and
+ * the job waits for it to be lowered. */
 static bool play_link(pappl_job_t *job, int fd, const char *link, int hpgl)
 {
 	pappl_printer_t *pr = papplJobGetPrinter(job);
-	char jnl[1200], err[1024];
+	char jnl[1200], err[1024], why[512];
 	snprintf(jnl, sizeof jnl, "%s/%s-job%d.jnl", lp_spool_dir(), papplPrinterGetName(pr), papplJobGetID(job));
 	unlink(jnl);
-	int st = send_link(job, fd, link, jnl, 0, hpgl, err, sizeof err);
 	time_t give_up = time(NULL) + resume_wait;
-	int told = 0;
-	while ((st == 74 || st == 75) && !papplJobIsCanceled(job) && time(NULL) < give_up) {
+	int told = 0, held = 0, tries = 0, st = 74;
+	snprintf(err, sizeof err, "the device did not come back");
+	while (!papplJobIsCanceled(job)) {
+		if (plotter_holds(pr, link, why, sizeof why)) {
+			if (!held++)
+				papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s", why, resume_wait);
+			papplJobSetMessage(job, "waiting for the plotter: %s", why);
+			snprintf(err, sizeof err, "%s", why);
+			if (time(NULL) >= give_up)
+				break;
+			sleep(1);
+			continue;
+		}
+		if (held) {
+			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the plotter is ready again");
+			papplJobSetMessage(job, "printing");
+			held = 0;
+		}
+		long safe = tries ? journal_safe(jnl) : -1;
+		st = send_link(job, fd, link, jnl, safe >= 0, hpgl, err, sizeof err);
+		if (tries++ && st != 74)
+			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the device is back: %s at byte %ld of the job (the journal's point)",
+				safe >= 0 ? "resumed" : "started again", safe >= 0 ? safe : 0);
+		if ((st != 74 && st != 75) || time(NULL) >= give_up)
+			break;
 		papplPrinterSetReasons(pr, PAPPL_PREASON_OFFLINE, PAPPL_PREASON_NONE);
 		papplJobSetMessage(job, "waiting for the device: %s", err);
 		if (st == 75 || !told++)
 			papplLogJob(job, PAPPL_LOGLEVEL_WARN, "%s; waiting up to %d s for the device to resume", err, resume_wait);
 		sleep(1);
-		long safe = journal_safe(jnl);
-		st = send_link(job, fd, link, jnl, safe >= 0, hpgl, err, sizeof err);
-		if (st != 74)
-			papplLogJob(job, PAPPL_LOGLEVEL_INFO, "the device is back: %s at byte %ld of the job (the journal's point)",
-				safe >= 0 ? "resumed" : "started again", safe >= 0 ? safe : 0);
 	}
 	papplPrinterSetReasons(pr, PAPPL_PREASON_NONE, PAPPL_PREASON_OFFLINE);
 	unlink(jnl);
 	if (st == 1 || papplJobIsCanceled(job))
 		return true;   /* PAPPL marks it canceled */
+	if ((st == 74 || st == 75) && tries > 1) {
+		char msg[1200];
+		snprintf(msg, sizeof msg, "gave up after waiting resume-wait=%d s for the device: %s", resume_wait, err);
+		return job_error(job, msg);
+	}
 	if (st)
 		return job_error(job, err);
 	papplJobSetMessage(job, "delivered");
@@ -277,6 +341,8 @@ bool lp_play_meta(pappl_job_t *job, pappl_device_t *device, const char *path, in
 static bool meta_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 {
 	(void)data;
+	if (!lp_job_size_ok(job))
+		return false;
 	return lp_play_meta(job, device, papplJobGetFilename(job), 1);
 }
 
@@ -289,6 +355,8 @@ static bool hpgl_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 	const char *path = papplJobGetFilename(job), *name = papplJobGetName(job) ? papplJobGetName(job) : "document";
 	if (!d || d->family != LP_HPGL)
 		return doc_error(job, "HP-GL goes to HP-GL printers only");
+	if (!lp_job_size_ok(job))
+		return false;
 	FILE *f = fopen(path, "rb");
 	if (!f)
 		return job_error(job, "cannot open the spooled document");
@@ -312,6 +380,86 @@ static bool hpgl_filter(pappl_job_t *job, pappl_device_t *device, void *data)
 	return ok;
 }
 
+static int file_write(void *user, const void *buf, size_t n)
+{
+	return fwrite(buf, 1, n, user) == n ? 0 : -1;
+}
+
+/* An SVG document: imported by the SVG importer (drivers/import, as `locus-meta import` does
+ * with its defaults: curves flattened to 0.0125 mm, one meta pixel per CSS px, pens by colour
+ * from the 7475A's carousel) into a meta file in the spool directory, then replayed as any meta
+ * job. A broken document fails alone with the importer's line (NAME:LINE:COL). */
+static bool svg_filter(pappl_job_t *job, pappl_device_t *device, void *data)
+{
+	(void)data;
+	const char *path = papplJobGetFilename(job), *name = papplJobGetName(job) ? papplJobGetName(job) : "document";
+	if (!lp_job_size_ok(job))
+		return false;
+	FILE *in = fopen(path, "rb");
+	struct stat st;
+	if (!in || fstat(fileno(in), &st)) {
+		if (in)
+			fclose(in);
+		return job_error(job, "cannot open the spooled document");
+	}
+	size_t n = (size_t)st.st_size;
+	unsigned char *buf = malloc(n ? n : 1);
+	size_t got = buf ? fread(buf, 1, n, in) : 0;
+	fclose(in);
+	if (!buf || got != n) {
+		free(buf);
+		return job_error(job, buf ? "cannot read the spooled document" : "out of memory reading the document");
+	}
+	char err[1024];
+	if (!svgimp_is(buf, n)) {
+		free(buf);
+		snprintf(err, sizeof err, "%s: not an SVG document (expected XML: '<' after blanks at byte 0)", name);
+		return doc_error(job, err);
+	}
+	char tmp[1200];
+	snprintf(tmp, sizeof tmp, "%s/locus-svg-XXXXXX", lp_spool_dir());
+	int fd = mkstemp(tmp);
+	if (fd >= 0)
+		unlink(tmp);
+	FILE *f = fd >= 0 ? fdopen(fd, "w+") : NULL;
+	if (!f) {
+		if (fd >= 0)
+			close(fd);
+		free(buf);
+		return job_error(job, "cannot make a temporary in the spool directory");
+	}
+	svgimp_opts_t o = { .tol_mm = 0.0125, .dpi = 96, .dedupe_mm = 0.05, .quiet = 1 };
+	meta_writer_t *w = meta_writer_new(file_write, f, META_ENC_TEXT);
+	int rc = -70;
+	snprintf(err, sizeof err, "out of memory importing the SVG document");
+	lp_lock();   /* the importer and libxml2 run one document at a time */
+	if (w)
+		rc = svgimp_import(buf, n, name, &o, w, err, sizeof err);
+	lp_unlock();
+	free(buf);
+	if (w && meta_writer_close(w) < 0 && !rc) {
+		rc = -74;
+		snprintf(err, sizeof err, "cannot write the imported meta file in the spool directory");
+	}
+	if (fflush(f) && !rc) {
+		rc = -74;
+		snprintf(err, sizeof err, "cannot write the imported meta file in the spool directory");
+	}
+	bool ok;
+	if (rc == -65)
+		ok = doc_error(job, err);
+	else if (rc)
+		ok = job_error(job, err);
+	else {
+		char meta[32];
+		snprintf(meta, sizeof meta, "/dev/fd/%d", fileno(f));
+		papplLogJob(job, PAPPL_LOGLEVEL_INFO, "SVG document imported");
+		ok = lp_play_meta(job, device, meta, 1);
+	}
+	fclose(f);
+	return ok;
+}
+
 void lp_filters_add(pappl_system_t *system)
 {
 	papplSystemSetMIMECallback(system, sniff, NULL);
@@ -320,10 +468,10 @@ void lp_filters_add(pappl_system_t *system)
 		int seen = 0;
 		for (size_t j = 0; j < k; j++)
 			seen |= !strcmp(lp_driver_at(j)->format, f);
-		if (!seen)
+		if (!seen) {
 			papplSystemAddMIMEFilter(system, LP_FMT_META, f, meta_filter, NULL);
+			papplSystemAddMIMEFilter(system, LP_FMT_SVG, f, svg_filter, NULL);
+		}
 	}
 	papplSystemAddMIMEFilter(system, LP_FMT_HPGL, LP_FMT_HPGL, hpgl_filter, NULL);
-	/* image/svg+xml: when the SVG importer lands, a filter here that imports the document to a
-	 * meta file in the spool directory and calls lp_play_meta (docs/printer.md) */
 }

@@ -1,12 +1,35 @@
 /* lp_link.c: Locus's serial: and hid: device links as PAPPL device schemes, found as locus-play finds them. */
 #include <dirent.h>
 #include <errno.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 #include "printer/lp.h"
+
+/* One device link open at a time in the whole server: the links' signal handling (they catch
+ * SIGINT, SIGTERM and SIGHUP while open for writing, counted in process-wide state) is not
+ * thread-safe, and a serial line or HID bridge takes one talker. Jobs (lp_job.c), status
+ * probes and PAPPL's own writes through the serial:/hid: schemes all hold it. */
+static pthread_mutex_t link_lock = PTHREAD_MUTEX_INITIALIZER;
+
+void lp_link_lock(void)
+{
+	pthread_mutex_lock(&link_lock);
+}
+
+int lp_link_trylock(void)
+{
+	return pthread_mutex_trylock(&link_lock) == 0;
+}
+
+void lp_link_unlock(void)
+{
+	pthread_mutex_unlock(&link_lock);
+}
 
 /* The URI is the Locus output name itself (docs/transports.md): serial:/dev/ttyUSB0?baud=9600&
  * flow=escb, hid:10c4:ea80[:SERIAL]?baud=...; serial:///dev/X is taken too. */
@@ -14,15 +37,17 @@ int lp_link_name(const char *uri, char *name, size_t n)
 {
 	if (!uri)
 		return 0;
-	const char *scheme = !strncmp(uri, "serial:", 7) ? "serial:" : !strncmp(uri, "hid:", 4) ? "hid:" : NULL;
+	/* locus-usb:VID:PID[:SERIAL] is Locus's usb: link (PAPPL keeps usb: for its own code) */
+	const char *scheme = !strncmp(uri, "serial:", 7) ? "serial:" : !strncmp(uri, "hid:", 4) ? "hid:"
+		: !strncmp(uri, "locus-usb:", 10) ? "locus-usb:" : NULL;
 	if (!scheme)
 		return 0;
 	const char *rest = uri + strlen(scheme);
 	if (!strncmp(rest, "//", 2))
 		rest += 2;
-	if (!strcmp(scheme, "hid:") && *rest == '/')
+	if (strcmp(scheme, "serial:") && *rest == '/')
 		rest++;
-	return snprintf(name, n, "%s%s", scheme, rest) < (int)n;
+	return snprintf(name, n, "%s%s", strcmp(scheme, "locus-usb:") ? scheme : "usb:", rest) < (int)n;
 }
 
 /* A PAPPL device over a Locus link: opened on the first write (a job on such a printer goes
@@ -63,7 +88,10 @@ static void link_close(pappl_device_t *dev)
 		return;
 	if (l->t) {
 		char err[1024];
-		if (io_close_err(l->t, IO_COMMIT, err, sizeof err))
+		lp_link_lock();
+		int bad = io_close_err(l->t, IO_COMMIT, err, sizeof err);
+		lp_link_unlock();
+		if (bad)
 			papplDeviceError(dev, "%s", err);
 	}
 	free(l);
@@ -76,11 +104,15 @@ static ssize_t link_write(pappl_device_t *dev, const void *buf, size_t n)
 	char err[1024];
 	if (!l)
 		return -1;
+	lp_link_lock();
 	if (!l->t && !(l->t = io_open_write(l->name, err, sizeof err))) {
+		lp_link_unlock();
 		papplDeviceError(dev, "%s", err);
 		return -1;
 	}
-	if (io_write(l->t, buf, n) < 0 || io_flush(l->t) < 0) {
+	int bad = io_write(l->t, buf, n) < 0 || io_flush(l->t) < 0;
+	lp_link_unlock();
+	if (bad) {
 		papplDeviceError(dev, "%s", io_error(l->t));
 		return -1;
 	}
@@ -92,8 +124,162 @@ static ssize_t link_read(pappl_device_t *dev, void *buf, size_t n)
 	lp_link_t *l = papplDeviceGetData(dev);
 	if (!l || !l->t)
 		return -1;
+	lp_link_lock();
 	long k = io_read(l->t, buf, n);
+	lp_link_unlock();
 	return k < 0 ? -1 : (ssize_t)k;
+}
+
+/* ---- status: ESC.O, OS and OE asked of a plotter that answers (flow=escb) ---- */
+
+/* The probe's link name: the printer's, its flow, journal, resume and timeout replaced by
+ * flow=none (the few query bytes need no pacing) and a one-second wait for each answer. 0 when
+ * the link does not answer queries (no flow=escb: a one-way cable, or a plotter set up for
+ * XON/XOFF whose answers are not read). */
+static int probe_name(const char *link, char *out, size_t n)
+{
+	const char *q = strchr(link, '?');
+	if (!q || !strstr(q, "flow=escb"))
+		return 0;
+	size_t k = (size_t)(q - link);
+	if (k + 1 >= n)
+		return 0;
+	memcpy(out, link, k);
+	out[k] = 0;
+	char sep = '?';
+	for (const char *p = q + 1; *p;) {
+		size_t m = strcspn(p, "&");
+		if (strncmp(p, "flow=", 5) && strncmp(p, "journal=", 8) && strncmp(p, "resume=", 7) && strncmp(p, "timeout=", 8)) {
+			size_t len = strlen(out);
+			if (len + m + 2 >= n)
+				return 0;
+			out[len] = sep;
+			memcpy(out + len + 1, p, m);
+			out[len + 1 + m] = 0;
+			sep = '&';
+		}
+		p += m + (p[m] == '&');
+	}
+	size_t len = strlen(out);
+	return snprintf(out + len, n - len, "%cflow=none&timeout=1", sep) < (int)(n - len);
+}
+
+/* Send query q and read its number answer (digits up to CR), within about 1.5 s. */
+static int ask(io_transport_t *t, const char *q, long *out)
+{
+	if (io_write(t, q, strlen(q)) < 0 || io_flush(t) < 0)
+		return -1;
+	char r[32];
+	size_t k = 0;
+	struct timespec now, end, nap = { 0, 10000000L };
+	clock_gettime(CLOCK_MONOTONIC, &end);
+	end.tv_nsec += 500000000L;
+	end.tv_sec += 1 + end.tv_nsec / 1000000000L;
+	end.tv_nsec %= 1000000000L;
+	for (;;) {
+		char c;
+		long g = io_read(t, &c, 1);
+		if (g < 0)
+			return -1;
+		clock_gettime(CLOCK_MONOTONIC, &now);
+		if (now.tv_sec > end.tv_sec || (now.tv_sec == end.tv_sec && now.tv_nsec > end.tv_nsec))
+			return -1;
+		if (g == 0) {
+			nanosleep(&nap, NULL);
+			continue;
+		}
+		if (c == '\r' || c == '\n') {
+			if (k)
+				break;
+			continue;
+		}
+		if (k + 1 < sizeof r)
+			r[k++] = c;
+	}
+	r[k] = 0;
+	char *e;
+	*out = strtol(r, &e, 10);
+	return e == r ? -1 : 0;
+}
+
+/* OE's codes in words (the HP 7475A's; 4 and 7 are not used). */
+static const char *oe_word(long code)
+{
+	static const char *const w[] = { "no error", "command not recognised", "wrong number of parameters",
+		"parameter out of range", "error 4", "unknown character set", "position overflow", "error 7",
+		"vector received while the pinch wheels were raised" };
+	return code >= 0 && code < (long)(sizeof w / sizeof w[0]) ? w[code] : "unknown error";
+}
+
+pappl_preason_t lp_plot_reasons(long esc_o, long os, long oe, char *msg, size_t n)
+{
+	pappl_preason_t r = PAPPL_PREASON_NONE;
+	msg[0] = 0;
+	if ((esc_o & 32) || oe == 8) {
+		r |= PAPPL_PREASON_MEDIA_NEEDED;
+		snprintf(msg, n, "the paper lever is raised (load paper and lower it)");
+	}
+	if (esc_o & 16) {
+		r |= PAPPL_PREASON_OTHER;
+		snprintf(msg + strlen(msg), n - strlen(msg), "%sVIEW is pressed (the plotter is paused)", msg[0] ? "; " : "");
+	}
+	if (oe > 0 && oe != 8) {
+		r |= PAPPL_PREASON_OTHER;
+		snprintf(msg + strlen(msg), n - strlen(msg), "%sthe plotter reports error %ld: %s", msg[0] ? "; " : "", oe, oe_word(oe));
+	} else if ((os & 32) && !oe && !r) {
+		r |= PAPPL_PREASON_OTHER;
+		snprintf(msg, n, "the plotter reports an error (OS 32)");
+	}
+	return r;
+}
+
+int lp_link_probe(const char *link, pappl_preason_t *reasons, char *msg, size_t n)
+{
+	char name[1100], err[512];
+	*reasons = PAPPL_PREASON_NONE;
+	msg[0] = 0;
+	if (!probe_name(link, name, sizeof name))
+		return 0;
+	io_transport_t *t = io_open_write(name, err, sizeof err);
+	if (!t) {
+		snprintf(msg, n, "%s", err);
+		return -1;
+	}
+	long esc_o = 0, os = 0, oe = 0;
+	int rc = ask(t, "\033.O", &esc_o) || ask(t, "OS;", &os) || ask(t, "OE;", &oe) ? -1 : 1;
+	if (rc < 0)
+		snprintf(msg, n, "%s: no answer to ESC.O, OS or OE", link);
+	io_close(t, IO_ABORT);
+	if (rc > 0)
+		*reasons = lp_plot_reasons(esc_o, os, oe, msg, n);
+	return rc;
+}
+
+/* PAPPL's status callback for a printer on a serial: or hid: link, called when a client asks
+ * for the printer's attributes and no job runs (at most every two seconds): the plotter's own
+ * state as printer-state-reasons, and offline when its device is not there. A link busy with
+ * another printer's job is not waited for: the reasons stay as they were. */
+bool lp_status_cb(pappl_printer_t *printer)
+{
+	char link[1024], msg[512];
+	if (!lp_link_name(papplPrinterGetDeviceURI(printer), link, sizeof link) || !lp_link_trylock())
+		return true;
+	pappl_preason_t r;
+	int rc = lp_link_probe(link, &r, msg, sizeof msg);
+	lp_link_unlock();
+	if (rc > 0) {
+		papplPrinterSetReasons(printer, r, (LP_PLOT_REASONS | PAPPL_PREASON_OFFLINE) & ~r);
+		if (r)
+			papplLogPrinter(printer, PAPPL_LOGLEVEL_INFO, "status: %s", msg);
+	} else if (rc < 0 && !strncmp(link, "serial:", 7)) {
+		/* the line is not there (unplugged), or nothing answers on it */
+		char path[1024];
+		snprintf(path, sizeof path, "%s", link + 7);
+		path[strcspn(path, "?")] = 0;
+		if (access(path, F_OK))
+			papplPrinterSetReasons(printer, PAPPL_PREASON_OFFLINE, PAPPL_PREASON_NONE);
+	}
+	return true;
 }
 
 static pappl_preason_t link_status(pappl_device_t *dev)
@@ -124,9 +310,12 @@ static bool list_serial(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t er
 	return stop;
 }
 
-/* hid: the CP2110 bridges, listed by the code behind locus-play --list-devices (io_list_devices):
- * its "hid:..." lines, name first, then maker and product. */
-static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+/* The links io_list_devices finds (the code behind locus-play --list-devices): its lines for
+ * prefix ("hid:" the CP2110 bridges, "usb:" USB printer-class devices), name first, then the
+ * description; a usb: line's IEEE-1284 ID (from "MFG:") goes to PAPPL as the device ID. The URI
+ * is the line's name, usb: ones as locus-usb:. */
+static bool list_links(const char *prefix, pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb,
+		void *err_data)
 {
 	char tmp[1200], err[512], line[1024];
 	snprintf(tmp, sizeof tmp, "%s/locus-devices-XXXXXX", papplGetTempDir());
@@ -136,8 +325,18 @@ static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_c
 	unlink(tmp);
 	char out[32];
 	snprintf(out, sizeof out, "/dev/fd/%d", fd);
+	/* hidapi and libusb are not called while a job holds a link: in the server the list then
+	 * leaves the devices out and says so (the `devices` subcommand runs in its own process) */
+	if (!lp_link_trylock()) {
+		close(fd);
+		if (err_cb)
+			err_cb("Locus links not listed: a job is using a device link", err_data);
+		return false;
+	}
 	io_transport_t *t = io_open_write(out, err, sizeof err);
-	if (!t || io_list_devices(t, err, sizeof err) < 0) {
+	int listed = t && io_list_devices(t, err, sizeof err) >= 0;
+	lp_link_unlock();
+	if (!listed) {
 		if (t)
 			io_close(t, IO_ABORT);
 		if (err_cb && !strstr(err, "no "))
@@ -151,18 +350,42 @@ static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_c
 	bool stop = false;
 	while (f && !stop && fgets(line, sizeof line, f)) {
 		line[strcspn(line, "\n")] = 0;
-		if (strncmp(line, "hid:", 4))
+		if (strncmp(line, prefix, strlen(prefix)))
 			continue;
 		size_t k = strcspn(line, " \t");
-		const char *info = line + k + strspn(line + k, " \t");
+		char *info = line + k + strspn(line + k, " \t");
 		line[k] = 0;
-		stop = cb(*info ? info : "CP2110 HID UART bridge", line, NULL, data);
+		char *id = strstr(info, "MFG:");
+		char uri[1100];
+		snprintf(uri, sizeof uri, "%s%s", strcmp(prefix, "usb:") ? "" : "locus-", line);
+		if (id && id > info)
+			id[-1] = 0;
+		size_t m = strlen(info);
+		while (m && (info[m - 1] == ' ' || info[m - 1] == '\t'))
+			info[--m] = 0;
+		char desc[600];
+		if (!strcmp(prefix, "usb:"))
+			snprintf(desc, sizeof desc, "USB printer-class device%s%s%s (Locus link: journaled, resumable)",
+				*info ? " (" : "", info, *info ? ")" : "");
+		else
+			snprintf(desc, sizeof desc, "%s", *info ? info : "CP2110 HID UART bridge");
+		stop = cb(desc, uri, id, data);
 	}
 	if (f)
 		fclose(f);
 	else
 		close(fd);
 	return stop;
+}
+
+static bool list_hid(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+{
+	return list_links("hid:", cb, data, err_cb, err_data);
+}
+
+static bool list_usb(pappl_device_cb_t cb, void *data, pappl_deverror_cb_t err_cb, void *err_data)
+{
+	return list_links("usb:", cb, data, err_cb, err_data);
 }
 
 void lp_links_add(void)
@@ -173,5 +396,9 @@ void lp_links_add(void)
 	papplDeviceAddScheme("serial", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_serial, link_open, link_close, link_read,
 		link_write, link_status, NULL);
 	papplDeviceAddScheme("hid", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_hid, link_open, link_close, link_read,
+		link_write, link_status, NULL);
+	/* Locus's own USB printer-class link (libusb), journaled and resumable like serial: and hid:
+	 * (PAPPL's usb: scheme sends without a journal) */
+	papplDeviceAddScheme("locus-usb", PAPPL_DEVTYPE_CUSTOM_LOCAL, list_usb, link_open, link_close, link_read,
 		link_write, link_status, NULL);
 }

@@ -1,6 +1,6 @@
 /* lp_main.c: locus-printer, an IPP Everywhere printer application (PAPPL) for the Locus devices. */
 #include <errno.h>
-#include <pthread.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,22 +15,6 @@
 static char spool_dir[1024];
 static char state_file[1100];
 static int is_server;
-static pthread_mutex_t replay_lock = PTHREAD_MUTEX_INITIALIZER;
-
-const char *lp_spool_dir(void)
-{
-	return spool_dir[0] ? spool_dir : papplGetTempDir();
-}
-
-void lp_lock(void)
-{
-	pthread_mutex_lock(&replay_lock);
-}
-
-void lp_unlock(void)
-{
-	pthread_mutex_unlock(&replay_lock);
-}
 
 static void usage(void *data)
 {
@@ -42,7 +26,7 @@ static void usage(void *data)
 		"  server              run the server in the foreground\n"
 		"  add PRINTER         add a printer: -d DEVICE-URI -m DRIVER (locus-printer drivers)\n"
 		"  delete              delete a printer: -d PRINTER\n"
-		"  devices             list the devices found (usb:, socket:, serial:, hid:)\n"
+		"  devices             list the devices found (usb:, socket:, serial:, hid:, locus-usb:)\n"
 		"  drivers             list the drivers, one a line, name first\n"
 		"  printers            list the printers\n"
 		"  submit FILES        print files: -d PRINTER, -o NAME=VALUE job options\n"
@@ -55,9 +39,10 @@ static void usage(void *data)
 		"  listen-hostname=NAME    where to listen (default localhost; '*' every address)\n"
 		"  admin-group=GROUP       who may add, change and delete printers (with auth-service)\n"
 		"  auth-service=SERVICE    the PAM service that checks administrators' passwords\n"
-		"  resume-wait=SECONDS     how long a serial:/hid: job waits for its device (600)\n"
+		"  resume-wait=SECONDS     how long a serial:/hid:/locus-usb: job waits for its device (600)\n"
+		"  max-document-size=SIZE  larger documents are refused (default 100M; k, M, G; 0 none)\n"
 		"  server-options=LIST     PAPPL's: no-web-interface, web-security, no-tls, ...\n"
-		"Formats: application/vnd.locus-meta (text and binary), application/vnd.hp-HPGL,\n"
+		"Formats: application/vnd.locus-meta (text and binary), image/svg+xml, application/vnd.hp-HPGL,\n"
 		"image/pwg-raster and image/urf (IPP Everywhere), and each device's own format raw.\n"
 		"  --help, --version\n", stdout);
 }
@@ -121,6 +106,7 @@ static int make_spool(const char *opt)
 	}
 	chmod(spool_dir, 0700);
 	snprintf(state_file, sizeof state_file, "%s/locus-printer.state", spool_dir);
+	lp_set_spool_dir(spool_dir);
 	return 0;
 }
 
@@ -148,6 +134,22 @@ static bool private_socket(pappl_system_t *sys, void *data)
 	return false;   /* once */
 }
 
+/* A size: bytes, or with k, M or G (1024, 1024^2, 1024^3); 0 is no limit. -1 when malformed. */
+static long long parse_size(const char *v)
+{
+	char *end;
+	errno = 0;
+	long long n = strtoll(v, &end, 10);
+	if (end == v || n < 0 || errno)
+		return -1;
+	int shift = *end == 'k' || *end == 'K' ? 10 : *end == 'M' ? 20 : *end == 'G' ? 30 : 0;
+	if (shift)
+		end++;
+	if (*end || n > (LLONG_MAX >> shift))
+		return -1;
+	return n << shift;
+}
+
 /* PAPPL's system for every subcommand that needs one; the server also listens (localhost unless
  * told otherwise) and keeps its state in the spool directory. */
 static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *data)
@@ -165,10 +167,18 @@ static pappl_system_t *system_cb(int num_options, cups_option_t *options, void *
 		}
 		port = (int)p;
 	}
+	long long maxdoc = LP_MAX_DOC_DEFAULT;
+	if ((v = cupsGetOption("max-document-size", num_options, options)) && (maxdoc = parse_size(v)) < 0) {
+		fprintf(stderr, "locus-printer: max-document-size=%s: expected a size in bytes (k, M or G after it), 0 for none\n", v);
+		return NULL;
+	}
+	lp_set_max_document(maxdoc);
 	if (is_server && make_spool(cupsGetOption("spool-directory", num_options, options)))
 		return NULL;
-	if (!is_server)   /* a client subcommand: nothing is spooled here */
+	if (!is_server) {   /* a client subcommand: nothing is spooled here */
 		snprintf(spool_dir, sizeof spool_dir, "%s", papplGetTempDir());
+		lp_set_spool_dir(spool_dir);
+	}
 	pappl_system_t *sys = papplSystemCreate(server_options(cupsGetOption("server-options", num_options, options)),
 		"locus-printer", port, "_print,_universal", spool_dir,
 		cupsGetOption("log-file", num_options, options), log_level(cupsGetOption("log-level", num_options, options)),

@@ -18,6 +18,8 @@ bool lp_rstartjob(pappl_job_t *job, pappl_pr_options_t *options, pappl_device_t 
 {
 	(void)options;
 	(void)device;
+	if (!lp_job_size_ok(job))
+		return false;
 	lp_raster_t *r = calloc(1, sizeof *r);
 	char tmp[1200];
 	snprintf(tmp, sizeof tmp, "%s/locus-raster-XXXXXX", lp_spool_dir());
