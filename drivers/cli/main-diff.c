@@ -127,7 +127,7 @@ static int on_option(cli_t *c, int key, const char *arg)
 
 /* Compare two pictures row by row, B resampled to A's size with --scale; the report goes to
  * rep; the optional difference picture to dimg. Returns the exit status. */
-static int compare(dsrc_t *src, const char *const *file, const opts_t *o, FILE *rep, dev_imgw_t *dimg)
+static int compare(dsrc_t *src, const char *const *file, const opts_t *o, FILE *rep, img_writer_t *dimg)
 {
 	unsigned wa = src[0].width, ha = src[0].height, wb = src[1].width, hb = src[1].height;
 	if ((wa != wb || ha != hb) && !o->d.scale) {
@@ -174,8 +174,8 @@ static int compare(dsrc_t *src, const char *const *file, const opts_t *o, FILE *
 			cmp = brow;
 		}
 		diff_raster_row(d, y, ra, cmp, mark);
-		if (dimg && dev_imgw_rows(dimg, mark, 0, 1)) {
-			fprintf(stderr, "locus-diff: %s\n", dev_imgw_error(dimg));
+		if (dimg && img_writer_rows(dimg, mark, 0, 1)) {
+			fprintf(stderr, "locus-diff: %s\n", img_writer_error(dimg));
 			st = 74;
 		}
 	}
@@ -263,7 +263,7 @@ static int run(cli_t *c, opts_t *o)
 	size_t ntext = 0;
 	FILE *rep = open_memstream(&text, &ntext);
 	io_transport_t *dout = NULL;
-	dev_imgw_t *dimg = NULL;
+	img_writer_t *dimg = NULL;
 	int st = rep ? 0 : 70;
 	if (!rep)
 		fprintf(stderr, "locus-diff: out of memory\n");
@@ -296,7 +296,7 @@ static int run(cli_t *c, opts_t *o)
 		}
 		if (!st && o->diff_image) {
 			dout = io_open_write(o->diff_image, err, sizeof err);
-			dimg = dout ? dev_imgw_new(DEV_FMT_PNG, dout, src[0].width, src[0].height, err, sizeof err) : NULL;
+			dimg = dout ? img_writer_new(IMG_FMT_PNG, dout, src[0].width, src[0].height, err, sizeof err) : NULL;
 			if (!dimg) {
 				fprintf(stderr, "locus-diff: %s\n", err);
 				st = 74;
@@ -308,14 +308,14 @@ static int run(cli_t *c, opts_t *o)
 	dsrc_close(&src[0]);
 	dsrc_close(&src[1]);
 	if (dimg && st <= 1) {
-		if (dev_imgw_finish(dimg) || io_close_err(dout, IO_COMMIT, err, sizeof err)) {
+		if (img_writer_finish(dimg) || io_close_err(dout, IO_COMMIT, err, sizeof err)) {
 			fprintf(stderr, "locus-diff: %s: %s\n", o->diff_image, err);
 			st = 74;
 		}
 		dimg = NULL, dout = NULL;
 	}
 	if (dimg)
-		dev_imgw_abort(dimg);
+		img_writer_abort(dimg);
 	if (dout)
 		io_close(dout, IO_ABORT);
 	/* the report is built in memory: a failed write into it is running out of memory */

@@ -26,7 +26,7 @@ static int on_option(cli_t *c, int key, const char *arg)
 {
 	if (key != 'f')
 		return cli_fail(c, 64, "unhandled option");
-	if (dev_format_by_name(arg) == DEV_FMT_UNKNOWN)
+	if (img_format_by_name(arg) == IMG_FMT_UNKNOWN)
 		return cli_fail(c, 64, "unknown format '%s' (png, ppm or rle)", arg);
 	c->user = (void *)arg;
 	return CLI_RUN;
@@ -39,10 +39,10 @@ int main(int argc, char **argv)
 	if (st != CLI_RUN)
 		return st;
 	const char *out = c.out ? c.out : "-", *fmt = c.user;
-	int f = fmt ? dev_format_by_name(fmt) : strcmp(out, "-") ? dev_format_by_suffix(out) : DEV_FMT_PNG;
-	if (f == DEV_FMT_UNKNOWN)
-		f = DEV_FMT_PNG;
-	dev_job_t job = { c.in[0], out, f == DEV_FMT_PPM ? &dev_ppm_ops : f == DEV_FMT_RLE ? &dev_rle_ops : &dev_png_ops,
+	int f = fmt ? img_format_by_name(fmt) : strcmp(out, "-") ? img_format_by_suffix(out) : IMG_FMT_PNG;
+	if (f == IMG_FMT_UNKNOWN)
+		f = IMG_FMT_PNG;
+	dev_job_t job = { c.in[0], out, f == IMG_FMT_PPM ? &dev_ppm_ops : f == IMG_FMT_RLE ? &dev_rle_ops : &dev_png_ops,
 		c.band_rows, c.budget, c.options[0] ? c.options : NULL };
 	char err[600];
 	st = dev_run(&job, err, sizeof err);

@@ -23,14 +23,14 @@ typedef struct {
 	scan_path_t path;
 	dev_elem_t *elems;
 	size_t nelems, cap_elems;
-	dev_render_t *rr;                /* raster devices */
+	render_t *rr;                /* raster devices */
 	unsigned img_x, img_y, img_h, img_row;   /* current image */
 	dev_map_t map;                   /* raster devices: the page on the device's raster */
 	int mapped;                      /* 1: a raster of its own, not the identity */
 	dev_fit_img_t *img;               /* mapped: the image being resampled */
 	scan_path_t pieces;              /* raster, mapped: dash pieces */
 	dev_vec_t vec;                    /* vector devices: scratch for what the framework supplies */
-	devaa_t *aa;                     /* raster, anti-aliased: the downsampler */
+	render_aa_t *aa;                     /* raster, anti-aliased: the downsampler */
 	scan_ctx_t *sctx;                /* mapped, non-square pixels: stroke pieces */
 	scan_path_t iso, outline;        /* and their scratch paths */
 } play_t;
@@ -63,7 +63,7 @@ static int is_raster(const dev_device_t *d)
 	return (d->ops->caps & DEV_CAP_RASTER) != 0;
 }
 
-static int write_band(void *user, const dev_band_t *b)
+static int write_band(void *user, const render_band_t *b)
 {
 	dev_device_t *d = user;
 	if (!d->ops->write_band)
@@ -72,10 +72,10 @@ static int write_band(void *user, const dev_band_t *b)
 }
 
 /* A band from the renderer: to the device, or through the anti-aliasing downsampler. */
-static int emit_band(void *user, const dev_band_t *b)
+static int emit_band(void *user, const render_band_t *b)
 {
 	play_t *p = user;
-	return p->aa ? devaa_band(p->aa, b, write_band, p->d) : write_band(p->d, b);
+	return p->aa ? render_aa_band(p->aa, b, write_band, p->d) : write_band(p->d, b);
 }
 
 static int nomem(play_t *p)
@@ -87,7 +87,7 @@ static int nomem(play_t *p)
  * and the cause) when it has one, else out of memory. */
 static int render_fail(play_t *p, int rc)
 {
-	const char *m = p->rr ? dev_render_error(p->rr) : "";
+	const char *m = p->rr ? render_error(p->rr) : "";
 	return dev_fail(p->d, rc, "%s", m[0] ? m : "out of memory while rendering");
 }
 
@@ -114,7 +114,7 @@ static int do_span(play_t *p, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 	if (p->mapped)
 		return dev_fit_span(&p->map, p->rr, x, y, n, rgb);
 	if (is_raster(p->d))
-		return dev_render_span(p->rr, x, y, n, rgb);
+		return render_span(p->rr, x, y, n, rgb);
 	if (x >= p->page.width || y >= p->page.height)
 		return 0;
 	if (x + n > p->page.width)
@@ -130,7 +130,7 @@ static int do_row(play_t *p, const meta_cmd_t *c)
 	if (p->mapped)
 		return p->img ? dev_fit_image_row(p->img, p->rr, y, c->runs, c->nruns) : 0;
 	if (is_raster(p->d))
-		return dev_render_row(p->rr, p->img_x, y, c->runs, c->nruns);
+		return render_row(p->rr, p->img_x, y, c->runs, c->nruns);
 	if (p->d->ops->put_image_row)
 		return dev_vec_row(p->d, &p->vec, p->img_x, y, c->runs, c->nruns);
 	int64_t x = p->img_x;
@@ -213,8 +213,8 @@ static int paint_path(play_t *p, int kind, int text)
 		}
 		if (p->mapped)
 			dev_fit_path(&p->map, path);
-		rc = kind == META_FILL ? dev_render_fill(p->rr, path, p->st.rule, p->st.colour)
-			: dev_render_stroke(p->rr, path, &st, p->st.colour);
+		rc = kind == META_FILL ? render_fill(p->rr, path, p->st.rule, p->st.colour)
+			: render_stroke(p->rr, path, &st, p->st.colour);
 		return rc ? render_fail(p, rc) : 0;
 	}
 	/* text has no raw elements of its own: NULL makes them from its strokes */
@@ -273,14 +273,14 @@ static int begin_page(play_t *p, const meta_cmd_t *c)
 		p->mapped = !p->map.identity;
 		p->page.width = k > 1 ? dw : p->map.width;
 		p->page.height = k > 1 ? dh : p->map.height;
-		devaa_free(p->aa);
+		render_aa_free(p->aa);
 		p->aa = NULL;
-		if (k > 1 && !(p->aa = devaa_new(k, dw, dh)))
+		if (k > 1 && !(p->aa = render_aa_new(k, dw, dh)))
 			return nomem(p);
-		p->rr = dev_render_new(p->map.width, p->map.height, d->band_rows, d->mem_budget, err, sizeof err);
+		p->rr = render_new(p->map.width, p->map.height, d->band_rows, d->mem_budget, err, sizeof err);
 		if (!p->rr)
 			return dev_fail(d, META_ENOMEM, "%s", err);
-		d->bands = dev_render_bands(p->rr);
+		d->bands = render_bands(p->rr);
 	}
 	return 0;
 }
@@ -309,10 +309,10 @@ static int end_page(play_t *p)
 	if (!rc && p->mapped && (rc = dev_fit_bars(&p->map, p->rr, d->letterbox)) != 0)
 		render_fail(p, rc);
 	if (!rc && is_raster(d)) {
-		rc = dev_render_finish(p->rr, emit_band, p);
+		rc = render_finish(p->rr, emit_band, p);
 		if (rc && !d->err[0])
 			render_fail(p, rc);
-		dev_render_free(p->rr);
+		render_free(p->rr);
 		p->rr = NULL;
 	}
 	if (!rc && d->ops->end_page)
@@ -344,7 +344,7 @@ static int statement(play_t *p, const meta_cmd_t *c)
 	switch (c->op) {
 	case META_CLEAR:
 		if (is_raster(p->d))
-			return dev_render_clear(p->rr, c->rgb) ? nomem(p) : 0;
+			return render_clear(p->rr, c->rgb) ? nomem(p) : 0;
 		if (p->d->ops->clear)
 			return p->d->ops->clear(p->d, &p->page, c->rgb);
 		return rect_path(p, 0, 0, (int64_t)p->page.width * 1000, (int64_t)p->page.height * 1000, c->rgb);
@@ -476,12 +476,12 @@ int dev_play(meta_reader_t *r, dev_device_t *d)
 		if (rc == 0)
 			rc = c2;
 	}
-	dev_render_free(p.rr);
+	render_free(p.rr);
 	dev_fit_image_free(p.img);
 	scan_path_free(&p.path);
 	scan_path_free(&p.pieces);
 	dev_vec_free(&p.vec);
-	devaa_free(p.aa);
+	render_aa_free(p.aa);
 	scan_ctx_free(p.sctx);
 	scan_path_free(&p.iso);
 	scan_path_free(&p.outline);

@@ -16,7 +16,7 @@
  *    device cannot do (DEV_CAP_ONLY with FILL, DASH, WIDTH) the framework builds from §5.3's
  *    pieces: dash pieces, stroke outlines, hatch lines.
  *
- * Rows: a raster device's bands count rows from the TOP (dev_band_t.y0 = 0 is the top row);
+ * Rows: a raster device's bands count rows from the TOP (render_band_t.y0 = 0 is the top row);
  * put_span and put_image_row take the meta file's pixel coordinates, rows from the BOTTOM
  * (y = 0 is the bottom row), like every path coordinate a vector device gets.
  *
@@ -99,7 +99,7 @@ typedef struct {
 	size_t len;
 } dev_text_t;
 
-/* Finished rows for a raster device (dev_band_t): render/band.h. */
+/* Finished rows for a raster device (render_band_t): render/band.h. */
 
 typedef struct dev dev_device_t;
 
@@ -164,7 +164,7 @@ typedef struct dev_ops {
 	const dev_option_t *option_list; /* the -O keys it accepts, {NULL} terminated; NULL: none */
 	int (*open)(dev_device_t *d);
 	int (*begin_page)(dev_device_t *d, const dev_page_t *pg);
-	int (*write_band)(dev_device_t *d, const dev_band_t *band);             /* raster */
+	int (*write_band)(dev_device_t *d, const render_band_t *band);             /* raster */
 	/* vector: paint the whole page (pg: its size in pixels, and the physical size if given) */
 	int (*clear)(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb);
 	int (*stroke_path)(dev_device_t *d, const dev_path_t *p, const dev_state_t *st);
@@ -263,9 +263,9 @@ int dev_printf(dev_device_t *d, const char *fmt, ...)
 	;
 /* The fixed-point value v / 10^scale (scale 0..6; meta values have scale 3) rounded to at most
  * decimals places (halves away from zero, in integers), trailing zeros dropped, and never "-0":
- * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs DEV_FMT_SIZE bytes. */
+ * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs IMG_FMT_SIZE bytes. */
 const char *dev_fmt_fix(char *buf, int64_t v, int scale, int decimals);
-#define DEV_FMT_SIZE 32
+#define IMG_FMT_SIZE 32
 
 /* The device registry (registry.c): NULL-terminated list, and lookup by name. */
 extern const dev_ops_t *const dev_registry[];

@@ -135,7 +135,7 @@ static int64_t row_at(const dev_map_t *m, int64_t a)
 	return m->oy + first_at(a, m->ph, m->model_h);
 }
 
-static int rect(dev_render_t *rr, int64_t x0, int64_t y0, int64_t x1, int64_t y1, meta_rgb_t rgb)
+static int rect(render_t *rr, int64_t x0, int64_t y0, int64_t x1, int64_t y1, meta_rgb_t rgb)
 {
 	if (x0 >= x1 || y0 >= y1)
 		return 0;
@@ -143,12 +143,12 @@ static int rect(dev_render_t *rr, int64_t x0, int64_t y0, int64_t x1, int64_t y1
 	int rc = META_ENOMEM;
 	if (!scan_path_move(&r, x0 * 1000, y0 * 1000) && !scan_path_draw(&r, x1 * 1000, y0 * 1000) &&
 			!scan_path_draw(&r, x1 * 1000, y1 * 1000) && !scan_path_draw(&r, x0 * 1000, y1 * 1000))
-		rc = dev_render_fill(rr, &r, META_RULE_NON_ZERO, rgb);
+		rc = render_fill(rr, &r, META_RULE_NON_ZERO, rgb);
 	scan_path_free(&r);
 	return rc;
 }
 
-int dev_fit_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb)
+int dev_fit_bars(const dev_map_t *m, render_t *rr, meta_rgb_t rgb)
 {
 	int64_t w = m->width, h = m->height;
 	int64_t x0 = m->ox < 0 ? 0 : m->ox, x1 = m->ox + m->pw > w ? w : m->ox + m->pw;
@@ -163,7 +163,7 @@ int dev_fit_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb)
 	return rc;
 }
 
-int dev_fit_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+int dev_fit_span(const dev_map_t *m, render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	int64_t xe = x + n;
 	if (x < 0)
@@ -178,14 +178,14 @@ int dev_fit_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int
 	if (v1 > m->height)
 		v1 = m->height;
 	for (int64_t v = v0; v < v1 && u0 < u1; v++) {
-		int rc = dev_render_span(rr, u0, v, u1 - u0, rgb);
+		int rc = render_span(rr, u0, v, u1 - u0, rgb);
 		if (rc)
 			return rc;
 	}
 	return 0;
 }
 
-int dev_fit_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
+int dev_fit_stroke_aniso(const dev_map_t *m, render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
 		const scan_style_t *st, meta_rgb_t rgb, scan_path_t *iso, scan_path_t *pieces)
 {
 	/* iso: device coordinates with x in units of a device pixel's height (x * sy / sx), where
@@ -216,7 +216,7 @@ int dev_fit_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, 
 		return rc;
 	for (size_t i = 0; i < pieces->npts; i++)
 		pieces->pts[i].x = scan_round((double)pieces->pts[i].x / k);
-	return dev_render_fill(rr, pieces, META_RULE_NON_ZERO, rgb);
+	return render_fill(rr, pieces, META_RULE_NON_ZERO, rgb);
 }
 
 /* ---- images ---- */
@@ -325,7 +325,7 @@ void dev_fit_image_free(dev_fit_img_t *im)
 }
 
 /* Hand the pending device row to the renderer, colours merged into runs. */
-static int emit(dev_fit_img_t *im, dev_render_t *rr)
+static int emit(dev_fit_img_t *im, render_t *rr)
 {
 	size_t nu = (size_t)(im->u1 - im->u0), nr = 0;
 	for (size_t k = 0; k < nu; k++) {
@@ -345,10 +345,10 @@ static int emit(dev_fit_img_t *im, dev_render_t *rr)
 	}
 	int64_t v = im->pend;
 	im->pend = -1;
-	return dev_render_row(rr, im->u0, v, im->runs, nr);
+	return render_row(rr, im->u0, v, im->runs, nr);
 }
 
-int dev_fit_image_row(dev_fit_img_t *im, dev_render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns)
+int dev_fit_image_row(dev_fit_img_t *im, render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	const dev_map_t *m = im->m;
 	if (im->cx0 >= im->cx1 || y < im->cy0 || y >= im->cy1)

@@ -22,13 +22,13 @@ int64_t dev_fit_chord_radius(const dev_map_t *m, int64_t r);
  * pixel's height), then x is scaled to device pixels and the pieces are filled non-zero, so the
  * line is as thick on the screen across as along. p is in model thousandths, solid (dash it
  * first); iso and pieces are scratch. Returns 0 or <0. */
-int dev_fit_stroke_aniso(const dev_map_t *m, dev_render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
+int dev_fit_stroke_aniso(const dev_map_t *m, render_t *rr, scan_ctx_t *ctx, const scan_path_t *p,
 		const scan_style_t *st, meta_rgb_t rgb, scan_path_t *iso, scan_path_t *pieces);
 /* Paint the letterbox bars (the raster outside the mapped page) with rgb; called last on each
  * page, so that it also clips what was drawn beyond the page's edges. Returns 0 or <0. */
-int dev_fit_bars(const dev_map_t *m, dev_render_t *rr, meta_rgb_t rgb);
+int dev_fit_bars(const dev_map_t *m, render_t *rr, meta_rgb_t rgb);
 /* A model span: the device pixels whose centres lie in its mapped rectangle. */
-int dev_fit_span(const dev_map_t *m, dev_render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb);
+int dev_fit_span(const dev_map_t *m, render_t *rr, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb);
 
 /* An image being resampled: area average in linear light over each device pixel's footprint,
  * rows streamed top first with one pending device row of accumulators. */
@@ -37,7 +37,7 @@ typedef struct dev_fit_img dev_fit_img_t;
  * of memory. An image entirely off the page is accepted and paints nothing. */
 dev_fit_img_t *dev_fit_image_new(const dev_map_t *m, int64_t x, int64_t y, int64_t w, int64_t h);
 /* Resample the image's next row (model page row y, rows arrive top first). Returns 0 or <0. */
-int dev_fit_image_row(dev_fit_img_t *im, dev_render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns);
+int dev_fit_image_row(dev_fit_img_t *im, render_t *rr, int64_t y, const meta_run_t *runs, size_t nruns);
 /* Free the image (NULL is fine). */
 void dev_fit_image_free(dev_fit_img_t *im);
 

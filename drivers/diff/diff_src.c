@@ -49,7 +49,7 @@ static int cap_begin(dev_device_t *d, const dev_page_t *pg)
 }
 
 /* Hand the band to the comparing thread and wait until it has taken every row. */
-static int cap_band(dev_device_t *d, const dev_band_t *b)
+static int cap_band(dev_device_t *d, const render_band_t *b)
 {
 	dsrc_t *s = d->user;
 	if (d->pages + 1 != s->want)
@@ -138,12 +138,12 @@ int dsrc_sniff(dsrc_t *s, const char *path, unsigned page)
 		s->kind = DSRC_PDF;
 	else if ((n >= 2 && memcmp(h, "%!", 2) == 0) || (n >= 4 && memcmp(h, "\xC5\xD0\xD3\xC6", 4) == 0))
 		s->kind = DSRC_PS;
-	else if (dev_imgr_sniff(h, n))
+	else if (img_reader_sniff(h, n))
 		s->kind = DSRC_RASTER;
 	else if (is_hpgl(h, n))
 		s->kind = DSRC_HPGL;
 	else if (strcmp(path, "-") && !stat(path, &sb) && S_ISREG(sb.st_mode) &&
-			imgr_fbdump_mode((uint64_t)sb.st_size) >= 0)
+			img_rd_fbdump_mode((uint64_t)sb.st_size) >= 0)
 		s->kind = DSRC_RASTER, s->dump = (uint64_t)sb.st_size;   /* headerless: told by its size */
 	else
 		s->kind = DSRC_RASTER;   /* the image reader names what it expected */
@@ -273,12 +273,12 @@ int dsrc_open(dsrc_t *s, unsigned band_rows, size_t budget)
 		pthread_mutex_unlock(&s->mu);
 		return st;
 	}
-	int rc = s->dump ? imgr_open_fbdump(src_read, s, NULL, 0, s->name, s->dump, &s->img, s->err, sizeof s->err)
-		: dev_imgr_open(src_read, s, NULL, 0, s->name, &s->img, s->err, sizeof s->err);
+	int rc = s->dump ? img_rd_open_fbdump(src_read, s, NULL, 0, s->name, s->dump, &s->img, s->err, sizeof s->err)
+		: img_reader_open(src_read, s, NULL, 0, s->name, &s->img, s->err, sizeof s->err);
 	if (rc)
 		return status_of(rc);
-	s->width = dev_imgr_width(s->img);
-	s->height = dev_imgr_height(s->img);
+	s->width = img_reader_width(s->img);
+	s->height = img_reader_height(s->img);
 	s->row = malloc((size_t)s->width * 3);
 	if (!s->row) {
 		snprintf(s->err, sizeof s->err, "out of memory");
@@ -291,9 +291,9 @@ int dsrc_open(dsrc_t *s, unsigned band_rows, size_t budget)
 int dsrc_row(dsrc_t *s, const uint8_t **row)
 {
 	if (!s->meta) {
-		int rc = dev_imgr_row(s->img, s->row);
+		int rc = img_reader_row(s->img, s->row);
 		if (rc) {
-			snprintf(s->err, sizeof s->err, "%s", dev_imgr_error(s->img));
+			snprintf(s->err, sizeof s->err, "%s", img_reader_error(s->img));
 			return status_of(rc);
 		}
 		*row = s->row;
@@ -321,9 +321,9 @@ int dsrc_row(dsrc_t *s, const uint8_t **row)
 int dsrc_finish(dsrc_t *s)
 {
 	if (!s->meta) {
-		int rc = dev_imgr_end(s->img);
+		int rc = img_reader_end(s->img);
 		if (rc)
-			snprintf(s->err, sizeof s->err, "%s", dev_imgr_error(s->img));
+			snprintf(s->err, sizeof s->err, "%s", img_reader_error(s->img));
 		return rc ? status_of(rc) : 0;
 	}
 	pthread_mutex_lock(&s->mu);
@@ -349,7 +349,7 @@ void dsrc_close(dsrc_t *s)
 	}
 	dev_free(s->dev);
 	meta_reader_free(s->mr);
-	dev_imgr_free(s->img);
+	img_reader_free(s->img);
 	free(s->row);
 	if (s->pipe) {
 		fclose(s->pipe);

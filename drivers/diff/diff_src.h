@@ -26,7 +26,7 @@ typedef struct {
 	pid_t pid;
 	size_t nhead, headpos;
 	unsigned width, height;
-	dev_imgr_t *img;
+	img_reader_t *img;
 	uint8_t *row;
 	/* meta files */
 	int meta, started;
@@ -37,7 +37,7 @@ typedef struct {
 	pthread_cond_t cv;
 	unsigned want;
 	int sized, done, quit, status;
-	const dev_band_t *band;
+	const render_band_t *band;
 	unsigned band_at;
 	char tmp[64];                /* the temporary copy Ghostscript reads */
 	char err[600];

@@ -211,7 +211,7 @@ int fbm_begin_page(dev_device_t *d, const dev_page_t *pg)
 	return 0;
 }
 
-int fbm_write_band(dev_device_t *d, const dev_band_t *b)
+int fbm_write_band(dev_device_t *d, const render_band_t *b)
 {
 	fbm_t *f = d->priv;
 	if (b->width != f->w || b->y0 + b->nrows > f->h)

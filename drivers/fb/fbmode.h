@@ -41,7 +41,7 @@ void fbm_describe(const fbm_mode_t *m, char *buf, size_t n);
 /* The device operations, given the device's mode list (dev_vga.c, dev_xga.c wrap them). */
 int fbm_open(dev_device_t *d, const fbm_modes_t *ml);
 int fbm_begin_page(dev_device_t *d, const dev_page_t *pg);
-int fbm_write_band(dev_device_t *d, const dev_band_t *b);
+int fbm_write_band(dev_device_t *d, const render_band_t *b);
 int fbm_end_page(dev_device_t *d, const dev_page_t *pg);
 int fbm_close(dev_device_t *d);
 

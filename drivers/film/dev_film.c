@@ -21,7 +21,7 @@ typedef struct {
 	film_frame_t fr;            /* the page being written */
 	uint8_t *row;               /* one packed row */
 	FILE *spool[2];             /* planar: the green and blue planes until the red one is out */
-	dev_imgw_t *rle;
+	img_writer_t *rle;
 	unsigned rows;              /* rows written on this page */
 	double frame_rate;          /* fps, for the headers' rate and time code */
 	long first_frame, frame_step;   /* the frame number of page k: first_frame + k x frame_step */
@@ -227,7 +227,7 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 	if (f->kind == FILM_RLE) {
 		if (f->channel >= 0 || f->planar)
 			return dev_fail(d, DEV_EUSAGE, "the RLE format holds 24-bit RGB frames, not separations");
-		f->rle = dev_imgw_new(DEV_FMT_RLE, d->out, pg->width, pg->height, err, sizeof err);
+		f->rle = img_writer_new(IMG_FMT_RLE, d->out, pg->width, pg->height, err, sizeof err);
 		return f->rle ? 0 : dev_fail(d, dev_code_of_errno(errno), "%s", err);
 	}
 	if (f->kind == FILM_CINEON && f->little_endian)
@@ -271,12 +271,12 @@ static int f_begin(dev_device_t *d, const dev_page_t *pg)
 	return 0;
 }
 
-static int f_band(dev_device_t *d, const dev_band_t *b)
+static int f_band(dev_device_t *d, const render_band_t *b)
 {
 	film_t *f = d->priv;
 	if (f->rle) {
-		if (dev_imgw_rows(f->rle, b->pix, b->stride, b->nrows))
-			return dev_fail(d, dev_code_of_errno(dev_imgw_errno(f->rle)), "%s", dev_imgw_error(f->rle));
+		if (img_writer_rows(f->rle, b->pix, b->stride, b->nrows))
+			return dev_fail(d, dev_code_of_errno(img_writer_errno(f->rle)), "%s", img_writer_error(f->rle));
 		f->rows += b->nrows;
 		return 0;
 	}
@@ -312,11 +312,11 @@ static int f_end(dev_device_t *d, const dev_page_t *pg)
 	if (f->rows != pg->height)
 		rc = dev_fail(d, DEV_EDEVICE, "film: %u rows written of %u", f->rows, pg->height);
 	if (f->rle) {
-		if (!rc && dev_imgw_finish(f->rle))
-			rc = dev_fail(d, dev_code_of_errno(dev_imgw_errno(f->rle)), "%s", dev_imgw_error(f->rle));
+		if (!rc && img_writer_finish(f->rle))
+			rc = dev_fail(d, dev_code_of_errno(img_writer_errno(f->rle)), "%s", img_writer_error(f->rle));
 		else if (!rc)
 			f->rle = NULL;          /* finished and freed */
-		dev_imgw_abort(f->rle);
+		img_writer_abort(f->rle);
 		f->rle = NULL;
 		return rc;
 	}
@@ -338,7 +338,7 @@ static int f_end(dev_device_t *d, const dev_page_t *pg)
 static int f_close(dev_device_t *d)
 {
 	film_t *f = d->priv;
-	dev_imgw_abort(f->rle);
+	img_writer_abort(f->rle);
 	f->rle = NULL;
 	drop_spools(f);
 	free(f->row);

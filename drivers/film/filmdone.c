@@ -27,21 +27,21 @@ static long file_read(void *user, void *buf, size_t n)
 /* An RLE frame: the image reader decodes it to its last row and finds nothing after it. */
 static int rle_whole(FILE *f, const char *path, char *why, size_t n)
 {
-	dev_imgr_t *r = NULL;
+	img_reader_t *r = NULL;
 	char err[300];
-	if (dev_imgr_open(file_read, f, NULL, 0, path, &r, err, sizeof err)) {
+	if (img_reader_open(file_read, f, NULL, 0, path, &r, err, sizeof err)) {
 		snprintf(why, n, "%s", err);
 		return 0;
 	}
-	uint8_t *row = malloc((size_t)dev_imgr_width(r) * 3 + 1);
+	uint8_t *row = malloc((size_t)img_reader_width(r) * 3 + 1);
 	int ok = row != NULL;
-	for (unsigned y = 0; ok && y < dev_imgr_height(r); y++)
-		ok = dev_imgr_row(r, row) == 0;
-	ok = ok && dev_imgr_end(r) == 0;
+	for (unsigned y = 0; ok && y < img_reader_height(r); y++)
+		ok = img_reader_row(r, row) == 0;
+	ok = ok && img_reader_end(r) == 0;
 	if (!ok)
-		snprintf(why, n, "%s", row ? dev_imgr_error(r) : "out of memory");
+		snprintf(why, n, "%s", row ? img_reader_error(r) : "out of memory");
 	free(row);
-	dev_imgr_free(r);
+	img_reader_free(r);
 	return ok;
 }
 

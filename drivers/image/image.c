@@ -7,10 +7,10 @@
 #include <string.h>
 #include "image/image.h"
 
-struct dev_imgw {
+struct img_writer {
 	int fmt;
 	io_transport_t *t;
-	dev_write_fn sink;       /* instead of t (dev_imgw_new_png_fn) */
+	img_sink_fn sink;       /* instead of t (img_writer_new_png_fn) */
 	void *sink_user;
 	unsigned width, height, rows;
 	png_structp png;
@@ -18,30 +18,30 @@ struct dev_imgw {
 	int io_failed, info_done;
 	double wmm, hmm;
 	unsigned char *rle;      /* one encoded row */
-	int errcode;             /* the failure's errno (dev_imgw_errno), set where it is raised */
+	int errcode;             /* the failure's errno (img_writer_errno), set where it is raised */
 	char err[256];
 };
 
-int dev_format_by_name(const char *name)
+int img_format_by_name(const char *name)
 {
-	if (!strcmp(name, "png")) return DEV_FMT_PNG;
-	if (!strcmp(name, "ppm")) return DEV_FMT_PPM;
-	if (!strcmp(name, "rle")) return DEV_FMT_RLE;
-	return DEV_FMT_UNKNOWN;
+	if (!strcmp(name, "png")) return IMG_FMT_PNG;
+	if (!strcmp(name, "ppm")) return IMG_FMT_PPM;
+	if (!strcmp(name, "rle")) return IMG_FMT_RLE;
+	return IMG_FMT_UNKNOWN;
 }
 
-int dev_format_by_suffix(const char *path)
+int img_format_by_suffix(const char *path)
 {
 	const char *dot = strrchr(path, '.');
 	const char *slash = strrchr(path, '/');
 	if (!dot || (slash && dot < slash))
-		return DEV_FMT_UNKNOWN;
-	return dev_format_by_name(dot + 1);
+		return IMG_FMT_UNKNOWN;
+	return img_format_by_name(dot + 1);
 }
 
 static void png_out(png_structp png, png_bytep data, size_t n)
 {
-	dev_imgw_t *w = png_get_io_ptr(png);
+	img_writer_t *w = png_get_io_ptr(png);
 	if (w->sink ? w->sink(w->sink_user, data, n) : io_write(w->t, data, n)) {
 		w->io_failed = 1;   /* the transport's message names the output and the cause */
 		w->errcode = w->sink ? EIO : io_errno(w->t);
@@ -57,7 +57,7 @@ static void png_flush_cb(png_structp png)
 
 static void png_err(png_structp png, png_const_charp msg)
 {
-	dev_imgw_t *w = png_get_error_ptr(png);
+	img_writer_t *w = png_get_error_ptr(png);
 	/* libpng says "Out of memory", "insufficient memory", ...: one wording, so that the
 	 * programs tell it from an I/O error (exit 70, not 74) */
 	if (!w->io_failed) {
@@ -80,7 +80,7 @@ static void put_be32(unsigned char *p, uint32_t v)
 	p[2] = (unsigned char)(v >> 8); p[3] = (unsigned char)v;
 }
 
-static int png_start(dev_imgw_t *w)
+static int png_start(img_writer_t *w)
 {
 	w->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w, png_err, png_warn);
 	if (!w->png || !(w->info = png_create_info_struct(w->png))) {
@@ -99,7 +99,7 @@ static int png_start(dev_imgw_t *w)
 }
 
 /* The PNG header goes out with the first rows, so that the physical size can still be set. */
-static int png_header(dev_imgw_t *w)
+static int png_header(img_writer_t *w)
 {
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
@@ -115,16 +115,16 @@ static int png_header(dev_imgw_t *w)
 	return 0;
 }
 
-void dev_imgw_physical(dev_imgw_t *w, double width_mm, double height_mm)
+void img_writer_physical(img_writer_t *w, double width_mm, double height_mm)
 {
 	w->wmm = width_mm;
 	w->hmm = height_mm;
 }
 
-dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
+img_writer_t *img_writer_new(int fmt, io_transport_t *t, unsigned width, unsigned height, char *err,
 		size_t errlen)
 {
-	dev_imgw_t *w = calloc(1, sizeof *w);
+	img_writer_t *w = calloc(1, sizeof *w);
 	if (!w) {
 		snprintf(err, errlen, "out of memory");
 		errno = ENOMEM;
@@ -135,11 +135,11 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 	w->width = width;
 	w->height = height;
 	int rc = 0;
-	if (fmt == DEV_FMT_PPM) {
+	if (fmt == IMG_FMT_PPM) {
 		char h[64];
 		int n = snprintf(h, sizeof h, "P6\n%u %u\n255\n", width, height);
 		rc = io_write(t, h, (size_t)n);
-	} else if (fmt == DEV_FMT_RLE) {
+	} else if (fmt == IMG_FMT_RLE) {
 		unsigned char h[DEV_RLE_HEADER];
 		memcpy(h, DEV_RLE_MAGIC, 4);
 		h[4] = DEV_RLE_VERSION;
@@ -150,38 +150,38 @@ dev_imgw_t *dev_imgw_new(int fmt, io_transport_t *t, unsigned width, unsigned he
 	} else {
 		rc = png_start(w);
 	}
-	if (rc && fmt == DEV_FMT_RLE && !w->rle) {
+	if (rc && fmt == IMG_FMT_RLE && !w->rle) {
 		snprintf(err, errlen, "out of memory");
-		dev_imgw_abort(w);
+		img_writer_abort(w);
 		errno = ENOMEM;
 		return NULL;
 	}
 	if (rc) {
-		int own = !w->io_failed && fmt == DEV_FMT_PNG, e = own ? w->errcode : io_errno(t);
+		int own = !w->io_failed && fmt == IMG_FMT_PNG, e = own ? w->errcode : io_errno(t);
 		snprintf(err, errlen, "%s", own ? w->err : io_error(t));
-		dev_imgw_abort(w);
+		img_writer_abort(w);
 		errno = e ? e : EIO;
 		return NULL;
 	}
 	return w;
 }
 
-dev_imgw_t *dev_imgw_new_png_fn(dev_write_fn fn, void *user, int compact, unsigned width,
+img_writer_t *img_writer_new_png_fn(img_sink_fn fn, void *user, int compact, unsigned width,
 		unsigned height, char *err, size_t errlen)
 {
-	dev_imgw_t *w = calloc(1, sizeof *w);
+	img_writer_t *w = calloc(1, sizeof *w);
 	if (!w) {
 		snprintf(err, errlen, "out of memory");
 		return NULL;
 	}
-	w->fmt = DEV_FMT_PNG;
+	w->fmt = IMG_FMT_PNG;
 	w->sink = fn;
 	w->sink_user = user;
 	w->width = width;
 	w->height = height;
 	if (png_start(w)) {
 		snprintf(err, errlen, "%s", w->err);
-		dev_imgw_abort(w);
+		img_writer_abort(w);
 		return NULL;
 	}
 	if (compact) {
@@ -191,7 +191,7 @@ dev_imgw_t *dev_imgw_new_png_fn(dev_write_fn fn, void *user, int compact, unsign
 	return w;
 }
 
-static int rle_row(dev_imgw_t *w, const uint8_t *p)
+static int rle_row(img_writer_t *w, const uint8_t *p)
 {
 	unsigned char *o = w->rle;
 	unsigned x = 0;
@@ -207,7 +207,7 @@ static int rle_row(dev_imgw_t *w, const uint8_t *p)
 	return io_write(w->t, w->rle, (size_t)(o - w->rle));
 }
 
-static int png_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
+static int png_rows(img_writer_t *w, const uint8_t *pix, size_t stride, unsigned n)
 {
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
@@ -216,7 +216,7 @@ static int png_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n
 	return 0;
 }
 
-int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
+int img_writer_rows(img_writer_t *w, const uint8_t *pix, size_t stride, unsigned n)
 {
 	int rc = 0;
 	if (w->rows + n > w->height) {
@@ -224,13 +224,13 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 		snprintf(w->err, sizeof w->err, "too many rows");
 		return -1;
 	}
-	if (w->fmt == DEV_FMT_PNG) {
+	if (w->fmt == IMG_FMT_PNG) {
 		rc = w->info_done ? 0 : png_header(w);
 		if (rc == 0)
 			rc = png_rows(w, pix, stride, n);
 	} else {
 		for (unsigned k = 0; k < n && rc == 0; k++)
-			rc = w->fmt == DEV_FMT_RLE ? rle_row(w, pix + k * stride)
+			rc = w->fmt == IMG_FMT_RLE ? rle_row(w, pix + k * stride)
 				: io_write(w->t, pix + k * stride, (size_t)w->width * 3);
 		if (rc) {
 			w->errcode = io_errno(w->t);
@@ -241,7 +241,7 @@ int dev_imgw_rows(dev_imgw_t *w, const uint8_t *pix, size_t stride, unsigned n)
 	return rc;
 }
 
-static int png_end(dev_imgw_t *w)
+static int png_end(img_writer_t *w)
 {
 	if (setjmp(png_jmpbuf(w->png)))
 		return -1;
@@ -249,14 +249,14 @@ static int png_end(dev_imgw_t *w)
 	return 0;
 }
 
-int dev_imgw_finish(dev_imgw_t *w)
+int img_writer_finish(img_writer_t *w)
 {
 	int rc = 0;
 	if (w->rows != w->height) {
 		w->errcode = EINVAL;
 		snprintf(w->err, sizeof w->err, "image incomplete (%u of %u rows)", w->rows, w->height);
 		rc = -1;
-	} else if (w->fmt == DEV_FMT_PNG) {
+	} else if (w->fmt == IMG_FMT_PNG) {
 		rc = png_end(w);
 	}
 	if (rc == 0 && !w->sink && (rc = io_flush(w->t)) != 0) {
@@ -265,11 +265,11 @@ int dev_imgw_finish(dev_imgw_t *w)
 	}
 	if (rc)
 		return rc;   /* caller reads the message, then aborts */
-	dev_imgw_abort(w);
+	img_writer_abort(w);
 	return 0;
 }
 
-void dev_imgw_abort(dev_imgw_t *w)
+void img_writer_abort(img_writer_t *w)
 {
 	if (!w)
 		return;
@@ -279,12 +279,12 @@ void dev_imgw_abort(dev_imgw_t *w)
 	free(w);
 }
 
-int dev_imgw_errno(const dev_imgw_t *w)
+int img_writer_errno(const img_writer_t *w)
 {
 	return w->errcode ? w->errcode : EIO;
 }
 
-const char *dev_imgw_error(const dev_imgw_t *w)
+const char *img_writer_error(const img_writer_t *w)
 {
 	return w->err;
 }

@@ -11,15 +11,15 @@
 
 /* ---- PPM ---- */
 
-static int ppm_number(dev_imgr_t *r, unsigned *v)
+static int ppm_number(img_reader_t *r, unsigned *v)
 {
 	int rc;
 	for (;;) {
-		if ((rc = imgr_fill(r)) <= 0)
-			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "truncated PPM header");
+		if ((rc = img_rd_fill(r)) <= 0)
+			return rc < 0 ? rc : img_rd_bad(r, img_rd_offset(r), "truncated PPM header");
 		unsigned char c = r->buf[r->pos];
 		if (c == '#') {
-			while ((rc = imgr_fill(r)) > 0 && r->buf[r->pos] != '\n')
+			while ((rc = img_rd_fill(r)) > 0 && r->buf[r->pos] != '\n')
 				r->pos++;
 			if (rc < 0)
 				return rc;
@@ -30,12 +30,12 @@ static int ppm_number(dev_imgr_t *r, unsigned *v)
 		}
 	}
 	if (r->buf[r->pos] < '0' || r->buf[r->pos] > '9')
-		return imgr_bad(r, imgr_offset(r), "expected a number in the PPM header");
-	uint64_t at = imgr_offset(r);
+		return img_rd_bad(r, img_rd_offset(r), "expected a number in the PPM header");
+	uint64_t at = img_rd_offset(r);
 	unsigned long x = 0;
-	while ((rc = imgr_fill(r)) > 0 && r->buf[r->pos] >= '0' && r->buf[r->pos] <= '9') {
+	while ((rc = img_rd_fill(r)) > 0 && r->buf[r->pos] >= '0' && r->buf[r->pos] <= '9') {
 		if (x > 1000000)
-			return imgr_bad(r, at, "number too large in the PPM header");
+			return img_rd_bad(r, at, "number too large in the PPM header");
 		x = x * 10 + (unsigned)(r->buf[r->pos++] - '0');
 	}
 	if (rc < 0)
@@ -44,7 +44,7 @@ static int ppm_number(dev_imgr_t *r, unsigned *v)
 	return 0;
 }
 
-static int ppm_open(dev_imgr_t *r)
+static int ppm_open(img_reader_t *r)
 {
 	unsigned v[3];
 	r->pos += 2;
@@ -53,26 +53,26 @@ static int ppm_open(dev_imgr_t *r)
 		if (rc)
 			return rc;
 		if (k == 1 && (v[0] == 0 || v[1] == 0 || v[0] > DEV_IMAGE_MAX_DIM || v[1] > DEV_IMAGE_MAX_DIM))
-			return imgr_bad(r, 3, "bad or too large PPM size (each side 1 to 65536)");
+			return img_rd_bad(r, 3, "bad or too large PPM size (each side 1 to 65536)");
 	}
 	if (v[2] != 255)
-		return imgr_bad(r, imgr_offset(r), "only PPM with maxval 255 is supported");
-	int rc = imgr_fill(r);
+		return img_rd_bad(r, img_rd_offset(r), "only PPM with maxval 255 is supported");
+	int rc = img_rd_fill(r);
 	if (rc <= 0)
-		return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "truncated PPM header");
+		return rc < 0 ? rc : img_rd_bad(r, img_rd_offset(r), "truncated PPM header");
 	r->pos++;   /* the single whitespace byte before the pixels */
 	r->width = v[0];
 	r->height = v[1];
 	return 0;
 }
 
-static int ppm_row(dev_imgr_t *r, uint8_t *row)
+static int ppm_row(img_reader_t *r, uint8_t *row)
 {
 	size_t n = (size_t)r->width * 3;
-	long got = imgr_take(r, row, n);
+	long got = img_rd_take(r, row, n);
 	if (got < 0)
 		return (int)got;
-	return (size_t)got < n ? imgr_bad(r, imgr_offset(r), "truncated PPM pixel data") : 0;
+	return (size_t)got < n ? img_rd_bad(r, img_rd_offset(r), "truncated PPM pixel data") : 0;
 }
 
 /* ---- RLE (docs/rle-format.md) ---- */
@@ -82,38 +82,38 @@ static uint32_t be32(const unsigned char *p)
 	return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
 }
 
-static int rle_open(dev_imgr_t *r)
+static int rle_open(img_reader_t *r)
 {
 	unsigned char h[DEV_RLE_HEADER];
-	long got = imgr_take(r, h, sizeof h);
+	long got = img_rd_take(r, h, sizeof h);
 	if (got < 0)
 		return (int)got;
 	if ((size_t)got < sizeof h)
-		return imgr_bad(r, imgr_offset(r), "truncated RLE header");
+		return img_rd_bad(r, img_rd_offset(r), "truncated RLE header");
 	if (h[4] != DEV_RLE_VERSION)
-		return imgr_bad(r, 4, "unsupported RLE version");
+		return img_rd_bad(r, 4, "unsupported RLE version");
 	uint32_t w = be32(h + 5), ht = be32(h + 9);
 	if (w == 0 || ht == 0 || w > DEV_IMAGE_MAX_DIM || ht > DEV_IMAGE_MAX_DIM)
-		return imgr_bad(r, 5, "bad or too large RLE size (each side 1 to 65536)");
+		return img_rd_bad(r, 5, "bad or too large RLE size (each side 1 to 65536)");
 	r->width = w;
 	r->height = ht;
 	return 0;
 }
 
-static int rle_row(dev_imgr_t *r, uint8_t *row)
+static int rle_row(img_reader_t *r, uint8_t *row)
 {
 	unsigned x = 0;
 	while (x < r->width) {
 		unsigned char q[4];
-		uint64_t at = imgr_offset(r);
-		long got = imgr_take(r, q, 4);
+		uint64_t at = img_rd_offset(r);
+		long got = img_rd_take(r, q, 4);
 		if (got < 0)
 			return (int)got;
 		if (got < 4)
-			return imgr_bad(r, at, "truncated RLE data");
+			return img_rd_bad(r, at, "truncated RLE data");
 		unsigned c = (unsigned)q[0] + 1;
 		if (x + c > r->width)
-			return imgr_bad(r, at, "RLE run crosses the end of its row");
+			return img_rd_bad(r, at, "RLE run crosses the end of its row");
 		for (unsigned k = 0; k < c; k++)
 			memcpy(row + 3 * (x + k), q + 1, 3);
 		x += c;
@@ -125,8 +125,8 @@ static int rle_row(dev_imgr_t *r, uint8_t *row)
 
 static void png_in(png_structp png, png_bytep data, size_t n)
 {
-	dev_imgr_t *r = png_get_io_ptr(png);
-	long got = imgr_take(r, data, n);
+	img_reader_t *r = png_get_io_ptr(png);
+	long got = img_rd_take(r, data, n);
 	if (got < 0)
 		png_error(png, "read error");
 	if ((size_t)got < n)
@@ -135,10 +135,10 @@ static void png_in(png_structp png, png_bytep data, size_t n)
 
 static void png_rerr(png_structp png, png_const_charp msg)
 {
-	dev_imgr_t *r = png_get_error_ptr(png);
+	img_reader_t *r = png_get_error_ptr(png);
 	if (!r->ioerr)
 		snprintf(r->err, sizeof r->err, "%s: byte %llu: bad PNG: %s", r->name,
-			(unsigned long long)imgr_offset(r), msg);
+			(unsigned long long)img_rd_offset(r), msg);
 	png_longjmp(png, 1);
 }
 
@@ -148,12 +148,12 @@ static void png_rwarn(png_structp png, png_const_charp msg)
 	(void)msg;
 }
 
-static int png_fail(dev_imgr_t *r)
+static int png_fail(img_reader_t *r)
 {
 	return r->ioerr ? -74 : -65;
 }
 
-static int png_open(dev_imgr_t *r)
+static int png_open(img_reader_t *r)
 {
 	r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r, png_rerr, png_rwarn);
 	if (!r->png || !(r->info = png_create_info_struct(r->png))) {
@@ -170,14 +170,14 @@ static int png_open(dev_imgr_t *r)
 	int depth, type, interlace;
 	png_get_IHDR(r->png, r->info, &w, &h, &depth, &type, &interlace, NULL, NULL);
 	if (interlace != PNG_INTERLACE_NONE)
-		return imgr_bad(r, 28, "interlaced PNG is not supported (it cannot be read a row at a time)");
+		return img_rd_bad(r, 28, "interlaced PNG is not supported (it cannot be read a row at a time)");
 	png_set_expand(r->png);
 	png_set_scale_16(r->png);
 	png_set_gray_to_rgb(r->png);
 	png_read_update_info(r->png, r->info);
 	r->channels = png_get_channels(r->png, r->info);
 	if (r->channels != 3 && r->channels != 4)
-		return imgr_bad(r, 16, "unexpected PNG channel count");
+		return img_rd_bad(r, 16, "unexpected PNG channel count");
 	r->width = w;
 	r->height = h;
 	r->prow = malloc((size_t)w * r->channels);
@@ -188,7 +188,7 @@ static int png_open(dev_imgr_t *r)
 	return 0;
 }
 
-static int png_row(dev_imgr_t *r, uint8_t *row)
+static int png_row(img_reader_t *r, uint8_t *row)
 {
 	if (setjmp(png_jmpbuf(r->png)))
 		return png_fail(r);
@@ -200,7 +200,7 @@ static int png_row(dev_imgr_t *r, uint8_t *row)
 	return 0;
 }
 
-static int png_finish(dev_imgr_t *r)
+static int png_finish(img_reader_t *r)
 {
 	if (setjmp(png_jmpbuf(r->png)))
 		return png_fail(r);
@@ -211,11 +211,11 @@ static int png_finish(dev_imgr_t *r)
 /* ---- the reader ---- */
 
 /* Open, the format told by the magic, or forced (a dump of fsize bytes). */
-static int open_as(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		const imgr_fmt_t *force, uint64_t fsize, dev_imgr_t **out, char *err, size_t errlen)
+static int open_as(img_source_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		const img_rd_fmt_t *force, uint64_t fsize, img_reader_t **out, char *err, size_t errlen)
 {
 	*out = NULL;
-	dev_imgr_t *r = calloc(1, sizeof *r);
+	img_reader_t *r = calloc(1, sizeof *r);
 	size_t cap = nhead > INBUF ? nhead : INBUF;
 	if (!r || !(r->buf = malloc(cap))) {
 		free(r);
@@ -245,100 +245,100 @@ static int open_as(dev_read_fn fn, void *user, const void *head, size_t nhead, c
 	r->fsize = fsize;
 	if (rc == 0 && force) {
 		r->ops = force;
-		r->fmt = DEV_FMT_UNKNOWN;
+		r->fmt = IMG_FMT_UNKNOWN;
 		rc = force->open(r);
 	} else if (rc == 0) {
 		const unsigned char *b = r->buf;
 		if (r->len >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
-			r->fmt = DEV_FMT_PNG, rc = png_open(r);
+			r->fmt = IMG_FMT_PNG, rc = png_open(r);
 		else if (r->len >= 2 && b[0] == 'P' && b[1] == '6')
-			r->fmt = DEV_FMT_PPM, rc = ppm_open(r);
+			r->fmt = IMG_FMT_PPM, rc = ppm_open(r);
 		else if (r->len >= 4 && memcmp(b, DEV_RLE_MAGIC, 4) == 0)
-			r->fmt = DEV_FMT_RLE, rc = rle_open(r);
-		else if (imgr_is_pcx(b, r->len))
-			r->ops = &imgr_pcx;
-		else if (imgr_is_bmp(b, r->len))
-			r->ops = &imgr_bmp;
-		else if (imgr_is_dpx(b, r->len))
-			r->ops = &imgr_dpx;
-		else if (imgr_is_cineon(b, r->len))
-			r->ops = &imgr_cineon;
+			r->fmt = IMG_FMT_RLE, rc = rle_open(r);
+		else if (img_rd_is_pcx(b, r->len))
+			r->ops = &img_rd_pcx;
+		else if (img_rd_is_bmp(b, r->len))
+			r->ops = &img_rd_bmp;
+		else if (img_rd_is_dpx(b, r->len))
+			r->ops = &img_rd_dpx;
+		else if (img_rd_is_cineon(b, r->len))
+			r->ops = &img_rd_cineon;
 		else
-			rc = imgr_bad(r, 0, "not a PNG, PPM (P6), Locus RLE, PCX, BMP, DPX or Cineon image");
+			rc = img_rd_bad(r, 0, "not a PNG, PPM (P6), Locus RLE, PCX, BMP, DPX or Cineon image");
 		if (r->ops)
-			r->fmt = DEV_FMT_UNKNOWN, rc = r->ops->open(r);
+			r->fmt = IMG_FMT_UNKNOWN, rc = r->ops->open(r);
 	}
 	if (rc) {
 		snprintf(err, errlen, "%s", r->err);
-		dev_imgr_free(r);
+		img_reader_free(r);
 		return rc;
 	}
 	*out = r;
 	return 0;
 }
 
-int dev_imgr_open(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		dev_imgr_t **out, char *err, size_t errlen)
+int img_reader_open(img_source_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		img_reader_t **out, char *err, size_t errlen)
 {
 	return open_as(fn, user, head, nhead, name, NULL, 0, out, err, errlen);
 }
 
-int dev_imgr_sniff(const unsigned char *b, size_t n)
+int img_reader_sniff(const unsigned char *b, size_t n)
 {
 	return (n >= 8 && memcmp(b, "\x89PNG", 4) == 0) || (n >= 2 && b[0] == 'P' && b[1] == '6') ||
-		(n >= 4 && memcmp(b, DEV_RLE_MAGIC, 4) == 0) || imgr_is_pcx(b, n) || imgr_is_bmp(b, n) ||
-		imgr_is_dpx(b, n) || imgr_is_cineon(b, n);
+		(n >= 4 && memcmp(b, DEV_RLE_MAGIC, 4) == 0) || img_rd_is_pcx(b, n) || img_rd_is_bmp(b, n) ||
+		img_rd_is_dpx(b, n) || img_rd_is_cineon(b, n);
 }
 
-int imgr_open_fbdump(dev_read_fn fn, void *user, const void *head, size_t nhead, const char *name,
-		uint64_t size, dev_imgr_t **out, char *err, size_t errlen)
+int img_rd_open_fbdump(img_source_fn fn, void *user, const void *head, size_t nhead, const char *name,
+		uint64_t size, img_reader_t **out, char *err, size_t errlen)
 {
-	return open_as(fn, user, head, nhead, name, &imgr_fbdump, size, out, err, errlen);
+	return open_as(fn, user, head, nhead, name, &img_rd_fbdump, size, out, err, errlen);
 }
 
-unsigned dev_imgr_width(const dev_imgr_t *r)
+unsigned img_reader_width(const img_reader_t *r)
 {
 	return r->width;
 }
 
-unsigned dev_imgr_height(const dev_imgr_t *r)
+unsigned img_reader_height(const img_reader_t *r)
 {
 	return r->height;
 }
 
-int dev_imgr_row(dev_imgr_t *r, uint8_t *row)
+int img_reader_row(img_reader_t *r, uint8_t *row)
 {
 	if (r->y >= r->height) {
 		snprintf(r->err, sizeof r->err, "%s: read past the last row", r->name);
 		return -70;
 	}
-	int rc = r->ops ? r->ops->row(r, row) : r->fmt == DEV_FMT_PNG ? png_row(r, row) : r->fmt == DEV_FMT_PPM ? ppm_row(r, row)
+	int rc = r->ops ? r->ops->row(r, row) : r->fmt == IMG_FMT_PNG ? png_row(r, row) : r->fmt == IMG_FMT_PPM ? ppm_row(r, row)
 		: rle_row(r, row);
 	if (rc == 0)
 		r->y++;
 	return rc;
 }
 
-int dev_imgr_end(dev_imgr_t *r)
+int img_reader_end(img_reader_t *r)
 {
 	if (r->ops)
 		return r->ops->end ? r->ops->end(r) : 0;
-	if (r->fmt == DEV_FMT_PNG)
+	if (r->fmt == IMG_FMT_PNG)
 		return png_finish(r);
-	if (r->fmt == DEV_FMT_RLE) {
-		int rc = imgr_fill(r);
+	if (r->fmt == IMG_FMT_RLE) {
+		int rc = img_rd_fill(r);
 		if (rc)
-			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "trailing bytes after the RLE image");
+			return rc < 0 ? rc : img_rd_bad(r, img_rd_offset(r), "trailing bytes after the RLE image");
 	}
 	return 0;
 }
 
-const char *dev_imgr_error(const dev_imgr_t *r)
+const char *img_reader_error(const img_reader_t *r)
 {
 	return r->err;
 }
 
-void dev_imgr_free(dev_imgr_t *r)
+void img_reader_free(img_reader_t *r)
 {
 	if (!r)
 		return;
@@ -367,20 +367,20 @@ static long mem_read(void *user, void *buf, size_t n)
 	return (long)k;
 }
 
-void dev_image_free(dev_image_t *img)
+void img_free(img_t *img)
 {
 	free(img->pix);
 	img->pix = NULL;
 	img->width = img->height = 0;
 }
 
-int dev_image_decode(const unsigned char *buf, size_t n, const char *name, dev_image_t *img,
+int img_decode(const unsigned char *buf, size_t n, const char *name, img_t *img,
 		char *err, size_t errlen)
 {
 	memset(img, 0, sizeof *img);
 	membuf_t m = { buf, n, 0 };
-	dev_imgr_t *r;
-	int rc = dev_imgr_open(mem_read, &m, NULL, 0, name, &r, err, errlen);
+	img_reader_t *r;
+	int rc = img_reader_open(mem_read, &m, NULL, 0, name, &r, err, errlen);
 	if (rc)
 		return rc;
 	size_t row = (size_t)r->width * 3, cap = 0;
@@ -398,17 +398,17 @@ int dev_image_decode(const unsigned char *buf, size_t n, const char *name, dev_i
 			img->pix = p;
 			cap = ncap;
 		}
-		rc = dev_imgr_row(r, img->pix + y * row);
+		rc = img_reader_row(r, img->pix + y * row);
 	}
 	if (rc == 0)
-		rc = dev_imgr_end(r);
+		rc = img_reader_end(r);
 	if (rc) {
 		snprintf(err, errlen, "%s", r->err);
-		dev_image_free(img);
+		img_free(img);
 	} else {
 		img->width = r->width;
 		img->height = r->height;
 	}
-	dev_imgr_free(r);
+	img_reader_free(r);
 	return rc;
 }

@@ -3,18 +3,18 @@
 #include <string.h>
 #include "image/imgread_int.h"
 
-uint64_t imgr_offset(const dev_imgr_t *r)
+uint64_t img_rd_offset(const img_reader_t *r)
 {
 	return r->base + r->pos;
 }
 
-int imgr_bad(dev_imgr_t *r, uint64_t off, const char *what)
+int img_rd_bad(img_reader_t *r, uint64_t off, const char *what)
 {
 	snprintf(r->err, sizeof r->err, "%s: byte %llu: %s", r->name, (unsigned long long)off, what);
 	return -65;
 }
 
-int imgr_fill(dev_imgr_t *r)
+int img_rd_fill(img_reader_t *r)
 {
 	if (r->pos < r->len)
 		return 1;
@@ -37,11 +37,11 @@ int imgr_fill(dev_imgr_t *r)
 	return 1;
 }
 
-long imgr_take(dev_imgr_t *r, void *dst, size_t n)
+long img_rd_take(img_reader_t *r, void *dst, size_t n)
 {
 	size_t got = 0;
 	while (got < n) {
-		int rc = imgr_fill(r);
+		int rc = img_rd_fill(r);
 		if (rc <= 0)
 			return rc < 0 ? rc : (long)got;
 		size_t k = r->len - r->pos < n - got ? r->len - r->pos : n - got;
@@ -52,12 +52,12 @@ long imgr_take(dev_imgr_t *r, void *dst, size_t n)
 	return (long)got;
 }
 
-int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what)
+int img_rd_skip(img_reader_t *r, uint64_t n, const char *what)
 {
 	while (n) {
-		int rc = imgr_fill(r);
+		int rc = img_rd_fill(r);
 		if (rc <= 0)
-			return rc < 0 ? rc : imgr_bad(r, imgr_offset(r), what);
+			return rc < 0 ? rc : img_rd_bad(r, img_rd_offset(r), what);
 		size_t k = r->len - r->pos < n ? r->len - r->pos : (size_t)n;
 		r->pos += k;
 		n -= k;
@@ -65,7 +65,7 @@ int imgr_skip(dev_imgr_t *r, uint64_t n, const char *what)
 	return 0;
 }
 
-int imgr_nomem(dev_imgr_t *r)
+int img_rd_nomem(img_reader_t *r)
 {
 	snprintf(r->err, sizeof r->err, "%s: out of memory", r->name);
 	return -70;

@@ -12,7 +12,7 @@ typedef struct {
 	uint8_t *pix;                   /* bottom-up files: the whole picture, top row first */
 } bmp_t;
 
-int imgr_is_bmp(const unsigned char *b, size_t n)
+int img_rd_is_bmp(const unsigned char *b, size_t n)
 {
 	return n >= 2 && b[0] == 'B' && b[1] == 'M';
 }
@@ -37,13 +37,13 @@ static uint8_t field(uint32_t v, uint32_t m)
 }
 
 /* Decode one stored row into out (width * 3). */
-static int bmp_line(dev_imgr_t *r, bmp_t *b, uint8_t *out)
+static int bmp_line(img_reader_t *r, bmp_t *b, uint8_t *out)
 {
-	long got = imgr_take(r, b->line, b->stride);
+	long got = img_rd_take(r, b->line, b->stride);
 	if (got < 0)
 		return (int)got;
 	if ((size_t)got < b->stride)
-		return imgr_bad(r, imgr_offset(r), "truncated BMP pixel data");
+		return img_rd_bad(r, img_rd_offset(r), "truncated BMP pixel data");
 	const unsigned char *l = b->line;
 	for (unsigned x = 0; x < r->width; x++) {
 		uint8_t *o = out + 3 * x;
@@ -51,7 +51,7 @@ static int bmp_line(dev_imgr_t *r, bmp_t *b, uint8_t *out)
 			unsigned per = 8 / b->bpp;
 			unsigned v = l[x / per] >> (8 - b->bpp * (x % per + 1)) & ((1u << b->bpp) - 1);
 			if (v >= b->npal)
-				return imgr_bad(r, imgr_offset(r), "BMP colour index past the palette");
+				return img_rd_bad(r, img_rd_offset(r), "BMP colour index past the palette");
 			memcpy(o, b->pal[v], 3);
 		} else if (b->bpp == 24) {
 			o[0] = l[3 * x + 2], o[1] = l[3 * x + 1], o[2] = l[3 * x];
@@ -64,25 +64,25 @@ static int bmp_line(dev_imgr_t *r, bmp_t *b, uint8_t *out)
 	return 0;
 }
 
-static int bmp_open(dev_imgr_t *r)
+static int bmp_open(img_reader_t *r)
 {
 	unsigned char h[14 + 124];
-	long got = imgr_take(r, h, 18);
+	long got = img_rd_take(r, h, 18);
 	if (got < 0)
 		return (int)got;
 	if (got < 18)
-		return imgr_bad(r, imgr_offset(r), "truncated BMP header");
+		return img_rd_bad(r, img_rd_offset(r), "truncated BMP header");
 	uint32_t dataoff = le32(h + 10), hsize = le32(h + 14);
 	if (hsize != 12 && hsize != 40 && hsize != 52 && hsize != 56 && hsize != 108 && hsize != 124)
-		return imgr_bad(r, 14, "unsupported BMP header size");
-	got = imgr_take(r, h + 18, hsize - 4);
+		return img_rd_bad(r, 14, "unsupported BMP header size");
+	got = img_rd_take(r, h + 18, hsize - 4);
 	if (got < 0)
 		return (int)got;
 	if ((uint32_t)got < hsize - 4)
-		return imgr_bad(r, imgr_offset(r), "truncated BMP header");
+		return img_rd_bad(r, img_rd_offset(r), "truncated BMP header");
 	bmp_t *b = calloc(1, sizeof *b);
 	if (!b)
-		return imgr_nomem(r);
+		return img_rd_nomem(r);
 	r->st = b;
 	int32_t w, ht;
 	uint32_t comp = 0, ncol = 0;
@@ -101,21 +101,21 @@ static int bmp_open(dev_imgr_t *r)
 	if (ht < 0)
 		ht = ht == INT32_MIN ? 0 : -ht;
 	if (w <= 0 || ht <= 0 || w > DEV_IMAGE_MAX_DIM || ht > DEV_IMAGE_MAX_DIM)
-		return imgr_bad(r, 18, "bad or too large BMP size (each side 1 to 65536)");
+		return img_rd_bad(r, 18, "bad or too large BMP size (each side 1 to 65536)");
 	r->width = (unsigned)w;
 	r->height = (unsigned)ht;
 	unsigned bpp = b->bpp;
 	if (bpp != 1 && bpp != 4 && bpp != 8 && bpp != 16 && bpp != 24 && bpp != 32)
-		return imgr_bad(r, 28, "unsupported BMP bits per pixel");
+		return img_rd_bad(r, 28, "unsupported BMP bits per pixel");
 	if (comp != 0 && !(comp == 3 && (bpp == 16 || bpp == 32)))
-		return imgr_bad(r, 30, "compressed BMP (RLE, JPEG, PNG) is not supported");
+		return img_rd_bad(r, 30, "compressed BMP (RLE, JPEG, PNG) is not supported");
 	if (comp == 3) {
 		if (hsize == 40) {   /* the masks follow the header */
-			got = imgr_take(r, h + 54, 12);
+			got = img_rd_take(r, h + 54, 12);
 			if (got < 0)
 				return (int)got;
 			if (got < 12)
-				return imgr_bad(r, imgr_offset(r), "truncated BMP bit fields");
+				return img_rd_bad(r, img_rd_offset(r), "truncated BMP bit fields");
 		}
 		for (int c = 0; c < 3; c++)
 			b->mask[c] = le32(h + 54 + 4 * c);
@@ -129,27 +129,27 @@ static int bmp_open(dev_imgr_t *r)
 		b->npal = ncol && ncol <= (1u << bpp) ? ncol : 1u << bpp;
 		for (unsigned k = 0; k < b->npal; k++) {
 			unsigned char e[4];
-			got = imgr_take(r, e, esz);
+			got = img_rd_take(r, e, esz);
 			if (got < 0)
 				return (int)got;
 			if ((unsigned)got < esz)
-				return imgr_bad(r, imgr_offset(r), "truncated BMP palette");
+				return img_rd_bad(r, img_rd_offset(r), "truncated BMP palette");
 			b->pal[k][0] = e[2], b->pal[k][1] = e[1], b->pal[k][2] = e[0];
 		}
 	}
-	uint64_t at = imgr_offset(r);
+	uint64_t at = img_rd_offset(r);
 	if (dataoff < at)
-		return imgr_bad(r, 10, "BMP pixel data offset inside the header");
-	int rc = imgr_skip(r, dataoff - at, "truncated BMP before its pixel data");
+		return img_rd_bad(r, 10, "BMP pixel data offset inside the header");
+	int rc = img_rd_skip(r, dataoff - at, "truncated BMP before its pixel data");
 	if (rc)
 		return rc;
 	b->stride = (((size_t)r->width * bpp + 31) / 32) * 4;
 	if (!(b->line = malloc(b->stride)))
-		return imgr_nomem(r);
+		return img_rd_nomem(r);
 	if (!b->topdown) {
 		/* stored bottom row first: decode it all, the buffer growing with the rows read */
 		if ((uint64_t)r->width * r->height > IMGR_BUFFERED_MAX)
-			return imgr_bad(r, 22, "bottom-up BMP too large to buffer");
+			return img_rd_bad(r, 22, "bottom-up BMP too large to buffer");
 		size_t row = (size_t)r->width * 3, cap = 0;
 		for (unsigned k = 0; k < r->height; k++) {
 			if (k == cap) {
@@ -158,7 +158,7 @@ static int bmp_open(dev_imgr_t *r)
 					ncap = r->height;
 				uint8_t *q = realloc(b->pix, ncap * row);
 				if (!q)
-					return imgr_nomem(r);
+					return img_rd_nomem(r);
 				b->pix = q;
 				cap = ncap;
 			}
@@ -169,7 +169,7 @@ static int bmp_open(dev_imgr_t *r)
 	return 0;
 }
 
-static int bmp_row(dev_imgr_t *r, uint8_t *row)
+static int bmp_row(img_reader_t *r, uint8_t *row)
 {
 	bmp_t *b = r->st;
 	if (b->topdown)
@@ -179,7 +179,7 @@ static int bmp_row(dev_imgr_t *r, uint8_t *row)
 	return 0;
 }
 
-static void bmp_done(dev_imgr_t *r)
+static void bmp_done(img_reader_t *r)
 {
 	bmp_t *b = r->st;
 	if (b) {
@@ -190,4 +190,4 @@ static void bmp_done(dev_imgr_t *r)
 	r->st = NULL;
 }
 
-const imgr_fmt_t imgr_bmp = { bmp_open, bmp_row, NULL, bmp_done };
+const img_rd_fmt_t img_rd_bmp = { bmp_open, bmp_row, NULL, bmp_done };

@@ -22,7 +22,7 @@ typedef struct {
 	unsigned char line[1280];
 } dump_t;
 
-int imgr_fbdump_mode(uint64_t size)
+int img_rd_fbdump_mode(uint64_t size)
 {
 	for (size_t k = 0; k < sizeof modes / sizeof *modes; k++)
 		if (modes[k].bytes == size)
@@ -35,14 +35,14 @@ static unsigned dac8(unsigned v)
 	return (v << 2) | (v >> 4);
 }
 
-static int dump_open(dev_imgr_t *r)
+static int dump_open(img_reader_t *r)
 {
-	int m = imgr_fbdump_mode(r->fsize);
+	int m = img_rd_fbdump_mode(r->fsize);
 	if (m < 0)
-		return imgr_bad(r, 0, "not a framebuffer dump (its size is no mode's)");
+		return img_rd_bad(r, 0, "not a framebuffer dump (its size is no mode's)");
 	dump_t *d = calloc(1, sizeof *d);
 	if (!d)
-		return imgr_nomem(r);
+		return img_rd_nomem(r);
 	r->st = d;
 	d->layout = modes[m].layout;
 	r->width = modes[m].w;
@@ -52,34 +52,34 @@ static int dump_open(dev_imgr_t *r)
 	size_t vm = d->layout == L_PLANAR ? 4 * 38400 : (size_t)r->width * r->height;
 	unsigned npal = d->layout == L_PLANAR ? 16 : 256;
 	if (!(d->mem = malloc(vm)))
-		return imgr_nomem(r);
-	long got = imgr_take(r, d->mem, vm);
+		return img_rd_nomem(r);
+	long got = img_rd_take(r, d->mem, vm);
 	if (got < 0)
 		return (int)got;
 	unsigned char p[768];
-	long gp = (size_t)got == vm ? imgr_take(r, p, 3 * npal) : 0;
+	long gp = (size_t)got == vm ? img_rd_take(r, p, 3 * npal) : 0;
 	if (gp < 0)
 		return (int)gp;
 	if ((size_t)got < vm || (size_t)gp < 3 * npal)
-		return imgr_bad(r, imgr_offset(r), "truncated framebuffer dump");
+		return img_rd_bad(r, img_rd_offset(r), "truncated framebuffer dump");
 	for (unsigned k = 0; k < 3 * npal; k++) {
 		if (p[k] > 63)
-			return imgr_bad(r, vm + k, "DAC value above 63 in the dump's palette");
+			return img_rd_bad(r, vm + k, "DAC value above 63 in the dump's palette");
 		d->pal[k / 3][k % 3] = (unsigned char)dac8(p[k]);
 	}
 	return 0;
 }
 
-static int dump_row(dev_imgr_t *r, uint8_t *row)
+static int dump_row(img_reader_t *r, uint8_t *row)
 {
 	dump_t *d = r->st;
 	unsigned w = r->width, y = r->y;
 	if (d->layout == L_565) {
-		long got = imgr_take(r, d->line, 2 * (size_t)w);
+		long got = img_rd_take(r, d->line, 2 * (size_t)w);
 		if (got < 0)
 			return (int)got;
 		if ((size_t)got < 2 * (size_t)w)
-			return imgr_bad(r, imgr_offset(r), "truncated framebuffer dump");
+			return img_rd_bad(r, img_rd_offset(r), "truncated framebuffer dump");
 		for (unsigned x = 0; x < w; x++) {
 			unsigned v = d->line[2 * x] | d->line[2 * x + 1] << 8;
 			unsigned rr = v >> 11, g = v >> 5 & 63, b = v & 31;
@@ -103,13 +103,13 @@ static int dump_row(dev_imgr_t *r, uint8_t *row)
 	return 0;
 }
 
-static int dump_end(dev_imgr_t *r)
+static int dump_end(img_reader_t *r)
 {
-	int rc = imgr_fill(r);
-	return rc ? (rc < 0 ? rc : imgr_bad(r, imgr_offset(r), "trailing bytes after the dump")) : 0;
+	int rc = img_rd_fill(r);
+	return rc ? (rc < 0 ? rc : img_rd_bad(r, img_rd_offset(r), "trailing bytes after the dump")) : 0;
 }
 
-static void dump_done(dev_imgr_t *r)
+static void dump_done(img_reader_t *r)
 {
 	dump_t *d = r->st;
 	if (d) {
@@ -119,4 +119,4 @@ static void dump_done(dev_imgr_t *r)
 	r->st = NULL;
 }
 
-const imgr_fmt_t imgr_fbdump = { dump_open, dump_row, dump_end, dump_done };
+const img_rd_fmt_t img_rd_fbdump = { dump_open, dump_row, dump_end, dump_done };

@@ -15,7 +15,7 @@ typedef struct {
 	size_t nidx;
 } pcx_t;
 
-int imgr_is_pcx(const unsigned char *b, size_t n)
+int img_rd_is_pcx(const unsigned char *b, size_t n)
 {
 	return n >= 4 && b[0] == 0x0A && b[1] <= 5 && b[2] == 1 &&
 		(b[3] == 1 || b[3] == 2 || b[3] == 4 || b[3] == 8);
@@ -27,7 +27,7 @@ static unsigned le16(const unsigned char *p)
 }
 
 /* Decode one scan line of planes * bpl bytes. */
-static int pcx_line(dev_imgr_t *r, pcx_t *p)
+static int pcx_line(img_reader_t *r, pcx_t *p)
 {
 	size_t n = (size_t)p->planes * p->bpl, k = 0;
 	while (k < n) {
@@ -37,18 +37,18 @@ static int pcx_line(dev_imgr_t *r, pcx_t *p)
 			continue;
 		}
 		unsigned char c;
-		long got = imgr_take(r, &c, 1);
+		long got = img_rd_take(r, &c, 1);
 		if (got < 0)
 			return (int)got;
 		if (got == 0)
-			return imgr_bad(r, imgr_offset(r), "truncated PCX data");
+			return img_rd_bad(r, img_rd_offset(r), "truncated PCX data");
 		if ((c & 0xC0) == 0xC0) {
 			unsigned char v;
-			got = imgr_take(r, &v, 1);
+			got = img_rd_take(r, &v, 1);
 			if (got < 0)
 				return (int)got;
 			if (got == 0)
-				return imgr_bad(r, imgr_offset(r), "truncated PCX run");
+				return img_rd_bad(r, img_rd_offset(r), "truncated PCX run");
 			p->runleft = c & 0x3F;
 			p->runval = v;
 		} else {
@@ -58,20 +58,20 @@ static int pcx_line(dev_imgr_t *r, pcx_t *p)
 	return 0;
 }
 
-static int pcx_open(dev_imgr_t *r)
+static int pcx_open(img_reader_t *r)
 {
 	unsigned char h[PCX_HEADER];
-	long got = imgr_take(r, h, sizeof h);
+	long got = img_rd_take(r, h, sizeof h);
 	if (got < 0)
 		return (int)got;
 	if ((size_t)got < sizeof h)
-		return imgr_bad(r, imgr_offset(r), "truncated PCX header");
+		return img_rd_bad(r, img_rd_offset(r), "truncated PCX header");
 	unsigned x0 = le16(h + 4), y0 = le16(h + 6), x1 = le16(h + 8), y1 = le16(h + 10);
 	if (x1 < x0 || y1 < y0)
-		return imgr_bad(r, 4, "bad PCX window (xmax < xmin or ymax < ymin)");
+		return img_rd_bad(r, 4, "bad PCX window (xmax < xmin or ymax < ymin)");
 	pcx_t *p = calloc(1, sizeof *p);
 	if (!p)
-		return imgr_nomem(r);
+		return img_rd_nomem(r);
 	r->st = p;
 	p->bpp = h[3];
 	p->planes = h[65];
@@ -83,15 +83,15 @@ static int pcx_open(dev_imgr_t *r)
 		(p->bpp == 1 && (p->planes == 1 || p->planes == 4)) || (p->bpp == 4 && p->planes == 1) ||
 		(p->bpp == 2 && p->planes == 1);
 	if (!ok)
-		return imgr_bad(r, 3, "unsupported PCX depth (bits per pixel x planes)");
+		return img_rd_bad(r, 3, "unsupported PCX depth (bits per pixel x planes)");
 	if (p->bpl == 0 || p->bpl & 1 || (uint64_t)p->bpl * 8 < (uint64_t)r->width * p->bpp)
-		return imgr_bad(r, 66, "bad PCX bytes per line (even, and enough for the width)");
+		return img_rd_bad(r, 66, "bad PCX bytes per line (even, and enough for the width)");
 	if (!(p->line = malloc((size_t)p->planes * p->bpl)))
-		return imgr_nomem(r);
+		return img_rd_nomem(r);
 	if (p->bpp == 8 && p->planes == 1) {
 		/* the palette follows the pixels: decode them all first, growing with the data */
 		if ((uint64_t)r->width * r->height > IMGR_BUFFERED_MAX)
-			return imgr_bad(r, 4, "PCX with its palette at the end is too large to buffer");
+			return img_rd_bad(r, 4, "PCX with its palette at the end is too large to buffer");
 		size_t cap = 0;
 		for (unsigned y = 0; y < r->height; y++) {
 			int rc = pcx_line(r, p);
@@ -101,7 +101,7 @@ static int pcx_open(dev_imgr_t *r)
 				size_t ncap = cap ? cap * 2 : (size_t)r->width * 16;
 				uint8_t *q = realloc(p->idx, ncap);
 				if (!q)
-					return imgr_nomem(r);
+					return img_rd_nomem(r);
 				p->idx = q;
 				cap = ncap;
 			}
@@ -109,22 +109,22 @@ static int pcx_open(dev_imgr_t *r)
 			p->nidx += r->width;
 		}
 		unsigned char m;
-		uint64_t at = imgr_offset(r);
-		got = imgr_take(r, &m, 1);
+		uint64_t at = img_rd_offset(r);
+		got = img_rd_take(r, &m, 1);
 		if (got < 0)
 			return (int)got;
 		if (got == 0 || m != 0x0C)
-			return imgr_bad(r, at, "expected the 256-colour PCX palette (byte 12) after the pixels");
-		got = imgr_take(r, p->pal256, 768);
+			return img_rd_bad(r, at, "expected the 256-colour PCX palette (byte 12) after the pixels");
+		got = img_rd_take(r, p->pal256, 768);
 		if (got < 0)
 			return (int)got;
 		if (got < 768)
-			return imgr_bad(r, imgr_offset(r), "truncated PCX palette");
+			return img_rd_bad(r, img_rd_offset(r), "truncated PCX palette");
 	}
 	return 0;
 }
 
-static int pcx_row(dev_imgr_t *r, uint8_t *row)
+static int pcx_row(img_reader_t *r, uint8_t *row)
 {
 	pcx_t *p = r->st;
 	unsigned w = r->width;
@@ -161,7 +161,7 @@ static int pcx_row(dev_imgr_t *r, uint8_t *row)
 	return 0;
 }
 
-static void pcx_done(dev_imgr_t *r)
+static void pcx_done(img_reader_t *r)
 {
 	pcx_t *p = r->st;
 	if (p) {
@@ -172,4 +172,4 @@ static void pcx_done(dev_imgr_t *r)
 	r->st = NULL;
 }
 
-const imgr_fmt_t imgr_pcx = { pcx_open, pcx_row, NULL, pcx_done };
+const img_rd_fmt_t img_rd_pcx = { pcx_open, pcx_row, NULL, pcx_done };

@@ -6,12 +6,12 @@
 #include "image/image.h"
 
 typedef struct {
-	dev_imgw_t *w;
+	img_writer_t *w;
 } raster_t;
 
 static int fmt_of(const dev_device_t *d)
 {
-	return dev_format_by_name(d->ops->name);
+	return img_format_by_name(d->ops->name);
 }
 
 static int r_begin(dev_device_t *d, const dev_page_t *pg)
@@ -20,19 +20,19 @@ static int r_begin(dev_device_t *d, const dev_page_t *pg)
 	char err[256];
 	if (!d->out)
 		return dev_fail(d, DEV_EDEVICE, "%s: no output", d->ops->name);
-	r->w = dev_imgw_new(fmt_of(d), d->out, pg->width, pg->height, err, sizeof err);
+	r->w = img_writer_new(fmt_of(d), d->out, pg->width, pg->height, err, sizeof err);
 	if (!r->w)
 		return dev_fail(d, dev_code_of_errno(errno), "%s", err);
 	if (pg->has_size)
-		dev_imgw_physical(r->w, pg->width_mm / 1000.0, pg->height_mm / 1000.0);
+		img_writer_physical(r->w, pg->width_mm / 1000.0, pg->height_mm / 1000.0);
 	return 0;
 }
 
-static int r_band(dev_device_t *d, const dev_band_t *b)
+static int r_band(dev_device_t *d, const render_band_t *b)
 {
 	raster_t *r = d->priv;
-	if (dev_imgw_rows(r->w, b->pix, b->stride, b->nrows))
-		return dev_fail(d, dev_code_of_errno(dev_imgw_errno(r->w)), "%s", dev_imgw_error(r->w));
+	if (img_writer_rows(r->w, b->pix, b->stride, b->nrows))
+		return dev_fail(d, dev_code_of_errno(img_writer_errno(r->w)), "%s", img_writer_error(r->w));
 	return 0;
 }
 
@@ -40,9 +40,9 @@ static int r_end(dev_device_t *d, const dev_page_t *pg)
 {
 	raster_t *r = d->priv;
 	(void)pg;
-	if (dev_imgw_finish(r->w)) {
-		int rc = dev_fail(d, dev_code_of_errno(dev_imgw_errno(r->w)), "%s", dev_imgw_error(r->w));
-		dev_imgw_abort(r->w);
+	if (img_writer_finish(r->w)) {
+		int rc = dev_fail(d, dev_code_of_errno(img_writer_errno(r->w)), "%s", img_writer_error(r->w));
+		img_writer_abort(r->w);
 		r->w = NULL;
 		return rc;
 	}
@@ -53,7 +53,7 @@ static int r_end(dev_device_t *d, const dev_page_t *pg)
 static int r_close(dev_device_t *d)
 {
 	raster_t *r = d->priv;
-	dev_imgw_abort(r->w);   /* only after a failure */
+	img_writer_abort(r->w);   /* only after a failure */
 	r->w = NULL;
 	return 0;
 }

@@ -18,11 +18,11 @@ struct devaa {
 	uint8_t enc[AA_ENC + 1];     /* to_byte's start: the byte of v = i / AA_ENC */
 };
 
-static uint8_t search_byte(const devaa_t *a, double v);
+static uint8_t search_byte(const render_aa_t *a, double v);
 
-devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
+render_aa_t *render_aa_new(unsigned k, unsigned width, unsigned height)
 {
-	devaa_t *a = calloc(1, sizeof *a);
+	render_aa_t *a = calloc(1, sizeof *a);
 	if (!a)
 		return NULL;
 	a->k = k;
@@ -32,7 +32,7 @@ devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
 	a->acc = calloc((size_t)width * 3, sizeof *a->acc);
 	a->out = malloc((size_t)width * 3 * a->out_cap);
 	if (!a->acc || !a->out) {
-		devaa_free(a);
+		render_aa_free(a);
 		return NULL;
 	}
 	for (int c = 0; c < 256; c++) {
@@ -46,7 +46,7 @@ devaa_t *devaa_new(unsigned k, unsigned width, unsigned height)
 	return a;
 }
 
-void devaa_free(devaa_t *a)
+void render_aa_free(render_aa_t *a)
 {
 	if (!a)
 		return;
@@ -56,7 +56,7 @@ void devaa_free(devaa_t *a)
 }
 
 /* The byte whose linear value is nearest v: the first c with v <= mid[c] (ties go down). */
-static uint8_t search_byte(const devaa_t *a, double v)
+static uint8_t search_byte(const render_aa_t *a, double v)
 {
 	unsigned lo = 0, hi = 255;
 	while (lo < hi) {
@@ -71,7 +71,7 @@ static uint8_t search_byte(const devaa_t *a, double v)
 
 /* search_byte(v) for v in [0, 1], started from the table and moved to the same answer (the
  * table's neighbours bracket it, so this is a step or two, not eight). */
-static inline uint8_t to_byte(const devaa_t *a, double v)
+static inline uint8_t to_byte(const render_aa_t *a, double v)
 {
 	if (!(v > 0))
 		return search_byte(a, v);
@@ -111,18 +111,18 @@ static inline int same(const uint8_t *p, const uint8_t *q, size_t n)
 	return 1;
 }
 
-static int hand_over(devaa_t *a, devaa_fn fn, void *user)
+static int hand_over(render_aa_t *a, render_aa_fn fn, void *user)
 {
 	if (!a->out_rows)
 		return 0;
-	dev_band_t b = { a->out, (size_t)a->width * 3, a->width, a->y0, a->out_rows, a->height };
+	render_band_t b = { a->out, (size_t)a->width * 3, a->width, a->y0, a->out_rows, a->height };
 	int rc = fn(user, &b);
 	a->y0 += a->out_rows;
 	a->out_rows = 0;
 	return rc;
 }
 
-int devaa_band(devaa_t *a, const dev_band_t *in, devaa_fn fn, void *user)
+int render_aa_band(render_aa_t *a, const render_band_t *in, render_aa_fn fn, void *user)
 {
 	unsigned k = a->k, w = a->width;
 	double norm = 1.0 / ((double)k * k);

@@ -13,6 +13,6 @@ typedef struct {
 	unsigned width;
 	unsigned y0, nrows;
 	unsigned page_height;
-} dev_band_t;
+} render_band_t;
 
 #endif

@@ -11,7 +11,7 @@
 /* The painters' threads are in render_par.c, the replay of a spooled record in replay.c; what
  * the files share is in render_int.h. */
 
-uint64_t dev_render_spool_default(void)
+uint64_t render_spool_default(void)
 {
 	const char *e = getenv("LOCUS_SPOOL_MAX_MB");
 	char *end;
@@ -21,19 +21,19 @@ uint64_t dev_render_spool_default(void)
 	return (uint64_t)mb << 20;
 }
 
-void dev_render_set_spool_limit(dev_render_t *r, uint64_t bytes)
+void render_set_spool_limit(render_t *r, uint64_t bytes)
 {
 	r->spool_max = bytes;
 }
 
-const char *dev_render_error(const dev_render_t *r)
+const char *render_error(const render_t *r)
 {
 	return r->err;
 }
 
 /* The spool: a file created in $TMPDIR (else /tmp) and unlinked at once, so that nothing is
  * left behind whatever happens to the process. */
-static int spool_open(dev_render_t *r)
+static int spool_open(render_t *r)
 {
 	const char *dir = getenv("TMPDIR");
 	if (!dir || !*dir || strlen(dir) > sizeof r->spool_dir - 24)
@@ -54,10 +54,10 @@ static int spool_open(dev_render_t *r)
 	return 0;
 }
 
-dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
+render_t *render_new(unsigned width, unsigned height, unsigned band_rows, size_t budget,
 		char *err, size_t errlen)
 {
-	dev_render_t *r = calloc(1, sizeof *r);
+	render_t *r = calloc(1, sizeof *r);
 	if (!r)
 		goto nomem;
 	r->width = width;
@@ -103,10 +103,10 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 			r->help2.band.jlo = (int)r->mid;
 		}
 	} else {
-		r->spool_max = dev_render_spool_default();
+		r->spool_max = render_spool_default();
 		if (spool_open(r)) {
 			snprintf(err, errlen, "%s", r->err);
-			dev_render_free(r);
+			render_free(r);
 			return NULL;
 		}
 		/* the first two bands painted as the records arrive, when two bands fit the budget */
@@ -128,11 +128,11 @@ dev_render_t *dev_render_new(unsigned width, unsigned height, unsigned band_rows
 	return r;
 nomem:
 	snprintf(err, errlen, "out of memory for a %ux%u page buffer", width, band_rows ? band_rows : height);
-	dev_render_free(r);
+	render_free(r);
 	return NULL;
 }
 
-void dev_render_free(dev_render_t *r)
+void render_free(render_t *r)
 {
 	if (!r)
 		return;
@@ -153,14 +153,14 @@ void dev_render_free(dev_render_t *r)
 	free(r);
 }
 
-unsigned dev_render_bands(const dev_render_t *r)
+unsigned render_bands(const render_t *r)
 {
 	return r->bands;
 }
 
 /* ---- spool writing ---- */
 
-static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void *a, size_t na,
+static int spool(render_t *r, int kind, int64_t jlo, int64_t jhi, const void *a, size_t na,
 		const void *b, size_t nb, const void *c, size_t nc)
 {
 	if (jlo < 0)
@@ -193,7 +193,7 @@ static int spool(dev_render_t *r, int kind, int64_t jlo, int64_t jhi, const void
 	return 0;
 }
 
-static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
+static int spool_path(render_t *r, int kind, int64_t ext, const void *head, size_t nhead,
 		const scan_path_t *p)
 {
 	int64_t x0, y0, x1, y1;
@@ -224,7 +224,7 @@ static int spool_path(dev_render_t *r, int kind, int64_t ext, const void *head, 
 	return rc;
 }
 
-int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
+int render_clear(render_t *r, meta_rgb_t rgb)
 {
 	if (!r->spool && !r->split) {
 		scan_clear(&r->main.band, rgb);
@@ -240,7 +240,7 @@ int dev_render_clear(dev_render_t *r, meta_rgb_t rgb)
 	return spool(r, REC_CLEAR, 0, r->height, &rgb, sizeof rgb, NULL, 0, NULL, 0);
 }
 
-int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
+int render_fill(render_t *r, const scan_path_t *p, int rule, meta_rgb_t rgb)
 {
 	if (!r->spool && !r->split)
 		return scan_fill(r->main.ctx, &r->main.band, p, rule, rgb);
@@ -251,7 +251,7 @@ int dev_render_fill(dev_render_t *r, const scan_path_t *p, int rule, meta_rgb_t 
 	return spool_path(r, REC_FILL, 0, &h, sizeof h, p);
 }
 
-int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
+int render_stroke(render_t *r, const scan_path_t *p, const scan_style_t *st, meta_rgb_t rgb)
 {
 	if (!r->spool && !r->split)
 		return scan_stroke(r->main.ctx, &r->main.band, p, st, rgb);
@@ -273,7 +273,7 @@ int dev_render_stroke(dev_render_t *r, const scan_path_t *p, const scan_style_t 
 	return spool_path(r, REC_STROKE, ext, &h, STROKE_HEAD(h.ndash), p);
 }
 
-int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
+int render_span(render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t rgb)
 {
 	if (!r->spool && !r->split) {
 		scan_span(&r->main.band, x, y, n, rgb);
@@ -283,7 +283,7 @@ int dev_render_span(dev_render_t *r, int64_t x, int64_t y, int64_t n, meta_rgb_t
 	return spool(r, REC_SPAN, y, y + 1, v, sizeof v, &rgb, sizeof rgb, NULL, 0);
 }
 
-int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
+int render_row(render_t *r, int64_t x, int64_t y, const meta_run_t *runs, size_t nruns)
 {
 	if (!r->spool && !r->split) {
 		render_paint_row(&r->main.band, x, y, runs, nruns);
@@ -293,10 +293,10 @@ int dev_render_row(dev_render_t *r, int64_t x, int64_t y, const meta_run_t *runs
 	return spool(r, REC_ROW, y, y + 1, v, sizeof v, runs, nruns * sizeof(meta_run_t), NULL, 0);
 }
 
-int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
+int render_finish(render_t *r, render_band_fn fn, void *user)
 {
 	size_t row = (size_t)r->width * 3;
-	dev_band_t out = { r->pix, row, r->width, 0, 0, r->height };
+	render_band_t out = { r->pix, row, r->width, 0, 0, r->height };
 	if (!r->spool) {
 		int rc = render_split_stop(r);
 		if (rc)
@@ -319,5 +319,5 @@ int dev_render_finish(dev_render_t *r, dev_band_fn fn, void *user)
 	errno = 0;
 	if (fflush(r->spool))
 		return render_spool_fail(r, errno ? errno : EIO, "cannot write it");
-	return render_bands(r, fn, user);
+	return render_par_bands(r, fn, user);
 }

@@ -65,14 +65,14 @@ typedef struct {
 /* A painter reads the spool in blocks of this many bytes. */
 #define READ_BYTES ((size_t)256 << 10)
 
-struct dev_render {
+struct render {
 	unsigned width, height, band_rows, bands;
 	uint8_t *pix;
 	painter_t main;         /* its band: the whole page, a spooled band, or the split's top */
 	FILE *spool;            /* NULL: single band, painted directly */
 	uint64_t spooled, spool_max; /* bytes in the spool; its limit */
 	char spool_dir[200];    /* where the (unlinked) spool file lives, for messages */
-	char err[320];          /* the last failure (dev_render_error) */
+	char err[320];          /* the last failure (render_error) */
 	int clear_pending;      /* a spooled clear not written yet (with the next record) */
 	meta_rgb_t clear_rgb;
 	size_t budget;          /* bytes the page buffers may take */
@@ -84,7 +84,7 @@ struct dev_render {
 	unsigned next_band;     /* the band to hand over next */
 	unsigned next_paint;    /* the next band no painter has taken */
 	int bstop, brc, bread;  /* stop painting; the first error; it was a spool read */
-	dev_band_fn bfn;
+	render_band_fn bfn;
 	void *buser;
 	/* split single-band page: two helper threads paint rows [0, mid) and [mid, height) from
 	 * the records that the caller's thread queues as it reads the input; the two bands are
@@ -107,7 +107,7 @@ struct dev_render {
 	pthread_mutex_t mu;
 	pthread_cond_t cv;
 	struct helper_arg {
-		struct dev_render *r;
+		struct render *r;
 		painter_t *pt;
 		int idx;
 	} harg[2];
@@ -152,19 +152,19 @@ static inline void render_paint_row(const scan_band_t *b, int64_t x, int64_t y, 
 int render_replay_rec(painter_t *pt, const rec_t *h, const unsigned char *q);
 /* Record why the spool failed (errno, or the limit when err_no is 0) in r->err; returns
  * META_EIO (replay.c). */
-int render_spool_fail(dev_render_t *r, int err_no, const char *doing);
+int render_spool_fail(render_t *r, int err_no, const char *doing);
 /* Start the two split helpers with their contexts; nonzero leaves the page to one thread
  * (the caller sets their bands before the first record). */
-int render_split_start(dev_render_t *r);
+int render_split_start(render_t *r);
 /* Hand over what is queued, let the helpers finish and end them; their first error or 0. */
-int render_split_stop(dev_render_t *r);
+int render_split_stop(render_t *r);
 /* Queue a record (header and up to three parts of its payload) for the split helpers. Returns
  * 0 or <0 (a helper's error, or META_ENOMEM). */
-int render_split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
+int render_split_put(render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
 		size_t nb, const void *c, size_t nc);
 /* Replay the flushed spool of a multi-band page band by band (by two painters when two band
  * buffers fit the budget) and hand each band to fn in order. Returns the first error in band
  * order, or 0. */
-int render_bands(dev_render_t *r, dev_band_fn fn, void *user);
+int render_par_bands(render_t *r, render_band_fn fn, void *user);
 
 #endif

@@ -12,7 +12,7 @@
 static void *helper(void *arg)
 {
 	const helper_arg_t *ha = arg;
-	dev_render_t *r = ha->r;
+	render_t *r = ha->r;
 	unsigned *done = &r->done[ha->idx];
 	pthread_mutex_lock(&r->mu);
 	for (;;) {
@@ -40,7 +40,7 @@ static void *helper(void *arg)
 }
 
 /* Set up the split (helper thread and its buffers); nonzero leaves the page to one thread. */
-int render_split_start(dev_render_t *r)
+int render_split_start(render_t *r)
 {
 	r->help.ctx = scan_ctx_new();
 	r->help2.ctx = scan_ctx_new();
@@ -76,7 +76,7 @@ int render_split_start(dev_render_t *r)
 
 /* Hand the filled block to the helpers, and wait until the next one is free (both helpers
  * have replayed the block that used it RING blocks ago). */
-static int split_hand(dev_render_t *r)
+static int split_hand(render_t *r)
 {
 	pthread_mutex_lock(&r->mu);
 	if (r->ring[r->head % RING].len) {
@@ -92,7 +92,7 @@ static int split_hand(dev_render_t *r)
 }
 
 /* Hand over what is left, let the helper finish and end it; returns its first error or 0. */
-int render_split_stop(dev_render_t *r)
+int render_split_stop(render_t *r)
 {
 	if (!r->started)
 		return r->hrc;
@@ -110,7 +110,7 @@ int render_split_stop(dev_render_t *r)
 }
 
 /* Append a record for the helper to the block being filled. */
-int render_split_put(dev_render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
+int render_split_put(render_t *r, const rec_t *h, const void *a, size_t na, const void *b,
 		size_t nb, const void *c, size_t nc)
 {
 	size_t need = sizeof *h + na + nb + nc;
@@ -178,7 +178,7 @@ static int rd_need(int fd, painter_t *pt, size_t need)
 }
 
 /* Replay the whole spool onto pt's band, skipping records whose rows miss it. */
-static int replay(dev_render_t *r, painter_t *pt)
+static int replay(render_t *r, painter_t *pt)
 {
 	int fd = fileno(r->spool);
 	reader_t *d = &pt->rd;
@@ -214,7 +214,7 @@ static int replay(dev_render_t *r, painter_t *pt)
  * has taken when it has handed its own on (whoever is less busy paints more of the page), and
  * waits for the band before its own to be handed on first, so bands go out in order; the
  * first failure in band order is kept in r->brc and stops both. One painter takes them all. */
-static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned first, int two)
+static int band_loop(render_t *r, painter_t *pt, uint8_t *pix, unsigned first, int two)
 {
 	size_t row = (size_t)r->width * 3;
 	for (unsigned k = first; k < r->bands;) {
@@ -239,7 +239,7 @@ static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned firs
 				return 0;
 		}
 		if (!rc) {
-			dev_band_t out = { buf, row, r->width, top, n, r->height };
+			render_band_t out = { buf, row, r->width, top, n, r->height };
 			rc = r->bfn(r->buser, &out);
 		}
 		if (!two) {
@@ -268,14 +268,14 @@ static int band_loop(dev_render_t *r, painter_t *pt, uint8_t *pix, unsigned firs
 /* The helper of a two-painter multi-band page: band 1, then whichever comes next. */
 static void *band_helper(void *arg)
 {
-	dev_render_t *r = arg;
+	render_t *r = arg;
 	band_loop(r, &r->help, r->pix2, 1, 1);
 	return NULL;
 }
 
 /* Start the helper for a multi-band page when a second band buffer fits the budget; nonzero
  * leaves the page to the caller's thread. */
-static int bands_start(dev_render_t *r)
+static int bands_start(render_t *r)
 {
 	size_t bytes = (size_t)r->width * 3 * r->band_rows;
 	if (r->bands < 2 || bytes > r->budget / 2)
@@ -302,7 +302,7 @@ static int bands_start(dev_render_t *r)
 	return 0;
 }
 
-int render_bands(dev_render_t *r, dev_band_fn fn, void *user)
+int render_par_bands(render_t *r, render_band_fn fn, void *user)
 {
 	r->bfn = fn;
 	r->buser = user;

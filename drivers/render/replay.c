@@ -5,7 +5,7 @@
 #include <string.h>
 #include "render/render_int.h"
 
-int render_spool_fail(dev_render_t *r, int err_no, const char *doing)
+int render_spool_fail(render_t *r, int err_no, const char *doing)
 {
 	if (err_no)
 		snprintf(r->err, sizeof r->err, "band spool (a temporary file in %s): %s: %s", r->spool_dir,

@@ -57,7 +57,7 @@ static int s_open(dev_device_t *d)
 static int s_begin(dev_device_t *d, const dev_page_t *pg)
 {
 	svg_t *s = d->priv;
-	char w[DEV_FMT_SIZE], h[DEV_FMT_SIZE];
+	char w[IMG_FMT_SIZE], h[IMG_FMT_SIZE];
 	s->nrows = 0;
 	s->height = (int64_t)pg->height * 1000;
 	int rc = dev_printf(d, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
@@ -133,15 +133,15 @@ static int strip_flush(dev_device_t *d)
 	char err[256];
 	s->d = d;
 	s->ncarry = s->nout = 0;
-	dev_imgw_t *w = dev_imgw_new_png_fn(b64_write, s, 1, s->sw, n, err, sizeof err);
+	img_writer_t *w = img_writer_new_png_fn(b64_write, s, 1, s->sw, n, err, sizeof err);
 	if (!w)
 		return io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
 			: dev_fail(d, META_ENOMEM, "svg: %s", err);
-	if (dev_imgw_rows(w, s->pix, (size_t)s->sw * 3, n) || dev_imgw_finish(w)) {
+	if (img_writer_rows(w, s->pix, (size_t)s->sw * 3, n) || img_writer_finish(w)) {
 		rc = io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
-			: dev_fail(d, strstr(dev_imgw_error(w), "memory") ? META_ENOMEM : DEV_EDEVICE,
-				"svg: %s", dev_imgw_error(w));
-		dev_imgw_abort(w);
+			: dev_fail(d, strstr(img_writer_error(w), "memory") ? META_ENOMEM : DEV_EDEVICE,
+				"svg: %s", img_writer_error(w));
+		img_writer_abort(w);
 		return rc;
 	}
 	if ((s->ncarry && b64_quad(s, s->carry, s->ncarry)) || b64_drain(s))
@@ -159,7 +159,7 @@ static int s_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
 static int path_data(dev_device_t *d, const scan_path_t *p)
 {
 	svg_t *s = d->priv;
-	char x[DEV_FMT_SIZE], y[DEV_FMT_SIZE];
+	char x[IMG_FMT_SIZE], y[IMG_FMT_SIZE];
 	int rc = dev_printf(d, "<path d=\"");
 	for (size_t k = 0; k < p->nsubs && !rc; k++) {
 		const scan_subpath_t *sub = &p->subs[k];
@@ -186,7 +186,7 @@ static int s_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
 	static const char *const caps[] = { "butt", "round", "square" };
 	static const char *const joins[] = { "miter", "round", "bevel" };
-	char w[DEV_FMT_SIZE], m[DEV_FMT_SIZE];
+	char w[IMG_FMT_SIZE], m[IMG_FMT_SIZE];
 	int rc = strip_flush(d);
 	if (!rc)
 		rc = path_data(d, p->flat);

@@ -56,7 +56,7 @@ static int has_chunk(const uint8_t *b, size_t n, const char *type)
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
 int FUZZ_ENTRY(const uint8_t *data, size_t size)
 {
-	dev_image_t a, b;
+	img_t a, b;
 	char e1[600], e2[600];
 #if FUZZ_GUARDS
 	/* pending (w-bounds): the readers allocate width x height x 3 from the header before they
@@ -72,8 +72,8 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 #else
 	(void)claimed, (void)has_chunk;
 #endif
-	int r1 = dev_image_decode(data, size, "in", &a, e1, sizeof e1);
-	int r2 = dev_image_decode(data, size, "in", &b, e2, sizeof e2);
+	int r1 = img_decode(data, size, "in", &a, e1, sizeof e1);
+	int r2 = img_decode(data, size, "in", &b, e2, sizeof e2);
 	FUZZ_ASSERT(r1 == r2, "two reads of the same bytes: %d then %d", r1, r2);
 	if (r1 < 0) {
 		FUZZ_ASSERT(r1 == -65, "bad data answered %d, not -65", r1);
@@ -88,7 +88,7 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 	/* every pixel was written (the sanitizers see reads of uninitialised memory only under
 	 * MSan; the comparison at least touches every byte) */
 	FUZZ_ASSERT(!memcmp(a.pix, b.pix, bytes), "two reads, two pictures");
-	dev_image_free(&a);
-	dev_image_free(&b);
+	img_free(&a);
+	img_free(&b);
 	return 0;
 }

@@ -40,7 +40,7 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 	 * bits 5..6 the mode: its size is the rest repeated) */
 	trickle_t t = { data + 1, size - 1, 0, size - 1, (size_t)(data[0] & 31) * 2 + 1 };
 	int dump = data[0] & 0x80;
-	dev_imgr_t *r = NULL;
+	img_reader_t *r = NULL;
 	char err[600] = "";
 	int rc;
 	if (dump) {
@@ -48,9 +48,9 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 		if (sz == 786432 + 768)
 			sz = 64000 + 768;   /* the biggest mode only costs time: its layout is 13h's */
 		t.total = sz;
-		rc = imgr_open_fbdump(trickle, &t, NULL, 0, "in", sz, &r, err, sizeof err);
+		rc = img_rd_open_fbdump(trickle, &t, NULL, 0, "in", sz, &r, err, sizeof err);
 	} else {
-		rc = dev_imgr_open(trickle, &t, NULL, 0, "in", &r, err, sizeof err);
+		rc = img_reader_open(trickle, &t, NULL, 0, "in", &r, err, sizeof err);
 	}
 	if (rc) {
 		FUZZ_ASSERT(!r, "failed open left a reader");
@@ -58,32 +58,32 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 		FUZZ_ASSERT(fuzz_one_line(err) && !strncmp(err, "in", 2), "open error '%s'", err);
 		return 0;
 	}
-	unsigned w = dev_imgr_width(r), h = dev_imgr_height(r);
+	unsigned w = img_reader_width(r), h = img_reader_height(r);
 	FUZZ_ASSERT(w > 0 && h > 0 && w <= DEV_IMAGE_MAX_DIM && h <= DEV_IMAGE_MAX_DIM, "picture of %ux%u", w, h);
 	uint8_t *row = malloc((size_t)w * 3);
 	if (!row) {
-		dev_imgr_free(r);
+		img_reader_free(r);
 		return 0;
 	}
 	rc = 0;
 	for (unsigned y = 0; y < h && !rc; y++)
-		rc = dev_imgr_row(r, row);
+		rc = img_reader_row(r, row);
 	if (!rc)
-		rc = dev_imgr_end(r);
+		rc = img_reader_end(r);
 	if (rc) {
 		FUZZ_ASSERT(rc == -65 || rc == -70, "row answered %d", rc);
-		const char *e = dev_imgr_error(r);
+		const char *e = img_reader_error(r);
 		FUZZ_ASSERT(fuzz_one_line(e) && !strncmp(e, "in", 2), "row error '%s'", e);
 	}
 	free(row);
-	dev_imgr_free(r);
+	img_reader_free(r);
 	if (!dump) {   /* the whole-buffer decoder agrees about success */
-		dev_image_t img;
-		int rc2 = dev_image_decode(data + 1, size - 1, "in", &img, err, sizeof err);
+		img_t img;
+		int rc2 = img_decode(data + 1, size - 1, "in", &img, err, sizeof err);
 		FUZZ_ASSERT((rc == 0) == (rc2 == 0), "stream %d, buffer %d (%s)", rc, rc2, err);
 		if (!rc2) {
 			FUZZ_ASSERT(img.width == w && img.height == h, "two sizes");
-			dev_image_free(&img);
+			img_free(&img);
 		}
 	}
 	return 0;

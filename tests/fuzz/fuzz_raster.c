@@ -26,7 +26,7 @@ static int c_begin(dev_device_t *d, const dev_page_t *pg)
 	return 0;
 }
 
-static int c_band(dev_device_t *d, const dev_band_t *b)
+static int c_band(dev_device_t *d, const render_band_t *b)
 {
 	collect_t *c = d->user;
 	FUZZ_ASSERT(b->y0 == c->rows, "band starts at row %u, %u rows written", b->y0, c->rows);

@@ -36,7 +36,7 @@ typedef struct {
 	unsigned rows;
 } sink_t;
 
-static int take(void *user, const dev_band_t *b)
+static int take(void *user, const render_band_t *b)
 {
 	sink_t *s = user;
 	for (unsigned r = 0; r < b->nrows; r++)
@@ -49,17 +49,17 @@ static int take(void *user, const dev_band_t *b)
 static int run(unsigned k, const uint8_t *smp, unsigned band, unsigned *bad)
 {
 	size_t sw = (size_t)W * k * 3;
-	devaa_t *a = devaa_new(k, W, H);
+	render_aa_t *a = render_aa_new(k, W, H);
 	sink_t s = { { 0 }, 0 };
 	if (!a)
 		return -1;
 	for (unsigned y = 0; y < H * k; y += band) {
 		unsigned n = y + band > H * k ? H * k - y : band;
-		dev_band_t in = { (uint8_t *)smp + y * sw, sw, W * k, y, n, H * k };
-		if (devaa_band(a, &in, take, &s))
+		render_band_t in = { (uint8_t *)smp + y * sw, sw, W * k, y, n, H * k };
+		if (render_aa_band(a, &in, take, &s))
 			return -1;
 	}
-	devaa_free(a);
+	render_aa_free(a);
 	*bad = 0;
 	for (unsigned y = 0; y < H; y++)
 		for (unsigned x = 0; x < W; x++)

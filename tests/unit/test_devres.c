@@ -42,7 +42,7 @@ static int c_begin(dev_device_t *d, const dev_page_t *pg)
 	return c->pix ? 0 : dev_fail(d, META_ENOMEM, "out of memory");
 }
 
-static int c_band(dev_device_t *d, const dev_band_t *b)
+static int c_band(dev_device_t *d, const render_band_t *b)
 {
 	cap_t *c = d->priv;
 	if (b->width != c->w || b->page_height != c->h || b->y0 != c->rows_seen)

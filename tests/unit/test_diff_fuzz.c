@@ -111,20 +111,20 @@ int main(void)
 	const char *names[] = { "pcx", "bmp", "dpx", "cineon" };
 	for (int f = 0; f < 4; f++) {
 		size_t n = f == 0 ? seed_pcx(seed) : f == 1 ? seed_bmp(seed) : seed_dpx(seed, f == 3);
-		dev_image_t img;
+		img_t img;
 		char err[600];
-		int rc = dev_image_decode(seed, n, names[f], &img, err, sizeof err);
+		int rc = img_decode(seed, n, names[f], &img, err, sizeof err);
 		CHECK(rc == 0 && img.width > 0, "%s seed decodes (%s)", names[f], rc ? err : "");
-		dev_image_free(&img);
+		img_free(&img);
 		int bad = 0, lines = 1;
 		for (int k = 0; k < 3000; k++) {
 			size_t m = mutate(seed, n, buf);
-			rc = dev_image_decode(buf, m, names[f], &img, err, sizeof err);
+			rc = img_decode(buf, m, names[f], &img, err, sizeof err);
 			if (rc && !check_line(err))
 				lines = 0;
 			if (rc && rc != -65 && rc != -70)
 				bad++;
-			dev_image_free(&img);
+			img_free(&img);
 		}
 		CHECK(bad == 0 && lines, "%s: 3000 mutations, no crash, each error one line", names[f]);
 	}

@@ -224,7 +224,7 @@ static void test_random(scan_ctx_t *c)
 static uint8_t whole[W * H * 3];
 static size_t got_rows;
 
-static int keep_band(void *user, const dev_band_t *b)
+static int keep_band(void *user, const render_band_t *b)
 {
 	uint8_t *dst = user;
 	for (unsigned k = 0; k < b->nrows; k++)
@@ -233,26 +233,26 @@ static int keep_band(void *user, const dev_band_t *b)
 	return 0;
 }
 
-static void scene(dev_render_t *r)
+static void scene(render_t *r)
 {
 	scan_path_t p = { 0 };
 	double t[] = { 1, 1, 39, 3, 20, 29 };
 	poly(&p, t, 3);
-	dev_render_clear(r, 0xeeeeee);
-	dev_render_fill(r, &p, META_RULE_NON_ZERO, 0xff0000);
+	render_clear(r, 0xeeeeee);
+	render_fill(r, &p, META_RULE_NON_ZERO, 0xff0000);
 	scan_path_reset(&p);
 	double l[] = { 2, 25, 30, 5, 38, 28 };
 	poly(&p, l, 3);
 	int64_t dash[2] = { 4000, 2000 };
 	scan_style_t st = { 3000, META_CAP_ROUND, META_JOIN_MITER, 10000, dash, 2 };
-	dev_render_stroke(r, &p, &st, 0x0000ff);
+	render_stroke(r, &p, &st, 0x0000ff);
 	scan_path_reset(&p);
 	scan_text_path(&p, "Ab", 2, 3000, 3000, 8000, 15000);
 	scan_style_t ts = { 1000, META_CAP_ROUND, META_JOIN_ROUND, 10000, NULL, 0 };
-	dev_render_stroke(r, &p, &ts, 0x000000);
-	dev_render_span(r, 5, 12, 30, 0x00ff00);
+	render_stroke(r, &p, &ts, 0x000000);
+	render_span(r, 5, 12, 30, 0x00ff00);
 	meta_run_t runs[2] = { { 3, 0x123456 }, { 50, 0x654321 } };
-	dev_render_row(r, 30, 29, runs, 2);
+	render_row(r, 30, 29, runs, 2);
 	scan_path_free(&p);
 }
 
@@ -260,25 +260,25 @@ static void test_bands(void)
 {
 	char err[200];
 	uint8_t banded[W * H * 3];
-	dev_render_t *r = dev_render_new(W, H, 0, 64 << 20, err, sizeof err);
-	CHECK(r && dev_render_bands(r) == 1, "a small page is one band");
+	render_t *r = render_new(W, H, 0, 64 << 20, err, sizeof err);
+	CHECK(r && render_bands(r) == 1, "a small page is one band");
 	scene(r);
 	got_rows = 0;
-	dev_render_finish(r, keep_band, whole);
-	dev_render_free(r);
+	render_finish(r, keep_band, whole);
+	render_free(r);
 	for (unsigned rows = 1; rows <= 8; rows += 3) {
-		r = dev_render_new(W, H, rows, 0, err, sizeof err);
+		r = render_new(W, H, rows, 0, err, sizeof err);
 		scene(r);
 		got_rows = 0;
 		memset(banded, 0, sizeof banded);
-		dev_render_finish(r, keep_band, banded);
+		render_finish(r, keep_band, banded);
 		CHECK(got_rows == H && memcmp(banded, whole, sizeof whole) == 0,
-			"bands of %u rows (%u bands) equal the whole page", rows, dev_render_bands(r));
-		dev_render_free(r);
+			"bands of %u rows (%u bands) equal the whole page", rows, render_bands(r));
+		render_free(r);
 	}
-	r = dev_render_new(W, H, 0, W * 3 * 4, err, sizeof err);
-	CHECK(r && dev_render_bands(r) == 8, "a budget of 4 rows gives 8 bands");
-	dev_render_free(r);
+	r = render_new(W, H, 0, W * 3 * 4, err, sizeof err);
+	CHECK(r && render_bands(r) == 8, "a budget of 4 rows gives 8 bands");
+	render_free(r);
 	CHECK(colour_at(0, 0) == colour_at(0, 0), "colour helper");
 }
 

@@ -141,7 +141,7 @@ static void test_misc(void)
 		"text reaches a DEV_CAP_ARCS device with raw elements (%zu)", r.last_nelems);
 	r = run(0, 0, "LOCUS-META 1\npage 40 30\ndash 0.001\nstroke\nmove 0 0\ndraw 40 0\nend\nend-page\n", &rc);
 	CHECK(rc == 0 && r.last_ndash == 0, "a dash finer than a pixel reaches devices as solid");
-	char b[DEV_FMT_SIZE];
+	char b[IMG_FMT_SIZE];
 	CHECK_STR(dev_fmt_fix(b, 1500, 3, 3), "1.5", "1.5");
 	CHECK_STR(dev_fmt_fix(b, -1, 3, 2), "0", "-0.001 to 2 places is 0, not -0");
 	CHECK_STR(dev_fmt_fix(b, -2500, 3, 0), "-3", "halves away from zero");
