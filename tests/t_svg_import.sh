@@ -92,7 +92,7 @@ b=$(sed -n 's/.*before: pen-down \([0-9.]*\) mm.*/\1/p' "$T/st"); a=$(sed -n 's/
 	ok "-O dedupe: the shared edge and the line along it drawn once (pen-down $b -> $a mm)" || notok "dedupe: $(cat "$T/st" "$T/err")"
 "$M" import --stats --json "$T/d.svg" -o /dev/null > "$T/st" 2>&1
 [ "$(grep -c '^{"when":' "$T/st")" = 2 ] && ok "--stats --json: one object before, one after" || notok "json: $(cat "$T/st")"
-expect_exit 64 "-O occlude: not there yet, a usage error" "$M" import -O occlude "$T/d.svg"
+expect_exit 64 "-O with an unknown optimisation: a usage error" "$M" import -O occlusion "$T/d.svg"
 printf 'IN;SP1;PD100,0;' > "$T/h.hpgl"
 expect_exit 64 "SVG options on HP-GL input: a usage error" "$M" import --pens by-layer "$T/h.hpgl"
 "$M" import "$T/h.hpgl" > /dev/null && ok "HP-GL still imports through the same subcommand" || notok "HP-GL import"

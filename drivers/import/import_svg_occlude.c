@@ -70,8 +70,13 @@ static int region_build(region_t *r, const svg_geom_t *g, int rule)
 	}
 	if (r->ne < 3 || !(r->bb.y1 > r->bb.y0) || !(r->bb.x1 > r->bb.x0))
 		return 1;
-	size_t ns = r->ne / 2;
-	r->nstrip = ns < 1 ? 1 : ns > 8192 ? 8192 : (int)ns;
+	/* about two edges a strip, but no more strips than keep the bucket entries (an edge is
+	 * in every strip its height crosses) near four per edge: long edges of a scribble */
+	double span = 0, H = r->bb.y1 - r->bb.y0;
+	for (size_t e = 0; e < r->ne; e++)
+		span += fabs(r->q[e].y - r->p[e].y);
+	double ns = fmin((double)r->ne / 2, 3.0 * (double)r->ne * H / (span > 0 ? span : H));
+	r->nstrip = !(ns >= 1) ? 1 : ns > 8192 ? 8192 : (int)ns;
 	r->sy0 = r->bb.y0;
 	r->sh = (r->bb.y1 - r->bb.y0) / r->nstrip;
 	r->sstart = calloc((size_t)r->nstrip + 1, sizeof *r->sstart);
