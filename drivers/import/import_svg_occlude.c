@@ -3,7 +3,7 @@
  * are cut where they run inside its fill region (by its fill rule). Fills then become their
  * outlines (a plotter draws lines), as occlusion plugins (vpype-occult) treat closed shapes.
  * Work is on the flattened polylines; earlier items are found through a grid of the page by
- * their bounding boxes and a fill's edges through horizontal strips, so a drawing of n
+ * their bounding boxes (items over many cells on one list every fill looks through) and a fill's edges through horizontal strips, so a drawing of n
  * segments costs about n log n, not n times the number of fills' edges. */
 #include <math.h>
 #include <stdint.h>
@@ -196,7 +196,7 @@ static box_t geom_box(const svg_geom_t *g, size_t a, size_t b)
 /* Cut from g what runs inside r. 0, or -1 out of memory. */
 static int clip_hidden(svg_geom_t *g, region_t *r)
 {
-	svg_geom_t o = { .tol = g->tol, .m = { 1, 0, 0, 1, 0, 0 }, .limit = g->limit };
+	svg_geom_t o = { .tol = g->tol, .m = { 1, 0, 0, 1, 0, 0 } };   /* cuts add at most two points a crossing */
 	int changed = 0;
 	for (size_t s = 0; s < g->nsub; s++) {
 		size_t a = g->sub[s], b = s + 1 < g->nsub ? g->sub[s + 1] : g->n;
@@ -271,11 +271,21 @@ static int clip_hidden(svg_geom_t *g, region_t *r)
 
 #define GRID 64
 
+#define BIG_CELLS 64   /* an item over more cells goes on the list every fill looks through */
+
 typedef struct {
-	size_t *cell[GRID * GRID];
-	size_t n[GRID * GRID], cap[GRID * GRID];
+	size_t *cell[GRID * GRID + 1];   /* the last: the big items */
+	size_t n[GRID * GRID + 1], cap[GRID * GRID + 1];
 	double x0, y0, cw, ch;
 } grid_t;
+
+static int grid_add(grid_t *G, size_t c, size_t i)
+{
+	if (dev_grow((void **)&G->cell[c], &G->cap[c], G->n[c] + 1, sizeof **G->cell, 16))
+		return -1;
+	G->cell[c][G->n[c]++] = i;
+	return 0;
+}
 
 static void cells(const grid_t *G, box_t b, int *i0, int *j0, int *i1, int *j1)
 {
@@ -313,9 +323,11 @@ int svg_occlude(svg_doc_t *d)
 				int i0, j0, i1, j1;
 				cells(G, r.bb, &i0, &j0, &i1, &j1);
 				ncand = 0;
-				for (int jj = j0; jj <= j1; jj++)
+				for (int jj = j0; jj <= j1 + 1; jj++)
 					for (int ii = i0; ii <= i1; ii++) {
-						size_t c = (size_t)jj * GRID + (size_t)ii;
+						size_t c = jj > j1 ? GRID * GRID : (size_t)jj * GRID + (size_t)ii;
+						if (jj > j1 && ii > i0)
+							break;   /* the big items: once */
 						for (size_t k = 0; k < G->n[c]; k++) {
 							size_t q = G->cell[c][k];
 							if (seen[q] == i + 1 || !boxes_meet(ib[q], r.bb))
@@ -347,18 +359,20 @@ int svg_occlude(svg_doc_t *d)
 			continue;
 		int i0, j0, i1, j1;
 		cells(G, ib[i], &i0, &j0, &i1, &j1);
+		if ((long)(i1 - i0 + 1) * (j1 - j0 + 1) > BIG_CELLS) {
+			if (grid_add(G, GRID * GRID, i))
+				goto out;
+			continue;
+		}
 		for (int jj = j0; jj <= j1; jj++)
-			for (int ii = i0; ii <= i1; ii++) {
-				size_t c = (size_t)jj * GRID + (size_t)ii;
-				if (dev_grow((void **)&G->cell[c], &G->cap[c], G->n[c] + 1, sizeof **G->cell, 16))
+			for (int ii = i0; ii <= i1; ii++)
+				if (grid_add(G, (size_t)jj * GRID + (size_t)ii, i))
 					goto out;
-				G->cell[c][G->n[c]++] = i;
-			}
 	}
 	ret = 0;
 out:
 	if (G)
-		for (size_t c = 0; c < GRID * GRID; c++)
+		for (size_t c = 0; c <= GRID * GRID; c++)
 			free(G->cell[c]);
 	free(G), free(ib), free(seen), free(cand);
 	return ret;
