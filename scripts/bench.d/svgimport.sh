@@ -18,6 +18,10 @@
 # python3-lxml, python3-cssselect and python3-numpy are seen (a python3 of its own on PATH,
 # without them, makes the export abort with "unhandled exception in signal handler").
 
+# hpgl_an FILE [LENGTH] (scripts/bench.d/hpgl.sh: `locus-hpgl --analyse` into AN_DOWN AN_UP
+# AN_LIFTS AN_CH) reads both HP-GL files; that group's file is sourced for it when not run.
+command -v hpgl_an > /dev/null 2>&1 || . ./scripts/bench.d/hpgl.sh
+
 bench_svgimport() {
 	sv_dir=../shared/corpus/svg/vpype/benchmark
 	if ! [ -d "$sv_dir" ]; then skip svgimport "$sv_dir absent (vpype's drawings: CI lays ../shared beside the clone)"; return; fi
@@ -47,26 +51,13 @@ bench_svgimport() {
 		# rsvg-convert at the drawing's own size (its width and height in px at 96 dpi)
 		if ! measure "$BENCH_RUNS" "$W/sv_$f.png" rsvg-convert -f png "$src"; then fail "$n" "rsvg-convert: $M_ERR"; continue; fi
 		r_s=$M_S
-		if ! hpgl_an_sv "$W/sv_$f.loc.hpgl"; then fail "$n" "locus-hpgl --analyse of Locus's HP-GL failed"; continue; fi
-		l_up=$SV_UP l_down=$SV_DOWN l_ch=$SV_CH l_lifts=$SV_LIFTS
-		if ! hpgl_an_sv "$W/sv_$f.ink.hpgl" "$l_down"; then fail "$n" "locus-hpgl --analyse of Inkscape's HP-GL failed"; continue; fi
-		tr=$(ratio "$SV_UP" "$l_up")
+		if ! hpgl_an "$W/sv_$f.loc.hpgl"; then fail "$n" "locus-hpgl --analyse of Locus's HP-GL failed"; continue; fi
+		l_up=$AN_UP l_down=$AN_DOWN l_ch=$AN_CH l_lifts=$AN_LIFTS
+		if ! hpgl_an "$W/sv_$f.ink.hpgl" "$l_down"; then fail "$n" "locus-hpgl --analyse of Inkscape's HP-GL failed"; continue; fi
+		tr=$(ratio "$AN_UP" "$l_up")
 		line "$n" "$l_s" inkscape-export-hpgl "$i_s" "$l_mib" "$i_mib" "target=5 pass=$(pass "$(ratio "$i_s" "$l_s")" 5) locus_cpu_s=$l_cpu" \
-			"travel_locus_mm=$l_up travel_anchor_mm=$SV_UP travel_ratio=$tr travel_target=2 travel_pass=$(pass "$tr" 2)" \
-			"lifts_locus=$l_lifts lifts_anchor=$SV_LIFTS pen_changes_locus=$l_ch pen_changes_anchor=$SV_CH" \
+			"travel_locus_mm=$l_up travel_anchor_mm=$AN_UP travel_ratio=$tr travel_target=2 travel_pass=$(pass "$tr" 2)" \
+			"lifts_locus=$l_lifts lifts_anchor=$AN_LIFTS pen_changes_locus=$l_ch pen_changes_anchor=$AN_CH" \
 			"rsvg_png_s=$r_s ratio_rsvg=$(ratio "$r_s" "$l_s") inkscape_runs=$ink_runs units=mm_at_locus_pen_down_length"
 	done
-}
-
-# hpgl_an_sv FILE [LENGTH]: `locus-hpgl --analyse` figures: SV_DOWN SV_UP SV_LIFTS SV_CH
-hpgl_an_sv() {
-	if [ -n "${2:-}" ]; then
-		a=$("$BIN/locus-hpgl" --analyse --length "$2" "$1") || return 1
-	else
-		a=$("$BIN/locus-hpgl" --analyse "$1") || return 1
-	fi
-	SV_DOWN=$(echo "$a" | sed 's/.*pen-down \([0-9.]*\) mm.*/\1/')
-	SV_UP=$(echo "$a" | sed 's/.*pen-up \([0-9.]*\) mm.*/\1/')
-	SV_LIFTS=$(echo "$a" | sed 's/.* \([0-9]*\) lifts.*/\1/')
-	SV_CH=$(echo "$a" | sed 's/.* \([0-9]*\) pen changes.*/\1/')
 }
