@@ -38,7 +38,7 @@ static void region_free(region_t *r)
 static int strip_of(const region_t *r, double y)
 {
 	double s = floor((y - r->sy0) / r->sh);
-	return s < 0 ? 0 : s >= r->nstrip ? r->nstrip - 1 : (int)s;
+	return !(s >= 0) ? 0 : s >= r->nstrip ? r->nstrip - 1 : (int)s;   /* NaN: strip 0, no UB */
 }
 
 /* 0, 1 (no area: nothing to hide) or -1 (out of memory). */
