@@ -67,6 +67,19 @@ svg '<svg xmlns="http://www.w3.org/2000/svg"><defs><linearGradient id="g"><stop 
 [ "$(grep -c 'text (left out' "$T/err")" = 1 ] && grep -q 'w.svg:2: warning: text' "$T/err" && grep -q 'w.svg:3: warning: raster image' "$T/err" &&
 	grep -q 'w.svg:3: warning: gradient paint' "$T/err" && grep -q '^colour #808080$' "$T/w.meta" &&
 	ok "text, images, gradients: one warning per kind with its line; a gradient drawn in its mean colour" || notok "warnings: $(cat "$T/err")"
+# markers, clip-path and mask: each kind named once with the line of its first element (also
+# when a sheet sets the marker), and the element still drawn
+svg '<svg xmlns="http://www.w3.org/2000/svg" width="100" height="100"><style>.q { marker-start: url(#m) }</style>
+<defs><marker id="m"><path d="M0 0 L5 5"/></marker><clipPath id="c"><rect width="50" height="50"/></clipPath>
+<mask id="k"><rect width="50" height="50" fill="#fff"/></mask></defs>
+<g><path class="q" d="M10 10 L90 90" stroke="#000"/></g>
+<rect width="80" height="80" clip-path="url(#c)"/><path d="M1 1 L9 9" stroke="#000" marker-end="url(#m)"/>
+
+<circle r="5" cx="50" cy="50" mask="url(#k)"/><rect width="1" height="1" clip-path="url(#c)"/></svg>' mk
+"$M" import "$T/mk.svg" -o "$T/mk.meta" 2> "$T/err"
+[ "$(wc -l < "$T/err")" = 3 ] && grep -q 'mk.svg:4: warning: markers (left out)' "$T/err" && grep -q 'mk.svg:5: warning: clip-path (drawn unclipped)' "$T/err" &&
+	grep -q 'mk.svg:7: warning: mask (drawn unmasked)' "$T/err" && [ "$(grep -c '^stroke' "$T/mk.meta")" -ge 2 ] && [ "$(grep -c '^fill' "$T/mk.meta")" = 3 ] &&
+	ok "markers, clip-path, mask: one warning each with its element's line (4, 5, 7), the elements drawn" || notok "markers/clip/mask: $(cat "$T/err")"
 # --- layers as pens (vpype's Inkscape drawing: layers labelled 3 and 2) ---
 if [ -d "$C" ]; then
 	"$M" import --pens by-layer -v "$C/vpype/misc/multilayer.svg" -o "$T/ml.meta" 2> "$T/err"
@@ -92,7 +105,7 @@ b=$(sed -n 's/.*before: pen-down \([0-9.]*\) mm.*/\1/p' "$T/st"); a=$(sed -n 's/
 	ok "-O dedupe: the shared edge and the line along it drawn once (pen-down $b -> $a mm)" || notok "dedupe: $(cat "$T/st" "$T/err")"
 "$M" import --stats --json "$T/d.svg" -o /dev/null > "$T/st" 2>&1
 [ "$(grep -c '^{"when":' "$T/st")" = 2 ] && ok "--stats --json: one object before, one after" || notok "json: $(cat "$T/st")"
-expect_exit 64 "-O occlude: not there yet, a usage error" "$M" import -O occlude "$T/d.svg"
+expect_exit 64 "-O with an unknown optimisation: a usage error" "$M" import -O occlusion "$T/d.svg"
 printf 'IN;SP1;PD100,0;' > "$T/h.hpgl"
 expect_exit 64 "SVG options on HP-GL input: a usage error" "$M" import --pens by-layer "$T/h.hpgl"
 "$M" import "$T/h.hpgl" > /dev/null && ok "HP-GL still imports through the same subcommand" || notok "HP-GL import"

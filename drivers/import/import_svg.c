@@ -542,6 +542,7 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 		.rule = st->rule };
 	if (want_fill) {
 		it.kind = SVGI_FILL;
+		it.stroked = want_stroke;
 		it.src_rgb = st->fill.rgb;
 		it.rgb = over_white(st->fill.rgb, fa);
 		it.g = g;
@@ -553,6 +554,7 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 			if (!c.pt || !c.sub || !c.closed) {
 				svg_geom_free(&c);
 				want_stroke = 0;
+				it.stroked = 0;
 			} else {
 				memcpy(c.pt, g.pt, g.n * sizeof *g.pt);
 				memcpy(c.sub, g.sub, g.nsub * sizeof *g.sub);
@@ -571,6 +573,7 @@ static void draw(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m,
 	}
 	if (want_stroke && !s->fatal) {
 		it.kind = SVGI_STROKE;
+		it.stroked = 0;
 		it.src_rgb = st->stroke.rgb;
 		it.rgb = over_white(st->stroke.rgb, sa);
 		it.width = st->width * k;

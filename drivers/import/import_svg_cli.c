@@ -10,15 +10,17 @@
 
 static const char import_usage[] =
 	"usage: locus-meta import [IN] [-o OUT] [--pens SPEC|by-layer|by-colour] [--pen LAYER=N]...\n"
-	"                         [-O dedupe[=MM]] [--tolerance MM] [--dpi N] [--profile NAME]\n"
-	"                         [--stats] [--json] [-v]\n"
+	"                         [-O occlude] [-O dedupe[=MM]] [--tolerance MM] [--dpi N]\n"
+	"                         [--profile NAME] [--stats] [--json] [-v]\n"
 	"Import an HP-GL, HP-GL/2, plotutils metafile or SVG drawing (told from its content) as a\n"
 	"text meta file. SVG: curves flattened to --tolerance mm (0.0125, half a plotter unit),\n"
 	"one meta pixel per CSS px (--dpi 96); --pens by-layer gives each Inkscape layer (or\n"
 	"top-level group) a pen (a number in its label, --pen LABEL=N, else the next free one),\n"
 	"by-colour each stroke colour (--pen '#rrggbb=N'), drawn in that pen's colour of the\n"
-	"carousel (--pens SPEC as for HP-GL, or --profile's); -O dedupe drops strokes retracing\n"
-	"earlier ones of the same pen within MM (0.05); --stats prints pen-down length, pen-up\n"
+	"carousel (--pens SPEC as for HP-GL, or --profile's); -O occlude cuts strokes and fill\n"
+	"outlines hidden under later fills (fills become outlines; white ones only hide);\n"
+	"-O dedupe drops strokes retracing earlier ones of the same pen within MM (0.05);\n"
+	"--stats prints pen-down length, pen-up\n"
 	"travel, lifts, pen changes and plot time (--profile, 7475a) before and after; -v the pens.\n"
 	"HP-GL: --pens SPEC gives the pens a file sets no PC/PW for (\"1=black:0.5mm,2=red\");\n"
 	"--strict refuses HP-GL junk that is otherwise skipped with a warning.\n"
@@ -82,17 +84,24 @@ int mimp_main(int argc, char **argv)
 			o.pen_map[o.npen_map++] = optarg;
 			svg_only = 1;
 			break;
-		case 'O':
-			if (!strncmp(optarg, "dedupe", 6) && (!optarg[6] || optarg[6] == '=')) {
-				o.dedupe = 1;
-				if (optarg[6] && number(optarg + 7, 1e-6, 100, &o.dedupe_mm))
-					return usage("-O dedupe=MM: expected a tolerance in mm, 0 < MM <= 100");
-			} else {
-				fprintf(stderr, "locus-meta: -O %s: unknown (dedupe[=MM]; -O occlude is not there yet)\n", optarg);
-				return usage(NULL);
+		case 'O': {   /* -O dedupe[=MM], -O occlude, or both: repeated or comma-separated */
+			char buf[128];
+			snprintf(buf, sizeof buf, "%s", optarg);
+			for (char *save = NULL, *w = strtok_r(buf, ",", &save); w; w = strtok_r(NULL, ",", &save)) {
+				if (!strncmp(w, "dedupe", 6) && (!w[6] || w[6] == '=')) {
+					o.dedupe = 1;
+					if (w[6] && number(w + 7, 1e-6, 100, &o.dedupe_mm))
+						return usage("-O dedupe=MM: expected a tolerance in mm, 0 < MM <= 100");
+				} else if (!strcmp(w, "occlude")) {
+					o.occlude = 1;
+				} else {
+					fprintf(stderr, "locus-meta: -O %s: unknown (dedupe[=MM], occlude)\n", w);
+					return usage(NULL);
+				}
 			}
 			svg_only = 1;
 			break;
+		}
 		case 't':
 			if (number(optarg, 1e-4, 10, &o.tol_mm))
 				return usage("--tolerance: expected mm, 0.0001 .. 10");

@@ -219,6 +219,8 @@ static void measure(const svg_doc_t *d, stats_t *st)
 	size_t pcap = 0;
 	for (size_t i = 0; i < d->n; i++) {
 		const svg_item_t *it = &d->it[i];
+		if (!it->g.nsub)
+			continue;   /* nothing left to draw (cut away, or a white fill that only hides) */
 		long pen = d->o->pens_mode ? it->pen : (long)it->rgb;
 		if (pen != last && last != -1)
 			st->changes++;
@@ -350,6 +352,10 @@ int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen)
 	stats_t before, after;
 	if (o->stats)
 		measure(d, &before);
+	if (o->occlude && svg_occlude(d) < 0) {
+		snprintf(err, errlen, "locus-meta: out of memory importing %s", d->name);
+		return -70;
+	}
 	if (o->dedupe) {
 		if (svg_dedupe(d, o->dedupe_mm * d->px_per_mm) < 0) {
 			snprintf(err, errlen, "locus-meta: out of memory importing %s", d->name);
@@ -359,7 +365,8 @@ int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen)
 	if (o->stats) {
 		measure(d, &after);
 		print_stats(d, "before", &before);
-		print_stats(d, o->dedupe ? "after dedupe" : "after (no -O)", &after);
+		print_stats(d, o->occlude && o->dedupe ? "after occlude+dedupe" : o->occlude ? "after occlude"
+				: o->dedupe ? "after dedupe" : "after (no -O)", &after);
 	}
 	wst_t s = { .w = w, .rgb = 0, .cap = META_CAP_BUTT, .join = META_JOIN_MITER, .rule = META_RULE_NON_ZERO,
 		.width = 1, .miter = 10, .ph = d->ph };

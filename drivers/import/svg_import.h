@@ -20,6 +20,7 @@ typedef struct svgimp_opts_s {
 	int npen_map;
 	int dedupe;             /* -O dedupe */
 	double dedupe_mm;       /* its tolerance (default 0.05 mm) */
+	int occlude;            /* -O occlude: hidden lines under later fills removed */
 	int stats, json, verbose;
 	const char *profile;    /* --profile NAME for the time estimate (default 7475a) */
 	FILE *stats_out;        /* where --stats and -v go (NULL: stderr) */
@@ -111,6 +112,7 @@ typedef struct {
 	double miter;
 	int layer;              /* index into the layers, -1: outside every layer */
 	int pen;                /* pen number given by --pens, 0: none */
+	int stroked;            /* a fill whose element is stroked too (-O occlude: the stroke draws its edge) */
 	svg_geom_t g;           /* the subpaths, page pixels, y down (dashes already split) */
 } svg_item_t;
 
@@ -137,5 +139,8 @@ typedef struct {
 int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen);
 /* Split g's subpaths into dash pieces (lengths in pixels, offset from the start). */
 int svg_dash_split(svg_geom_t *g, const double *dash, int n, double offset);
+/* -O occlude (import_svg_occlude.c): strokes and fill outlines under later fills cut away,
+ * fills turned into their outlines. 0, or -1 out of memory. */
+int svg_occlude(svg_doc_t *d);
 
 #endif

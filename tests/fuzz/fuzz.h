@@ -52,6 +52,53 @@ static inline int fuzz_one_line(const char *e)
 	return e && *e && !strchr(e, '\n') && strlen(e) < 1024;
 }
 
+/* An importer under test: buf/n to meta statements through w; its status (0, -65 with a
+ * one-line message in err, ...). */
+typedef int (*fuzz_import_fn)(const uint8_t *buf, size_t n, void *user, meta_writer_t *w,
+		char *err, size_t errlen);
+
+/* The importers' common check: imp run twice on buf gives the same status and the same meta
+ * bytes, or the same one-line message starting with prefix (-65); a success reads back as a
+ * valid meta file; with only70 any other status must be -70 (out of memory). */
+static inline void fuzz_import_twice(fuzz_import_fn imp, void *user, const uint8_t *buf, size_t n,
+		const char *prefix, int only70)
+{
+	fuzz_buf_t m[2] = { { 0 }, { 0 } };
+	char e[2][700];
+	int r[2];
+	for (int k = 0; k < 2; k++) {
+		meta_writer_t *w = meta_writer_new(fuzz_buf_write, &m[k], META_ENC_TEXT);
+		e[k][0] = 0;
+		r[k] = -70;
+		if (w) {
+			r[k] = imp(buf, n, user, w, e[k], sizeof e[k]);
+			if (meta_writer_close(w) < 0 && r[k] == 0)
+				r[k] = -100;
+		}
+	}
+	FUZZ_ASSERT(r[0] == r[1], "two imports: %d then %d", r[0], r[1]);
+	FUZZ_ASSERT(r[0] != -100, "the writer refused the end of a successful import");
+	if (r[0] == 0) {
+		FUZZ_ASSERT(m[0].n == m[1].n && !memcmp(m[0].p, m[1].p, m[0].n), "two imports, two meta files");
+		meta_reader_t *rd = meta_reader_mem(m[0].p, m[0].n, "out");
+		if (rd) {
+			meta_cmd_t c;
+			int rc;
+			while ((rc = meta_read(rd, &c)) > 0)
+				;
+			FUZZ_ASSERT(rc == 0, "import wrote a bad meta file: %s", meta_reader_error(rd));
+			meta_reader_free(rd);
+		}
+	} else if (r[0] == -65) {
+		FUZZ_ASSERT(fuzz_one_line(e[0]) && !strncmp(e[0], prefix, strlen(prefix)), "error '%s'", e[0]);
+		FUZZ_ASSERT(!strcmp(e[0], e[1]), "two messages: '%s' / '%s'", e[0], e[1]);
+	} else if (only70) {
+		FUZZ_ASSERT(r[0] == -70, "import answered %d (%s)", r[0], e[0]);
+	}
+	free(m[0].p);
+	free(m[1].p);
+}
+
 /* Estimated work of replaying the input (chords, dash pieces, glyph strokes), or < 0 when it
  * does not read or has a page of more than max_pixels; *pages (when not NULL): its pages. */
 static inline double fuzz_work_dash(const uint8_t *data, size_t size, uint64_t max_pixels, unsigned *pages,

@@ -1,4 +1,4 @@
-/* fuzz_plotmeta.c: libFuzzer harness of the plotutils metafile reader (portable and binary): the same statements twice, an error is one line naming the byte, and a success is a meta file the meta reader accepts. */
+/* fuzz_plotmeta.c: libFuzzer harness of the plotutils metafile reader (portable and binary; fuzz.h's fuzz_import_twice): the same statements twice, an error is one line naming the byte, and a success is a meta file the meta reader accepts. */
 #include "fuzz.h"
 #include "import/plotmeta.h"
 
@@ -6,17 +6,10 @@
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput
 #endif
 
-/* Import buf into m; the status, the message in err. */
-static int import(const uint8_t *buf, size_t n, fuzz_buf_t *m, char *err, size_t errlen)
+static int import(const uint8_t *buf, size_t n, void *user, meta_writer_t *w, char *err, size_t errlen)
 {
-	meta_writer_t *w = meta_writer_new(fuzz_buf_write, m, META_ENC_TEXT);
-	if (!w)
-		return -70;
-	err[0] = 0;
-	int rc = plotmeta_import(buf, n, "in", w, err, errlen);
-	if (meta_writer_close(w) < 0 && rc == 0)
-		rc = -100;
-	return rc;
+	(void)user;
+	return plotmeta_import(buf, n, "in", w, err, errlen);
 }
 
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
@@ -38,31 +31,7 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 		memcpy(b + 8, data + 1, size - 1);
 	}
 	FUZZ_ASSERT(plotmeta_is(b, n), "magic not recognised");
-	fuzz_buf_t m1 = { 0 }, m2 = { 0 };
-	char e1[700], e2[700];
-	int r1 = import(b, n, &m1, e1, sizeof e1);
-	int r2 = import(b, n, &m2, e2, sizeof e2);
-	FUZZ_ASSERT(r1 == r2, "two imports: %d then %d", r1, r2);
-	FUZZ_ASSERT(r1 != -100, "the writer refused the end of a successful import");
-	if (r1 == 0) {
-		FUZZ_ASSERT(m1.n == m2.n && !memcmp(m1.p, m2.p, m1.n), "two imports, two meta files");
-		meta_reader_t *r = meta_reader_mem(m1.p, m1.n, "out");
-		if (r) {
-			meta_cmd_t c;
-			int rc;
-			while ((rc = meta_read(r, &c)) > 0)
-				;
-			FUZZ_ASSERT(rc == 0, "import wrote a bad meta file: %s", meta_reader_error(r));
-			meta_reader_free(r);
-		}
-	} else if (r1 == -65) {
-		FUZZ_ASSERT(fuzz_one_line(e1) && !strncmp(e1, "in: byte ", 9), "error '%s'", e1);
-		FUZZ_ASSERT(!strcmp(e1, e2), "two messages: '%s' / '%s'", e1, e2);
-	} else {
-		FUZZ_ASSERT(r1 == -70, "import answered %d (%s)", r1, e1);
-	}
-	free(m1.p);
-	free(m2.p);
+	fuzz_import_twice(import, NULL, b, n, "in: byte ", 1);
 	free(b);
 	return 0;
 }

@@ -1,4 +1,4 @@
-/* fuzz_svg.c: libFuzzer harness of the SVG importer: the same meta file twice, an error is one line "in:LINE:COL: ...", a success reads back as a valid meta file. */
+/* fuzz_svg.c: libFuzzer harness of the SVG importer (fuzz.h's fuzz_import_twice): the same meta file twice, an error is one line "in:LINE:COL: ...", a success reads back as a valid meta file; the first byte picks tolerance, -O dedupe, -O occlude and the pens. */
 #include "fuzz.h"
 #include "import/svg_import.h"
 
@@ -6,19 +6,12 @@
 #define FUZZ_ENTRY LLVMFuzzerTestOneInput
 #endif
 
-/* Import buf into m with the options the first byte picks; the status, the message in err. */
-static int import(const uint8_t *buf, size_t n, int mode, fuzz_buf_t *m, char *err, size_t errlen)
+static int import(const uint8_t *buf, size_t n, void *user, meta_writer_t *w, char *err, size_t errlen)
 {
+	int mode = *(const int *)user;
 	svgimp_opts_t o = { .tol_mm = mode & 1 ? 0.5 : 0.0125, .dpi = 96, .dedupe = (mode >> 1) & 1,
-		.dedupe_mm = 0.05, .pens_mode = (mode >> 2) % 3, .quiet = 1 };
-	meta_writer_t *w = meta_writer_new(fuzz_buf_write, m, META_ENC_TEXT);
-	if (!w)
-		return -70;
-	err[0] = 0;
-	int rc = svgimp_import(buf, n, "in", &o, w, err, errlen);
-	if (meta_writer_close(w) < 0 && rc == 0)
-		rc = -100;
-	return rc;
+		.dedupe_mm = 0.05, .pens_mode = (mode >> 2) % 3, .occlude = (mode >> 4) & 1, .quiet = 1 };
+	return svgimp_import(buf, n, "in", &o, w, err, errlen);
 }
 
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
@@ -30,28 +23,6 @@ int FUZZ_ENTRY(const uint8_t *data, size_t size)
 		mode = data[0];
 		data++, size--;
 	}
-	fuzz_buf_t m1 = { 0 }, m2 = { 0 };
-	char e1[700], e2[700];
-	int r1 = import(data, size, mode, &m1, e1, sizeof e1);
-	int r2 = import(data, size, mode, &m2, e2, sizeof e2);
-	FUZZ_ASSERT(r1 == r2, "two imports: %d then %d", r1, r2);
-	FUZZ_ASSERT(r1 != -100, "the writer refused the end of a successful import");
-	if (r1 == 0) {
-		FUZZ_ASSERT(m1.n == m2.n && !memcmp(m1.p, m2.p, m1.n), "two imports, two meta files");
-		meta_reader_t *r = meta_reader_mem(m1.p, m1.n, "out");
-		if (r) {
-			meta_cmd_t c;
-			int rc;
-			while ((rc = meta_read(r, &c)) > 0)
-				;
-			FUZZ_ASSERT(rc == 0, "import wrote a bad meta file: %s", meta_reader_error(r));
-			meta_reader_free(r);
-		}
-	} else if (r1 == -65) {
-		FUZZ_ASSERT(fuzz_one_line(e1) && !strncmp(e1, "in", 2), "error '%s'", e1);
-		FUZZ_ASSERT(!strcmp(e1, e2), "two messages: '%s' / '%s'", e1, e2);
-	}
-	free(m1.p);
-	free(m2.p);
+	fuzz_import_twice(import, &mode, data, size, "in", 0);
 	return 0;
 }
