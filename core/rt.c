@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <pthread.h>
+#include <stddef.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,14 +30,18 @@ typedef struct {
 
 static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static meta_rgb_t to_rgb(const double *c)
+/* One channel 0..1 to 0..255, rounded; branch-free (x * 255 + 0.5 lies in [0.5, 255.5], where the
+ * signed conversion truncates as the unsigned one did; NaN gives 0). */
+static inline unsigned to_byte(double c)
 {
-	unsigned v[3];
-	for (int i = 0; i < 3; i++) {
-		double x = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
-		v[i] = (unsigned)(x * 255 + 0.5);
-	}
-	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
+	double x = c > 0 ? c : 0;
+	x = x < 1 ? x : 1;
+	return (unsigned)(int)(x * 255 + 0.5);
+}
+
+static inline meta_rgb_t to_rgb(const double *c)
+{
+	return (meta_rgb_t)(to_byte(c[0]) << 16 | to_byte(c[1]) << 8 | to_byte(c[2]));
 }
 
 /* Reference mode: polish a hit point P found in float with Newton steps on the
@@ -145,7 +150,8 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		const rt_light_t *lt = &p->lights[li];
 		double Ld[RT_LANES][3], dist[RT_LANES];
 		rt_packet_t sp;
-		memset(&sp, 0, sizeof sp);
+		/* the float lanes only: the double rays are read only for lanes set below */
+		memset(&sp, 0, offsetof(rt_packet_t, o));
 		sp.acc = pk->acc;
 		sp.step = pk->step;
 		int need = 0;
@@ -286,7 +292,7 @@ static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, doubl
 
 static void init_packet(const rt_params_t *p, rt_packet_t *pk)
 {
-	memset(pk, 0, sizeof *pk);
+	memset(pk, 0, offsetof(rt_packet_t, o));   /* the double rays are set where they are used */
 	pk->acc = (float)(p->accuracy > 0 ? p->accuracy : 1e-3);
 	pk->step = (float)(p->step_pixels > 0 ? p->step_pixels : 0.5);
 }
