@@ -44,6 +44,47 @@ static inline meta_rgb_t to_rgb(const double *c)
 	return (meta_rgb_t)(to_byte(c[0]) << 16 | to_byte(c[1]) << 8 | to_byte(c[2]));
 }
 
+void rt_grad(const model_shape_t *s, const double p[3], double g[3])
+{
+	if (!s->fast_points) {
+		model_grad(s, p, g);
+		return;
+	}
+	/* model_grad: q = minv p (apply), the sum of w (q - near) / d over the elements whose
+	 * distance d is positive (model_elem_nearest for a point and a segment), then
+	 * g = minv^T gs + ga with ga = 0 (nothing but points and segments) */
+	const double *m = s->minv;
+	double q[3], gs[3] = {0, 0, 0};
+	for (int i = 0; i < 3; i++)
+		q[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		const double *a = e->p;
+		double c[3], d;
+		if (e->kind == MODEL_POINT) {
+			double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+			memcpy(c, a, sizeof c);
+		} else {   /* MODEL_SEGMENT: seg_nearest */
+			const double *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double pa[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			double l2 = ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2];
+			double h = l2 > 0 ? (pa[0] * ba[0] + pa[1] * ba[1] + pa[2] * ba[2]) / l2 : 0;
+			h = h < 0 ? 0 : h > 1 ? 1 : h;
+			for (int j = 0; j < 3; j++)
+				c[j] = a[j] + h * ba[j];
+			double v[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+			d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+		}
+		if (d > 0)
+			for (int j = 0; j < 3; j++)
+				gs[j] += e->w * (q[j] - c[j]) / d;
+	}
+	for (int j = 0; j < 3; j++)
+		g[j] = m[j] * gs[0] + m[4 + j] * gs[1] + m[8 + j] * gs[2] + 0.0;
+}
+
 /* Reference mode: polish a hit point P found in float with Newton steps on the
  * double-precision f along the ray (direction -V), staying within two pixel
  * footprints of the float answer. */
@@ -128,7 +169,7 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		}
 		if (p->refine && ob->shape->has_lip)
 			refine_hit(ob->shape, P[k], V[k], (pk->fa[k] + pk->fb[k] * best[k]), st);
-		model_grad(ob->shape, P[k], N[k]);
+		rt_grad(ob->shape, P[k], N[k]);
 		st->normal_evals++;
 		double l = sqrt(dot(N[k], N[k]));
 		if (l > 0)
