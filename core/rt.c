@@ -111,8 +111,11 @@ static void refine_hit(const model_shape_t *s, double *P, const double *V, doubl
 	memcpy(P, Q, sizeof Q);
 }
 
-/* Trace up to RT_LANES rays (active[k]) and shade them into col. */
-static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *pk, double col[RT_LANES][3],
+_Static_assert(RT_LANES <= 32, "trace8's hit mask holds a packet");
+
+/* Trace up to RT_LANES rays (active[k]) and shade them into col; returns the mask of the lanes
+ * that hit something (the others are the background colour). */
+static uint32_t trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *pk, double col[RT_LANES][3],
                    rt_stats_t *st, const float *tstart, size_t stride)
 {
 	double best[RT_LANES];
@@ -142,9 +145,12 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 			st->primary_evals += ev;
 			continue;
 		}
-		if (tstart)
+		if (tstart) {
+			if (tstart[i * stride] == INFINITY)
+				continue;   /* the packet's cone misses the object: no lane can hit it */
 			for (int k = 0; k < RT_LANES; k++)
 				pk->tmin[k] = tstart[i * stride];
+		}
 		rt_march8(p->objects[i].shape, pk, 0, &ev, &lanes);
 		st->primary_evals += ev;
 		for (int k = 0; k < RT_LANES; k++)
@@ -154,11 +160,18 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 				side[k] = (int)pk->side[k];
 			}
 	}
+	uint32_t mask = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		mask |= (uint32_t)(pk->active[k] && obj[k] >= 0) << k;
+	if (!mask) {   /* all background: nothing to shade */
+		st->lane_evals += lanes;
+		return 0;
+	}
 	double P[RT_LANES][3], N[RT_LANES][3], V[RT_LANES][3];
 	const float *pko[3] = {pk->ox, pk->oy, pk->oz}, *pkd[3] = {pk->dx, pk->dy, pk->dz};
 	int hit[RT_LANES];
 	for (int k = 0; k < RT_LANES; k++) {
-		hit[k] = pk->active[k] && obj[k] >= 0;
+		hit[k] = mask >> k & 1;
 		if (!hit[k])
 			continue;
 		st->hits++;
@@ -269,6 +282,7 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		}
 	}
 	st->lane_evals += lanes;
+	return mask;
 }
 
 static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, double py)
@@ -458,6 +472,7 @@ static void render_row(const rt_params_t *p, const unsigned char *dbl, meta_rgb_
 	rt_packet_t pk;
 	double col[RT_LANES][3];
 	float *start = malloc((p->nobjects * npk + 1) * sizeof *start);
+	const meta_rgb_t bg = to_rgb(p->background);
 	int any = 0;
 	for (size_t i = 0; i < p->nobjects; i++)
 		any |= dbl[i];
@@ -469,9 +484,9 @@ static void render_row(const rt_params_t *p, const unsigned char *dbl, meta_rgb_
 		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < RT_LANES ? (int)(nx - x0) : RT_LANES);
 		if (any)
 			double_rays(p, &pk, x0 + 0.5, 1.0, j + 0.5);
-		trace8(p, dbl, &pk, col, st, start ? start + q : NULL, npk);
+		uint32_t hit = trace8(p, dbl, &pk, col, st, start ? start + q : NULL, npk);
 		for (int k = 0; k < RT_LANES && x0 + k < nx; k++)
-			row[x0 + k] = to_rgb(col[k]);
+			row[x0 + k] = hit >> k & 1 ? to_rgb(col[k]) : bg;
 	}
 	free(start);
 }
