@@ -325,22 +325,39 @@ static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, doubl
 		eye[i] = (float)c->eye[i];
 	}
 	float fp = (float)cam_footprint(c, 1);
-	int ortho = c->projection == CAM_ORTHOGRAPHIC;
+	/* one loop per projection, without selects in them, so that gcc vectorises either */
+	if (c->projection == CAM_ORTHOGRAPHIC) {
+		for (int k = 0; k < RT_LANES; k++) {
+			float x = x0 + dx * (float)k;
+			float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
+			pk->ox[k] = eye[0] + ax;
+			pk->oy[k] = eye[1] + ay;
+			pk->oz[k] = eye[2] + az;
+			pk->dx[k] = fw[0];
+			pk->dy[k] = fw[1];
+			pk->dz[k] = fw[2];
+			pk->fa[k] = fp;
+			pk->fb[k] = 0.0f;
+		}
+	} else {
+		for (int k = 0; k < RT_LANES; k++) {
+			float x = x0 + dx * (float)k;
+			float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
+			float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
+			float il = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
+			pk->ox[k] = eye[0];
+			pk->oy[k] = eye[1];
+			pk->oz[k] = eye[2];
+			pk->dx[k] = vx * il;
+			pk->dy[k] = vy * il;
+			pk->dz[k] = vz * il;
+			pk->fa[k] = 0.0f;
+			pk->fb[k] = fp;
+		}
+	}
 	for (int k = 0; k < RT_LANES; k++) {
-		float x = x0 + dx * (float)k;
-		float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
-		float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
-		float il = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
-		pk->ox[k] = ortho ? eye[0] + ax : eye[0];
-		pk->oy[k] = ortho ? eye[1] + ay : eye[1];
-		pk->oz[k] = ortho ? eye[2] + az : eye[2];
-		pk->dx[k] = ortho ? fw[0] : vx * il;
-		pk->dy[k] = ortho ? fw[1] : vy * il;
-		pk->dz[k] = ortho ? fw[2] : vz * il;
 		pk->tmin[k] = 0;
 		pk->tmax[k] = INFINITY;
-		pk->fa[k] = ortho ? fp : 0.0f;
-		pk->fb[k] = ortho ? 0.0f : fp;
 		pk->active[k] = k < n;
 	}
 }
