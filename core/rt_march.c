@@ -3,6 +3,9 @@
 
 #include <math.h>
 #include <string.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
 
@@ -63,6 +66,19 @@ static inline vf8 vmin(vf8 a, vf8 b) { return self(a < b, a, b); }
 static inline vf8 vabs(vf8 a) { return (vf8)((vi8)a & 0x7fffffff); }
 static inline vf8 splat(float x) { return (vf8){x, x, x, x, x, x, x, x}; }
 static inline vi8 spliti(int x) { return (vi8){x, x, x, x, x, x, x, x}; }
+
+/* The number of the 8 lanes from mode that are not done. */
+static inline int live8(const int *mode)
+{
+#ifdef __AVX__
+	return __builtin_popcount((unsigned)_mm256_movemask_ps((__m256)(ldi(mode) != M_DONE)));
+#else
+	int n = 0;
+	for (int k = 0; k < 8; k++)
+		n += mode[k] != M_DONE;
+	return n;
+#endif
+}
 
 /* The update of 8 lanes after one evaluation (their modes, states, hits), the same float
  * operations lane by lane as the scalar rules in rt.h. Inlined into one copy per (nolip,
@@ -251,17 +267,15 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		int busy[RT_LANES / 8];
 		for (int g = 0; g < RT_LANES; g += 8) {
 			/* a group of 8 lanes whose rays are all done is neither evaluated nor updated */
-			int b = 0;
-			for (int k = g; k < g + 8; k++)
-				b |= mode[k] != M_DONE;
-			busy[g / 8] = b;
-			if (!b)
+			busy[g / 8] = live8(mode + g) > 0;
+			if (!busy[g / 8])
 				continue;
 			propose8(pk, g, mode, t, st, lo, flo, hi, fhi, t1, u, x, y, z, de);
 			rt_eval8(s, x + g, y + g, z + g, val + g);
 			*lanes += 8;
 		}
 		*evals += (uint64_t)n;
+		n = 0;
 		for (int g = 0; g < RT_LANES; g += 8) {
 			if (!busy[g / 8])
 				continue;
@@ -278,9 +292,7 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			else
 				shadow ? RT_UPDATE8(0, 1, 0) : RT_UPDATE8(0, 0, 0);
 #undef RT_UPDATE8
+			n += live8(mode + g);
 		}
-		n = 0;
-		for (int k = 0; k < RT_LANES; k++)
-			n += mode[k] != M_DONE;
 	}
 }
