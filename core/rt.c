@@ -4,6 +4,9 @@
 
 #include <math.h>
 #include <pthread.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 #include <stddef.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -83,6 +86,91 @@ void rt_grad(const model_shape_t *s, const double p[3], double g[3])
 	}
 	for (int j = 0; j < 3; j++)
 		g[j] = m[j] * gs[0] + m[4 + j] * gs[1] + m[8 + j] * gs[2] + 0.0;
+}
+
+#ifdef __AVX__
+typedef double vd4 __attribute__((vector_size(32)));
+typedef long long vl4 __attribute__((vector_size(32)));
+
+/* m ? a : b lane by lane (m all ones or zero) */
+static inline vd4 dsel(vl4 m, vd4 a, vd4 b) { return (vd4)(((vl4)a & m) | ((vl4)b & ~m)); }
+static inline vd4 dsplat(double x) { return (vd4){x, x, x, x}; }
+static inline vd4 dsqrt(vd4 a) { return (vd4)_mm256_sqrt_pd((__m256d)a); }
+
+/* rt_grad at 4 points at once (p: x, y, z of each) for a fast_points shape: rt_grad's double
+ * operations lane by lane, in the same order (so the same bits). */
+static void grad4(const model_shape_t *s, const double p[3][4], double g[3][4])
+{
+	const double *m = s->minv;
+	vd4 p0, p1, p2, q[3], gs[3] = {dsplat(0), dsplat(0), dsplat(0)};
+	memcpy(&p0, p[0], sizeof p0);
+	memcpy(&p1, p[1], sizeof p1);
+	memcpy(&p2, p[2], sizeof p2);
+	for (int i = 0; i < 3; i++)
+		q[i] = m[i * 4] * p0 + m[i * 4 + 1] * p1 + m[i * 4 + 2] * p2 + m[i * 4 + 3];
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		const double *a = e->p;
+		vd4 c[3], d;
+		if (e->kind == MODEL_POINT) {
+			vd4 v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			d = dsqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+			for (int j = 0; j < 3; j++)
+				c[j] = dsplat(a[j]);
+		} else {
+			const double *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			vd4 pa[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			double l2 = ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2];
+			vd4 h = l2 > 0 ? (pa[0] * ba[0] + pa[1] * ba[1] + pa[2] * ba[2]) / l2 : dsplat(0);
+			h = dsel(h < 0, dsplat(0), dsel(h > 1, dsplat(1), h));
+			for (int j = 0; j < 3; j++)
+				c[j] = a[j] + h * ba[j];
+			vd4 v[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+			d = dsqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+		}
+		vl4 pos = d > 0;
+		for (int j = 0; j < 3; j++)
+			gs[j] = dsel(pos, gs[j] + e->w * (q[j] - c[j]) / d, gs[j]);
+	}
+	for (int j = 0; j < 3; j++) {
+		vd4 r = m[j] * gs[0] + m[4 + j] * gs[1] + m[8 + j] * gs[2] + 0.0;
+		memcpy(g[j], &r, sizeof r);
+	}
+}
+#endif
+
+/* The gradients N[k] at the hit points P[k] of the lanes in mask (obj[k]: the object hit). Four
+ * at a time when they all hit one point-and-segment shape (and the processor has AVX), else one
+ * by one; the same bits either way. */
+static void normals(const rt_params_t *p, uint32_t mask, const int *obj, double P[][3], double N[][3])
+{
+#ifdef __AVX__
+	int o = -1, same = 1, idx[RT_LANES], n = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		if (mask >> k & 1) {
+			same &= o < 0 || obj[k] == o;
+			o = obj[k];
+			idx[n++] = k;
+		}
+	const model_shape_t *s = p->objects[o].shape;
+	if (same && s->fast_points) {
+		for (int b = 0; b < n; b += 4) {
+			double pp[3][4], g[3][4];
+			for (int l = 0; l < 4; l++)   /* a short batch repeats its last point */
+				for (int i = 0; i < 3; i++)
+					pp[i][l] = P[idx[b + l < n ? b + l : n - 1]][i];
+			grad4(s, pp, g);
+			for (int l = 0; l < 4 && b + l < n; l++)
+				for (int i = 0; i < 3; i++)
+					N[idx[b + l]][i] = g[i][l];
+		}
+		return;
+	}
+#endif
+	for (int k = 0; k < RT_LANES; k++)
+		if (mask >> k & 1)
+			rt_grad(p->objects[obj[k]].shape, P[k], N[k]);
 }
 
 /* Reference mode: polish a hit point P found in float with Newton steps on the
@@ -182,7 +270,12 @@ static uint32_t trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet
 		}
 		if (p->refine && ob->shape->has_lip)
 			refine_hit(ob->shape, P[k], V[k], (pk->fa[k] + pk->fb[k] * best[k]), st);
-		rt_grad(ob->shape, P[k], N[k]);
+	}
+	normals(p, mask, obj, P, N);
+	for (int k = 0; k < RT_LANES; k++) {
+		if (!hit[k])
+			continue;
+		const rt_object_t *ob = &p->objects[obj[k]];
 		st->normal_evals++;
 		double l = sqrt(dot(N[k], N[k]));
 		if (l > 0)
