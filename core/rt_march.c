@@ -67,6 +67,19 @@ static inline vf8 vabs(vf8 a) { return (vf8)((vi8)a & 0x7fffffff); }
 static inline vf8 splat(float x) { return (vf8){x, x, x, x, x, x, x, x}; }
 static inline vi8 spliti(int x) { return (vi8){x, x, x, x, x, x, x, x}; }
 
+/* 1 when one of the 8 lanes from mode is bracketing. */
+static inline int bracketing8(const int *mode)
+{
+#ifdef __AVX__
+	return _mm256_movemask_ps((__m256)(ldi(mode) == M_BRACKET)) != 0;
+#else
+	int b = 0;
+	for (int k = 0; k < 8; k++)
+		b |= mode[k] == M_BRACKET;
+	return b;
+#endif
+}
+
 /* The number of the 8 lanes from mode that are not done. */
 static inline int live8(const int *mode)
 {
@@ -89,7 +102,7 @@ update8(int *restrict mode, float *restrict t, float *restrict f, float *restric
         float *restrict side, float *restrict hit, const float *restrict u,
         const float *restrict val, const float *restrict fa, const float *restrict fb,
         const float *restrict t1, const float *restrict smin, float L, float invL,
-        int nolip, float acc, float step, int shadow, int strict)
+        int nolip, float acc, float step, int shadow, int strict, int brk)
 {
 	const float Lv = nolip ? 1.0f : L, capk = strict ? 1.5f : 16.0f;
 	const vi8 ones = spliti(-1), zero = spliti(0);
@@ -100,7 +113,8 @@ update8(int *restrict mode, float *restrict t, float *restrict f, float *restric
 	/* the tolerance never goes below what float positions can resolve */
 	vf8 eps = vmax(acc * fp, 2e-6f * (vabs(uk) + 1.0f));
 	v = self(v == v, v, emin * Lv);
-	vi8 inm = md == M_MARCH, inb = md == M_BRACKET;
+	/* brk 0: no lane is bracketing (a shadow ray never does), and the bracket rules fold away */
+	vi8 inm = md == M_MARCH, inb = brk ? md == M_BRACKET : zero;
 	/* march */
 	vi8 beyond = uk >= ldf(t1);  /* the sample is at the region's exit */
 	vi8 cross_raw = v <= 0.0f;
@@ -158,13 +172,16 @@ update8(int *restrict mode, float *restrict t, float *restrict f, float *restric
  * skips it, its value is not used). */
 static inline void propose8(const rt_packet_t *pk, int g, const int *mode, const float *t, const float *st,
                             const float *lo, const float *flo, const float *hi, const float *fhi, const float *t1,
-                            float *u, float *x, float *y, float *z, int de)
+                            float *u, float *x, float *y, float *z, int de, int brk)
 {
-	vf8 LO = ldf(lo + g), HI = ldf(hi + g), FLO = ldf(flo + g), FHI = ldf(fhi + g);
 	vi8 md = ldi(mode + g);
-	vf8 rf = LO + (HI - LO) * FLO / (FLO - FHI);
-	rf = self((rf > LO) & (rf < HI), rf, 0.5f * (LO + HI));
-	vf8 U = self(md == M_BRACKET, rf, vmin(ldf(t + g) + ldf(st + g), ldf(t1 + g)));
+	vf8 U = vmin(ldf(t + g) + ldf(st + g), ldf(t1 + g));
+	if (brk) {   /* some lane is bracketing */
+		vf8 LO = ldf(lo + g), HI = ldf(hi + g), FLO = ldf(flo + g), FHI = ldf(fhi + g);
+		vf8 rf = LO + (HI - LO) * FLO / (FLO - FHI);
+		rf = self((rf > LO) & (rf < HI), rf, 0.5f * (LO + HI));
+		U = self(md == M_BRACKET, rf, U);
+	}
 	stf(u + g, U);
 	vf8 X = ldf(pk->ox + g) + U * ldf(pk->dx + g);
 	if (de)
@@ -264,13 +281,14 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		if (mode[k] == M_MARCH)
 			pk->side[k] = sgn[k];
 	while (n > 0 && iter++ < 4000) {
-		int busy[RT_LANES / 8];
+		int busy[RT_LANES / 8], brk[RT_LANES / 8];
 		for (int g = 0; g < RT_LANES; g += 8) {
 			/* a group of 8 lanes whose rays are all done is neither evaluated nor updated */
 			busy[g / 8] = live8(mode + g) > 0;
 			if (!busy[g / 8])
 				continue;
-			propose8(pk, g, mode, t, st, lo, flo, hi, fhi, t1, u, x, y, z, de);
+			brk[g / 8] = !shadow && bracketing8(mode + g);
+			propose8(pk, g, mode, t, st, lo, flo, hi, fhi, t1, u, x, y, z, de, brk[g / 8]);
 			rt_eval8(s, x + g, y + g, z + g, val + g);
 			*lanes += 8;
 		}
@@ -280,17 +298,19 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			if (!busy[g / 8])
 				continue;
 			stf(val + g, ldf(val + g) * ldf(sgn + g));
-#define RT_UPDATE8(NOLIP, SHADOW, STRICT) \
+#define RT_UPDATE8(NOLIP, SHADOW, STRICT, BRK) \
 	update8(mode + g, t + g, f + g, st + g, lo + g, flo + g, hi + g, fhi + g, side + g, pk->thit + g, u + g, \
-	        val + g, pk->fa + g, pk->fb + g, t1 + g, smin + g, L, invL, NOLIP, pk->acc, pk->step, SHADOW, STRICT)
-			/* one copy for each common case (a Lipschitz bound or a distance estimate, primary or
-			 * shadow ray), the general one for the bracketing fallback */
+	        val + g, pk->fa + g, pk->fb + g, t1 + g, smin + g, L, invL, NOLIP, pk->acc, pk->step, SHADOW, STRICT, BRK)
+			/* one copy for each common case (a Lipschitz bound or a distance estimate; a shadow
+			 * ray, a primary one with or without lanes in a bracket), the general one for the
+			 * bracketing fallback */
+			int b = brk[g / 8];
 			if (nolip)
-				RT_UPDATE8(1, shadow != 0, de);
+				RT_UPDATE8(1, shadow != 0, de, b);
 			else if (de)
-				shadow ? RT_UPDATE8(0, 1, 1) : RT_UPDATE8(0, 0, 1);
+				shadow ? RT_UPDATE8(0, 1, 1, 0) : b ? RT_UPDATE8(0, 0, 1, 1) : RT_UPDATE8(0, 0, 1, 0);
 			else
-				shadow ? RT_UPDATE8(0, 1, 0) : RT_UPDATE8(0, 0, 0);
+				shadow ? RT_UPDATE8(0, 1, 0, 0) : b ? RT_UPDATE8(0, 0, 0, 1) : RT_UPDATE8(0, 0, 0, 0);
 #undef RT_UPDATE8
 			n += live8(mode + g);
 		}
