@@ -53,19 +53,24 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 typedef float vf8 __attribute__((vector_size(32)));
 typedef int vi8 __attribute__((vector_size(32)));
 
-static inline vf8 ldf(const float *p) { vf8 v; memcpy(&v, p, sizeof v); return v; }
-static inline vi8 ldi(const int *p) { vi8 v; memcpy(&v, p, sizeof v); return v; }
-static inline void stf(float *p, vf8 v) { memcpy(p, &v, sizeof v); }
-static inline void sti(int *p, vi8 v) { memcpy(p, &v, sizeof v); }
-/* m ? a : b lane by lane */
-static inline vf8 self(vi8 m, vf8 a, vf8 b) { return (vf8)(((vi8)a & m) | ((vi8)b & ~m)); }
-static inline vi8 seli(vi8 m, vi8 a, vi8 b) { return (a & m) | (b & ~m); }
+/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
+ * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
+ * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
+typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
+typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
+#define ldf(p) ((vf8) * (const vf8u *)(p))
+#define ldi(p) ((vi8) * (const vi8u *)(p))
+#define stf(p, v) (*(vf8u *)(p) = (v))
+#define sti(p, v) (*(vi8u *)(p) = (v))
+/* m ? a : b lane by lane (m all ones or zero) */
+#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
+#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
 /* maxf and minf lane by lane (a NaN gives b, as there) */
-static inline vf8 vmax(vf8 a, vf8 b) { return self(a > b, a, b); }
-static inline vf8 vmin(vf8 a, vf8 b) { return self(a < b, a, b); }
-static inline vf8 vabs(vf8 a) { return (vf8)((vi8)a & 0x7fffffff); }
-static inline vf8 splat(float x) { return (vf8){x, x, x, x, x, x, x, x}; }
-static inline vi8 spliti(int x) { return (vi8){x, x, x, x, x, x, x, x}; }
+#define vmax(a, b) self((a) > (b), (a), (b))
+#define vmin(a, b) self((a) < (b), (a), (b))
+#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
+#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
 
 /* 1 when one of the 8 lanes from mode is bracketing. */
 static inline int bracketing8(const int *mode)
