@@ -2,6 +2,10 @@
 #include "model.h"
 
 #include <math.h>
+#include <string.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 typedef float v8[8];
 
@@ -17,14 +21,20 @@ static void point8(const float *restrict a, const float *restrict x, const float
 static void segment8(const float *restrict f, const float *restrict x, const float *restrict y, const float *restrict z, float *restrict d)
 {
 	const float ax = f[0], ay = f[1], az = f[2], bx = f[3], by = f[4], bz = f[5], il = f[6];
+	/* two loops with the clamp on integer conditions: gcc vectorises both with AVX2 as well (one
+	 * loop with the two float selects it leaves scalar there); the same values */
+	float hc[8];
 	for (int k = 0; k < 8; k++) {
 		float px = x[k] - ax, py = y[k] - ay, pz = z[k] - az;
 		float h = (px * bx + py * by + pz * bz) * il;
-		h = h < 0.0f ? 0.0f : h;
-		h = h > 1.0f ? 1.0f : h;
-		px -= h * bx;
-		py -= h * by;
-		pz -= h * bz;
+		int below = h < 0.0f, above = h > 1.0f;
+		hc[k] = below ? 0.0f : above ? 1.0f : h;
+	}
+	for (int k = 0; k < 8; k++) {
+		float px = x[k] - ax, py = y[k] - ay, pz = z[k] - az;
+		px -= hc[k] * bx;
+		py -= hc[k] * by;
+		pz -= hc[k] * bz;
 		d[k] = sqrtf(px * px + py * py + pz * pz);
 	}
 }
@@ -166,6 +176,45 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 
 /* Points and segments only, constant c, translated frame: the benchmarks'
  * case, with the same arithmetic as the general path below (same results). */
+#ifdef __AVX__
+/* The same in vector registers from end to end (the arrays of the loops below go through the
+ * stack between their loops): the same float operations in the same order, lane by lane. */
+typedef float vf8 __attribute__((vector_size(32)));
+typedef int vi8 __attribute__((vector_size(32)));
+
+static inline vf8 vsplat(float x) { return (vf8){x, x, x, x, x, x, x, x}; }
+static inline vf8 vsqrt(vf8 a) { return (vf8)_mm256_sqrt_ps((__m256)a); }
+/* m ? a : b lane by lane (m all ones or zero) */
+static inline vf8 vsel(vi8 m, vf8 a, vf8 b) { return (vf8)(((vi8)a & m) | ((vi8)b & ~m)); }
+
+static void points8(const model_shape_t *s, const float *restrict x, const float *restrict y,
+                    const float *restrict z, float *restrict out)
+{
+	vf8 qx, qy, qz, sum = vsplat(0.0f);
+	memcpy(&qx, x, sizeof qx);
+	memcpy(&qy, y, sizeof qy);
+	memcpy(&qz, z, sizeof qz);
+	qx = qx + s->mf[3];
+	qy = qy + s->mf[7];
+	qz = qz + s->mf[11];
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		const float *a = e->pf, w = (float)e->w;
+		vf8 px = qx - a[0], py = qy - a[1], pz = qz - a[2];
+		if (e->kind != MODEL_POINT) {   /* segment8 */
+			const float bx = a[3], by = a[4], bz = a[5];
+			vf8 h = (px * bx + py * by + pz * bz) * a[6];
+			vf8 hc = vsel(h < 0.0f, vsplat(0.0f), vsel(h > 1.0f, vsplat(1.0f), h));
+			px = px - hc * bx;
+			py = py - hc * by;
+			pz = pz - hc * bz;
+		}
+		sum = sum + w * vsqrt(px * px + py * py + pz * pz);
+	}
+	sum = sum - (float)s->c.c0;
+	memcpy(out, &sum, sizeof sum);
+}
+#else
 static void points8(const model_shape_t *s, const float *restrict x, const float *restrict y,
                     const float *restrict z, float *restrict out)
 {
@@ -195,15 +244,15 @@ static void points8(const model_shape_t *s, const float *restrict x, const float
 	for (int k = 0; k < 8; k++)
 		out[k] = sum[k] - c;
 }
+#endif
 
-void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
+/* Any shape (model_eval8 without its fast path; kept out of line so that the fast path does not
+ * pay for this one's stack frame). */
+static __attribute__((noinline)) void eval8_any(const model_shape_t *s, const float *x, const float *y,
+                                                const float *z, float *out)
 {
 	v8 qx, qy, qz, d, sum;
 	const float *m = s->mf;
-	if (s->fast_points) {
-		points8(s, x, y, z, out);
-		return;
-	}
 	for (int k = 0; k < 8; k++) {
 		qx[k] = m[0] * x[k] + m[1] * y[k] + m[2] * z[k] + m[3];
 		qy[k] = m[4] * x[k] + m[5] * y[k] + m[6] * z[k] + m[7];
@@ -242,4 +291,12 @@ void model_eval8(const model_shape_t *s, const float *x, const float *y, const f
 			out[k] = sum[k] - (float)model_param(s, p, q);
 		}
 	}
+}
+
+void model_eval8(const model_shape_t *s, const float *x, const float *y, const float *z, float *out)
+{
+	if (s->fast_points)
+		points8(s, x, y, z, out);
+	else
+		eval8_any(s, x, y, z, out);
 }

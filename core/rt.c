@@ -4,6 +4,10 @@
 
 #include <math.h>
 #include <pthread.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
+#include <stddef.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,14 +33,144 @@ typedef struct {
 
 static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static meta_rgb_t to_rgb(const double *c)
+/* One channel 0..1 to 0..255, rounded; branch-free (x * 255 + 0.5 lies in [0.5, 255.5], where the
+ * signed conversion truncates as the unsigned one did; NaN gives 0). */
+static inline unsigned to_byte(double c)
 {
-	unsigned v[3];
-	for (int i = 0; i < 3; i++) {
-		double x = c[i] < 0 ? 0 : c[i] > 1 ? 1 : c[i];
-		v[i] = (unsigned)(x * 255 + 0.5);
+	double x = c > 0 ? c : 0;
+	x = x < 1 ? x : 1;
+	return (unsigned)(int)(x * 255 + 0.5);
+}
+
+static inline meta_rgb_t to_rgb(const double *c)
+{
+	return (meta_rgb_t)(to_byte(c[0]) << 16 | to_byte(c[1]) << 8 | to_byte(c[2]));
+}
+
+void rt_grad(const model_shape_t *s, const double p[3], double g[3])
+{
+	if (!s->fast_points) {
+		model_grad(s, p, g);
+		return;
 	}
-	return (meta_rgb_t)(v[0] << 16 | v[1] << 8 | v[2]);
+	/* model_grad: q = minv p (apply), the sum of w (q - near) / d over the elements whose
+	 * distance d is positive (model_elem_nearest for a point and a segment), then
+	 * g = minv^T gs + ga with ga = 0 (nothing but points and segments) */
+	const double *m = s->minv;
+	double q[3], gs[3] = {0, 0, 0};
+	for (int i = 0; i < 3; i++)
+		q[i] = m[i * 4] * p[0] + m[i * 4 + 1] * p[1] + m[i * 4 + 2] * p[2] + m[i * 4 + 3];
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		const double *a = e->p;
+		double c[3], d;
+		if (e->kind == MODEL_POINT) {
+			double v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+			memcpy(c, a, sizeof c);
+		} else {   /* MODEL_SEGMENT: seg_nearest */
+			const double *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			double pa[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			double l2 = ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2];
+			double h = l2 > 0 ? (pa[0] * ba[0] + pa[1] * ba[1] + pa[2] * ba[2]) / l2 : 0;
+			h = h < 0 ? 0 : h > 1 ? 1 : h;
+			for (int j = 0; j < 3; j++)
+				c[j] = a[j] + h * ba[j];
+			double v[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+			d = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+		}
+		if (d > 0)
+			for (int j = 0; j < 3; j++)
+				gs[j] += e->w * (q[j] - c[j]) / d;
+	}
+	for (int j = 0; j < 3; j++)
+		g[j] = m[j] * gs[0] + m[4 + j] * gs[1] + m[8 + j] * gs[2] + 0.0;
+}
+
+#ifdef __AVX__
+typedef double vd4 __attribute__((vector_size(32)));
+typedef long long vl4 __attribute__((vector_size(32)));
+
+/* m ? a : b lane by lane (m all ones or zero) */
+static inline vd4 dsel(vl4 m, vd4 a, vd4 b) { return (vd4)(((vl4)a & m) | ((vl4)b & ~m)); }
+static inline vd4 dsplat(double x) { return (vd4){x, x, x, x}; }
+static inline vd4 dsqrt(vd4 a) { return (vd4)_mm256_sqrt_pd((__m256d)a); }
+
+/* rt_grad at 4 points at once (p: x, y, z of each) for a fast_points shape: rt_grad's double
+ * operations lane by lane, in the same order (so the same bits). */
+static void grad4(const model_shape_t *s, const double p[3][4], double g[3][4])
+{
+	const double *m = s->minv;
+	vd4 p0, p1, p2, q[3], gs[3] = {dsplat(0), dsplat(0), dsplat(0)};
+	memcpy(&p0, p[0], sizeof p0);
+	memcpy(&p1, p[1], sizeof p1);
+	memcpy(&p2, p[2], sizeof p2);
+	for (int i = 0; i < 3; i++)
+		q[i] = m[i * 4] * p0 + m[i * 4 + 1] * p1 + m[i * 4 + 2] * p2 + m[i * 4 + 3];
+	for (size_t i = 0; i < s->nel; i++) {
+		const model_elem_t *e = &s->el[i];
+		const double *a = e->p;
+		vd4 c[3], d;
+		if (e->kind == MODEL_POINT) {
+			vd4 v[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			d = dsqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+			for (int j = 0; j < 3; j++)
+				c[j] = dsplat(a[j]);
+		} else {
+			const double *b = a + 3;
+			double ba[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+			vd4 pa[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+			double l2 = ba[0] * ba[0] + ba[1] * ba[1] + ba[2] * ba[2];
+			vd4 h = l2 > 0 ? (pa[0] * ba[0] + pa[1] * ba[1] + pa[2] * ba[2]) / l2 : dsplat(0);
+			h = dsel(h < 0, dsplat(0), dsel(h > 1, dsplat(1), h));
+			for (int j = 0; j < 3; j++)
+				c[j] = a[j] + h * ba[j];
+			vd4 v[3] = {q[0] - c[0], q[1] - c[1], q[2] - c[2]};
+			d = dsqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+		}
+		vl4 pos = d > 0;
+		for (int j = 0; j < 3; j++)
+			gs[j] = dsel(pos, gs[j] + e->w * (q[j] - c[j]) / d, gs[j]);
+	}
+	for (int j = 0; j < 3; j++) {
+		vd4 r = m[j] * gs[0] + m[4 + j] * gs[1] + m[8 + j] * gs[2] + 0.0;
+		memcpy(g[j], &r, sizeof r);
+	}
+}
+#endif
+
+/* The gradients N[k] at the hit points P[k] of the lanes in mask (obj[k]: the object hit). Four
+ * at a time when they all hit one point-and-segment shape (and the processor has AVX), else one
+ * by one; the same bits either way. */
+static void normals(const rt_params_t *p, uint32_t mask, const int *obj, double P[][3], double N[][3])
+{
+#ifdef __AVX__
+	int o = -1, same = 1, idx[RT_LANES], n = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		if (mask >> k & 1) {
+			same &= o < 0 || obj[k] == o;
+			o = obj[k];
+			idx[n++] = k;
+		}
+	const model_shape_t *s = p->objects[o].shape;
+	if (same && s->fast_points) {
+		for (int b = 0; b < n; b += 4) {
+			double pp[3][4], g[3][4];
+			for (int l = 0; l < 4; l++)   /* a short batch repeats its last point */
+				for (int i = 0; i < 3; i++)
+					pp[i][l] = P[idx[b + l < n ? b + l : n - 1]][i];
+			grad4(s, pp, g);
+			for (int l = 0; l < 4 && b + l < n; l++)
+				for (int i = 0; i < 3; i++)
+					N[idx[b + l]][i] = g[i][l];
+		}
+		return;
+	}
+#endif
+	for (int k = 0; k < RT_LANES; k++)
+		if (mask >> k & 1)
+			rt_grad(p->objects[obj[k]].shape, P[k], N[k]);
 }
 
 /* Reference mode: polish a hit point P found in float with Newton steps on the
@@ -65,8 +199,11 @@ static void refine_hit(const model_shape_t *s, double *P, const double *V, doubl
 	memcpy(P, Q, sizeof Q);
 }
 
-/* Trace up to RT_LANES rays (active[k]) and shade them into col. */
-static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *pk, double col[RT_LANES][3],
+_Static_assert(RT_LANES <= 32, "trace8's hit mask holds a packet");
+
+/* Trace up to RT_LANES rays (active[k]) and shade them into col; returns the mask of the lanes
+ * that hit something (the others are the background colour). */
+static uint32_t trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *pk, double col[RT_LANES][3],
                    rt_stats_t *st, const float *tstart, size_t stride)
 {
 	double best[RT_LANES];
@@ -96,9 +233,12 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 			st->primary_evals += ev;
 			continue;
 		}
-		if (tstart)
+		if (tstart) {
+			if (tstart[i * stride] == INFINITY)
+				continue;   /* the packet's cone misses the object: no lane can hit it */
 			for (int k = 0; k < RT_LANES; k++)
 				pk->tmin[k] = tstart[i * stride];
+		}
 		rt_march8(p->objects[i].shape, pk, 0, &ev, &lanes);
 		st->primary_evals += ev;
 		for (int k = 0; k < RT_LANES; k++)
@@ -108,11 +248,18 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 				side[k] = (int)pk->side[k];
 			}
 	}
+	uint32_t mask = 0;
+	for (int k = 0; k < RT_LANES; k++)
+		mask |= (uint32_t)(pk->active[k] && obj[k] >= 0) << k;
+	if (!mask) {   /* all background: nothing to shade */
+		st->lane_evals += lanes;
+		return 0;
+	}
 	double P[RT_LANES][3], N[RT_LANES][3], V[RT_LANES][3];
 	const float *pko[3] = {pk->ox, pk->oy, pk->oz}, *pkd[3] = {pk->dx, pk->dy, pk->dz};
 	int hit[RT_LANES];
 	for (int k = 0; k < RT_LANES; k++) {
-		hit[k] = pk->active[k] && obj[k] >= 0;
+		hit[k] = mask >> k & 1;
 		if (!hit[k])
 			continue;
 		st->hits++;
@@ -123,7 +270,12 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		}
 		if (p->refine && ob->shape->has_lip)
 			refine_hit(ob->shape, P[k], V[k], (pk->fa[k] + pk->fb[k] * best[k]), st);
-		model_grad(ob->shape, P[k], N[k]);
+	}
+	normals(p, mask, obj, P, N);
+	for (int k = 0; k < RT_LANES; k++) {
+		if (!hit[k])
+			continue;
+		const rt_object_t *ob = &p->objects[obj[k]];
 		st->normal_evals++;
 		double l = sqrt(dot(N[k], N[k]));
 		if (l > 0)
@@ -145,7 +297,8 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		const rt_light_t *lt = &p->lights[li];
 		double Ld[RT_LANES][3], dist[RT_LANES];
 		rt_packet_t sp;
-		memset(&sp, 0, sizeof sp);
+		/* the float lanes only: the double rays are read only for lanes set below */
+		memset(&sp, 0, offsetof(rt_packet_t, o));
 		sp.acc = pk->acc;
 		sp.step = pk->step;
 		int need = 0;
@@ -222,6 +375,7 @@ static void trace8(const rt_params_t *p, const unsigned char *dbl, rt_packet_t *
 		}
 	}
 	st->lane_evals += lanes;
+	return mask;
 }
 
 static void setup_ray(const rt_params_t *p, rt_packet_t *pk, int k, double px, double py)
@@ -264,29 +418,46 @@ static void setup_rays8(const rt_params_t *p, rt_packet_t *pk, double px0, doubl
 		eye[i] = (float)c->eye[i];
 	}
 	float fp = (float)cam_footprint(c, 1);
-	int ortho = c->projection == CAM_ORTHOGRAPHIC;
+	/* one loop per projection, without selects in them, so that gcc vectorises either */
+	if (c->projection == CAM_ORTHOGRAPHIC) {
+		for (int k = 0; k < RT_LANES; k++) {
+			float x = x0 + dx * (float)k;
+			float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
+			pk->ox[k] = eye[0] + ax;
+			pk->oy[k] = eye[1] + ay;
+			pk->oz[k] = eye[2] + az;
+			pk->dx[k] = fw[0];
+			pk->dy[k] = fw[1];
+			pk->dz[k] = fw[2];
+			pk->fa[k] = fp;
+			pk->fb[k] = 0.0f;
+		}
+	} else {
+		for (int k = 0; k < RT_LANES; k++) {
+			float x = x0 + dx * (float)k;
+			float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
+			float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
+			float il = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
+			pk->ox[k] = eye[0];
+			pk->oy[k] = eye[1];
+			pk->oz[k] = eye[2];
+			pk->dx[k] = vx * il;
+			pk->dy[k] = vy * il;
+			pk->dz[k] = vz * il;
+			pk->fa[k] = 0.0f;
+			pk->fb[k] = fp;
+		}
+	}
 	for (int k = 0; k < RT_LANES; k++) {
-		float x = x0 + dx * (float)k;
-		float ax = x * rt[0] + y * up[0], ay = x * rt[1] + y * up[1], az = x * rt[2] + y * up[2];
-		float vx = fw[0] + ax, vy = fw[1] + ay, vz = fw[2] + az;
-		float il = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
-		pk->ox[k] = ortho ? eye[0] + ax : eye[0];
-		pk->oy[k] = ortho ? eye[1] + ay : eye[1];
-		pk->oz[k] = ortho ? eye[2] + az : eye[2];
-		pk->dx[k] = ortho ? fw[0] : vx * il;
-		pk->dy[k] = ortho ? fw[1] : vy * il;
-		pk->dz[k] = ortho ? fw[2] : vz * il;
 		pk->tmin[k] = 0;
 		pk->tmax[k] = INFINITY;
-		pk->fa[k] = ortho ? fp : 0.0f;
-		pk->fb[k] = ortho ? 0.0f : fp;
 		pk->active[k] = k < n;
 	}
 }
 
 static void init_packet(const rt_params_t *p, rt_packet_t *pk)
 {
-	memset(pk, 0, sizeof *pk);
+	memset(pk, 0, offsetof(rt_packet_t, o));   /* the double rays are set where they are used */
 	pk->acc = (float)(p->accuracy > 0 ? p->accuracy : 1e-3);
 	pk->step = (float)(p->step_pixels > 0 ? p->step_pixels : 0.5);
 }
@@ -411,6 +582,7 @@ static void render_row(const rt_params_t *p, const unsigned char *dbl, meta_rgb_
 	rt_packet_t pk;
 	double col[RT_LANES][3];
 	float *start = malloc((p->nobjects * npk + 1) * sizeof *start);
+	const meta_rgb_t bg = to_rgb(p->background);
 	int any = 0;
 	for (size_t i = 0; i < p->nobjects; i++)
 		any |= dbl[i];
@@ -422,9 +594,9 @@ static void render_row(const rt_params_t *p, const unsigned char *dbl, meta_rgb_
 		setup_rays8(p, &pk, x0 + 0.5, 1.0, j + 0.5, nx - x0 < RT_LANES ? (int)(nx - x0) : RT_LANES);
 		if (any)
 			double_rays(p, &pk, x0 + 0.5, 1.0, j + 0.5);
-		trace8(p, dbl, &pk, col, st, start ? start + q : NULL, npk);
+		uint32_t hit = trace8(p, dbl, &pk, col, st, start ? start + q : NULL, npk);
 		for (int k = 0; k < RT_LANES && x0 + k < nx; k++)
-			row[x0 + k] = to_rgb(col[k]);
+			row[x0 + k] = hit >> k & 1 ? to_rgb(col[k]) : bg;
 	}
 	free(start);
 }

@@ -39,6 +39,11 @@ static inline void rt_eval8(const model_shape_t *s, const float *x, const float 
 		model_eval8(s, x, y, z, out);
 }
 
+/* grad f at p for a shape whose kernel takes the points-and-segments fast path (s->fast_points):
+ * model_grad's twin for those shapes, the same double operations in the same order (so the same
+ * bits) without its general dispatch. Any other shape goes to model_grad. */
+void rt_grad(const model_shape_t *s, const double p[3], double g[3]);
+
 /* March the active rays against s. shadow != 0 stops at the first sample
  * with f <= 0 (any hit is enough). Adds evaluations (active lanes) to *evals
  * and 8 per kernel call to *lanes. */

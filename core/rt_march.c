@@ -3,6 +3,9 @@
 
 #include <math.h>
 #include <string.h>
+#ifdef __AVX__
+#include <immintrin.h>
+#endif
 
 enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
 
@@ -45,83 +48,161 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 	}
 }
 
-/* The per-lane update after one evaluation: branch-free selects so that gcc
- * can vectorise the 8 lanes. */
-static void update8(float *restrict mode, float *restrict t, float *restrict f, float *restrict s,
-                    float *restrict lo, float *restrict flo, float *restrict hi, float *restrict fhi,
-                    float *restrict side, float *restrict hit, const float *restrict u,
-                    const float *restrict val, const float *restrict fa, const float *restrict fb,
-                    const float *restrict t1, const float *restrict smin, float L, float invL,
-                    float nolip, float acc, float step, float shadow, float strict)
+/* 8 lanes in vector registers (gcc's vector extensions: AVX2 and AVX-512 alike, without relying
+ * on the auto-vectoriser's if-conversion). Masks are all-ones or zero per lane. */
+typedef float vf8 __attribute__((vector_size(32)));
+typedef int vi8 __attribute__((vector_size(32)));
+
+/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
+ * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
+ * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
+typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
+typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
+#define ldf(p) ((vf8) * (const vf8u *)(p))
+#define ldi(p) ((vi8) * (const vi8u *)(p))
+#define stf(p, v) (*(vf8u *)(p) = (v))
+#define sti(p, v) (*(vi8u *)(p) = (v))
+/* m ? a : b lane by lane (m all ones or zero) */
+#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
+#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
+/* maxf and minf lane by lane (a NaN gives b, as there) */
+#define vmax(a, b) self((a) > (b), (a), (b))
+#define vmin(a, b) self((a) < (b), (a), (b))
+#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
+#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
+
+/* 1 when one of the 8 lanes from mode is bracketing. */
+static inline int bracketing8(const int *mode)
 {
-	for (int k = 0; k < RT_LANES; k++) {
-		float uk = u[k], v = val[k];
-		float fp = fa[k] + fb[k] * uk, emin = 0.05f * fp;
-		/* the tolerance never goes below what float positions can resolve */
-		float eps = maxf(acc * fp, 2e-6f * (fabsf(uk) + 1.0f));
-		v = v == v ? v : emin * (nolip > 0 ? 1.0f : L);
-		float inm = mode[k] == M_MARCH ? 1.0f : 0.0f, inb = mode[k] == M_BRACKET ? 1.0f : 0.0f;
-		/* march */
-		float beyond = uk >= t1[k] ? 1.0f : 0.0f;  /* the sample is at the region's exit */
-		float cross_raw = v <= 0.0f ? 1.0f : 0.0f;
-		float c1 = (f[k] + v) * invL >= s[k] * 0.999999f ? 1.0f : 0.0f;
-		float c2 = s[k] <= emin * 1.0001f ? 1.0f : 0.0f;
-		float cert = maxf(nolip, maxf(c1, c2));
-		/* strict: a sign change counts only when the ball outside at t and the ball inside at
-		 * the sample overlap (one crossing between them); a long proposal that lands inside
-		 * past a thin gap is rejected like an uncertified step */
-		float c3 = (f[k] - v) * invL >= s[k] * 0.999999f - emin ? 1.0f : 0.0f;
-		float cross_ok = maxf(1.0f - strict, maxf(shadow, maxf(nolip, maxf(c3, c2))));
-		float cross = cross_raw * cross_ok;
-		/* slope m = (v - f)/s; secant step -1.05 v/m when falling, the largest step two
-		 * overlapping balls allow, 2 * 0.9 v/(L - m), when rising: one division */
-		float dv = v - f[k];
-		float den = dv < 0.0f ? -dv * (1.0f / 1.05f) : (L * s[k] - dv) * (1.0f / 1.8f);
-		float safe = v * invL;
-		float sg = den > 0.0f ? v * s[k] / den : safe;
-		/* a distance estimate is not Lipschitz: its slope says little about the next ball, so
-		 * a rising ray grows its step by at most 1.5x */
-		float capk = strict > 0 ? 1.5f : 16.0f;
-		sg = maxf(maxf(safe, minf(sg, capk * safe)), emin);
-		sg = nolip > 0 ? maxf(step * fp, smin[k]) : sg;
-		float rej = maxf(f[k] * invL, emin);
-		float m_brk = inm * cross * (1.0f - shadow);   /* march -> bracket */
-		float m_shd = inm * cross * shadow;            /* shadow ray blocked */
-		float m_out = inm * (1.0f - cross_raw) * beyond * cert;          /* certified to the exit: a miss */
-		float m_acc = inm * (1.0f - cross_raw) * (1.0f - beyond) * cert; /* step accepted */
-		float m_rej = inm * (1.0f - cross) * (1.0f - (1.0f - cross_raw) * cert);
-		/* bracket */
-		float cv1 = fabsf(v) < eps * (nolip > 0 ? 1.0f : L) ? 1.0f : 0.0f;
-		float cv2 = hi[k] - lo[k] < eps ? 1.0f : 0.0f;
-		float conv = maxf(cv1, cv2);
-		float pos = v > 0.0f ? 1.0f : 0.0f;
-		float b_hit = inb * conv;
-		float b_lo = inb * (1.0f - conv) * pos, b_hi = inb * (1.0f - conv) * (1.0f - pos);
-		/* new state */
-		float nlo = m_brk > 0 ? t[k] : (b_lo > 0 ? uk : lo[k]);
-		float nflo = m_brk > 0 ? f[k] : (b_lo > 0 ? v : (b_hi > 0 && side[k] < 0 ? 0.5f * flo[k] : flo[k]));
-		float nhi = m_brk > 0 ? uk : (b_hi > 0 ? uk : hi[k]);
-		float nfhi = m_brk > 0 ? v : (b_hi > 0 ? v : (b_lo > 0 && side[k] > 0 ? 0.5f * fhi[k] : fhi[k]));
-		side[k] = m_brk > 0 ? 0.0f : (b_lo > 0 ? 1.0f : (b_hi > 0 ? -1.0f : side[k]));
-		lo[k] = nlo;
-		flo[k] = nflo;
-		hi[k] = nhi;
-		fhi[k] = nfhi;
-		float narrow = inb * (1.0f - b_hit) * (nhi - nlo < eps ? 1.0f : 0.0f);
-		hit[k] = (m_shd > 0 || b_hit > 0) ? uk : (narrow > 0 ? 0.5f * (nlo + nhi) : hit[k]);
-		t[k] = m_acc > 0 ? uk : t[k];
-		f[k] = m_acc > 0 ? v : f[k];
-		s[k] = m_acc > 0 ? sg : (m_rej > 0 ? rej : s[k]);
-		float done = m_shd + m_out + b_hit + narrow;
-		mode[k] = done > 0 ? (float)M_DONE : (m_brk > 0 ? (float)M_BRACKET : mode[k]);
+#ifdef __AVX__
+	return _mm256_movemask_ps((__m256)(ldi(mode) == M_BRACKET)) != 0;
+#else
+	int b = 0;
+	for (int k = 0; k < 8; k++)
+		b |= mode[k] == M_BRACKET;
+	return b;
+#endif
+}
+
+/* The number of the 8 lanes from mode that are not done. */
+static inline int live8(const int *mode)
+{
+#ifdef __AVX__
+	return __builtin_popcount((unsigned)_mm256_movemask_ps((__m256)(ldi(mode) != M_DONE)));
+#else
+	int n = 0;
+	for (int k = 0; k < 8; k++)
+		n += mode[k] != M_DONE;
+	return n;
+#endif
+}
+
+/* The update of 8 lanes after one evaluation (their modes, states, hits), the same float
+ * operations lane by lane as the scalar rules in rt.h. Inlined into one copy per (nolip,
+ * shadow, strict) the marcher uses, so that the masks of the other cases fold away. */
+static inline __attribute__((always_inline)) void
+update8(int *restrict mode, float *restrict t, float *restrict f, float *restrict s,
+        float *restrict lo, float *restrict flo, float *restrict hi, float *restrict fhi,
+        float *restrict side, float *restrict hit, const float *restrict u,
+        const float *restrict val, const float *restrict fa, const float *restrict fb,
+        const float *restrict t1, const float *restrict smin, float L, float invL,
+        int nolip, float acc, float step, int shadow, int strict, int brk)
+{
+	const float Lv = nolip ? 1.0f : L, capk = strict ? 1.5f : 16.0f;
+	const vi8 ones = spliti(-1), zero = spliti(0);
+	vf8 uk = ldf(u), v = ldf(val), F = ldf(f), S = ldf(s), T = ldf(t);
+	vf8 LO = ldf(lo), FLO = ldf(flo), HI = ldf(hi), FHI = ldf(fhi), SD = ldf(side);
+	vi8 md = ldi(mode);
+	vf8 fp = ldf(fa) + ldf(fb) * uk, emin = 0.05f * fp;
+	/* the tolerance never goes below what float positions can resolve */
+	vf8 eps = vmax(acc * fp, 2e-6f * (vabs(uk) + 1.0f));
+	v = self(v == v, v, emin * Lv);
+	/* brk 0: no lane is bracketing (a shadow ray never does), and the bracket rules fold away */
+	vi8 inm = md == M_MARCH, inb = brk ? md == M_BRACKET : zero;
+	/* march */
+	vi8 beyond = uk >= ldf(t1);  /* the sample is at the region's exit */
+	vi8 cross_raw = v <= 0.0f;
+	vi8 c1 = (F + v) * invL >= S * 0.999999f;
+	vi8 c2 = S <= emin * 1.0001f;
+	vi8 cert = nolip ? ones : c1 | c2;
+	/* strict: a sign change counts only when the ball outside at t and the ball inside at
+	 * the sample overlap (one crossing between them); a long proposal that lands inside
+	 * past a thin gap is rejected like an uncertified step */
+	vi8 cross_ok = !strict || shadow || nolip ? ones : ((F - v) * invL >= S * 0.999999f - emin) | c2;
+	vi8 cross = cross_raw & cross_ok;
+	/* slope m = (v - f)/s; secant step -1.05 v/m when falling, the largest step two
+	 * overlapping balls allow, 2 * 0.9 v/(L - m), when rising: one division */
+	vf8 dv = v - F;
+	vf8 den = self(dv < 0.0f, -dv * (1.0f / 1.05f), (L * S - dv) * (1.0f / 1.8f));
+	vf8 safe = v * invL;
+	vf8 sg = self(den > 0.0f, v * S / den, safe);
+	/* a distance estimate is not Lipschitz: its slope says little about the next ball, so
+	 * a rising ray grows its step by at most 1.5x */
+	sg = vmax(vmax(safe, vmin(sg, capk * safe)), emin);
+	if (nolip)
+		sg = vmax(step * fp, ldf(smin));
+	vf8 rej = vmax(F * invL, emin);
+	vi8 m_brk = shadow ? zero : inm & cross;   /* march -> bracket */
+	vi8 m_shd = shadow ? inm & cross : zero;   /* shadow ray blocked */
+	vi8 m_out = inm & ~cross_raw & beyond & cert;    /* certified to the exit: a miss */
+	vi8 m_acc = inm & ~cross_raw & ~beyond & cert;   /* step accepted */
+	vi8 m_rej = inm & ~cross & ~(~cross_raw & cert);
+	/* bracket */
+	vi8 conv = (vabs(v) < eps * Lv) | (HI - LO < eps);
+	vi8 pos = v > 0.0f;
+	vi8 b_hit = inb & conv;
+	vi8 b_lo = inb & ~conv & pos, b_hi = inb & ~conv & ~pos;
+	/* new state */
+	vf8 nlo = self(m_brk, T, self(b_lo, uk, LO));
+	vf8 nflo = self(m_brk, F, self(b_lo, v, self(b_hi & (SD < 0.0f), 0.5f * FLO, FLO)));
+	vf8 nhi = self(m_brk | b_hi, uk, HI);
+	vf8 nfhi = self(m_brk | b_hi, v, self(b_lo & (SD > 0.0f), 0.5f * FHI, FHI));
+	stf(side, self(m_brk, splat(0.0f), self(b_lo, splat(1.0f), self(b_hi, splat(-1.0f), SD))));
+	stf(lo, nlo);
+	stf(flo, nflo);
+	stf(hi, nhi);
+	stf(fhi, nfhi);
+	vi8 narrow = inb & ~b_hit & (nhi - nlo < eps);
+	stf(hit, self(m_shd | b_hit, uk, self(narrow, 0.5f * (nlo + nhi), ldf(hit))));
+	stf(t, self(m_acc, uk, T));
+	stf(f, self(m_acc, v, F));
+	stf(s, self(m_acc, sg, self(m_rej, rej, S)));
+	vi8 done = m_shd | m_out | b_hit | narrow;
+	sti(mode, seli(done, spliti(M_DONE), seli(m_brk, spliti(M_BRACKET), md)));
+}
+
+/* The next sample of 8 lanes: regula falsi in a bracket, else the proposed step (never past
+ * the exit); the point in x, y, z (x NaN for a done lane of a distance estimate: model_de8
+ * skips it, its value is not used). */
+static inline void propose8(const rt_packet_t *pk, int g, const int *mode, const float *t, const float *st,
+                            const float *lo, const float *flo, const float *hi, const float *fhi, const float *t1,
+                            float *u, float *x, float *y, float *z, int de, int brk)
+{
+	vi8 md = ldi(mode + g);
+	vf8 U = vmin(ldf(t + g) + ldf(st + g), ldf(t1 + g));
+	if (brk) {   /* some lane is bracketing */
+		vf8 LO = ldf(lo + g), HI = ldf(hi + g), FLO = ldf(flo + g), FHI = ldf(fhi + g);
+		vf8 rf = LO + (HI - LO) * FLO / (FLO - FHI);
+		rf = self((rf > LO) & (rf < HI), rf, 0.5f * (LO + HI));
+		U = self(md == M_BRACKET, rf, U);
 	}
+	stf(u + g, U);
+	vf8 X = ldf(pk->ox + g) + U * ldf(pk->dx + g);
+	if (de)
+		X = self(md == M_DONE, splat(NAN), X);
+	stf(x + g, X);
+	stf(y + g, ldf(pk->oy + g) + U * ldf(pk->dy + g));
+	stf(z + g, ldf(pk->oz + g) + U * ldf(pk->dz + g));
 }
 
 void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *evals, uint64_t *lanes)
 {
-	float mode[RT_LANES], t[RT_LANES], f[RT_LANES], st[RT_LANES], lo[RT_LANES], flo[RT_LANES], hi[RT_LANES], fhi[RT_LANES], side[RT_LANES], u[RT_LANES], t1[RT_LANES];
+	int mode[RT_LANES];
+	float t[RT_LANES], f[RT_LANES], st[RT_LANES], lo[RT_LANES], flo[RT_LANES], hi[RT_LANES], fhi[RT_LANES], side[RT_LANES], u[RT_LANES], t1[RT_LANES];
 	float x[RT_LANES], y[RT_LANES], z[RT_LANES], val[RT_LANES];
-	float L = (float)rt_bound(s), invL = L > 0 ? 1.0f / L : 0.0f, nolip = L > 0 ? 0.0f : 1.0f;
+	float L = (float)rt_bound(s), invL = L > 0 ? 1.0f / L : 0.0f;
+	const int nolip = !(L > 0), de = s->de != 0;
 	int n = 0;
 	for (int k = 0; k < RT_LANES; k++)
 		n += pk->active[k] && pk->tmin[k] < INFINITY;
@@ -154,18 +235,23 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	}
 	if (!n)
 		return;
-	/* first sample at the region entry */
-	for (int k = 0; k < RT_LANES; k++) {
-		x[k] = pk->ox[k] + u[k] * pk->dx[k];
-		y[k] = pk->oy[k] + u[k] * pk->dy[k];
-		z[k] = pk->oz[k] + u[k] * pk->dz[k];
-		if (s->de && mode[k] == M_DONE)
-			x[k] = NAN;
+	/* first sample at the region entry (a group of 8 lanes that are all done is not evaluated) */
+	for (int g = 0; g < RT_LANES; g += 8) {
+		int busy = 0;
+		for (int k = g; k < g + 8; k++) {
+			x[k] = pk->ox[k] + u[k] * pk->dx[k];
+			y[k] = pk->oy[k] + u[k] * pk->dy[k];
+			z[k] = pk->oz[k] + u[k] * pk->dz[k];
+			if (de && mode[k] == M_DONE)
+				x[k] = NAN;
+			busy |= mode[k] != M_DONE;
+		}
+		if (busy) {
+			rt_eval8(s, x + g, y + g, z + g, val + g);
+			*lanes += 8;
+		}
 	}
-	for (int g = 0; g < RT_LANES; g += 8)
-		rt_eval8(s, x + g, y + g, z + g, val + g);
 	*evals += (uint64_t)n;
-	*lanes += RT_LANES;
 	for (int k = 0; k < RT_LANES; k++) {
 		if (mode[k] != M_MARCH)
 			continue;
@@ -200,33 +286,38 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 		if (mode[k] == M_MARCH)
 			pk->side[k] = sgn[k];
 	while (n > 0 && iter++ < 4000) {
-		for (int k = 0; k < RT_LANES; k++) {
-			float rf = lo[k] + (hi[k] - lo[k]) * flo[k] / (flo[k] - fhi[k]);
-			rf = (rf > lo[k] && rf < hi[k]) ? rf : 0.5f * (lo[k] + hi[k]);
-			u[k] = mode[k] == M_BRACKET ? rf : minf(t[k] + st[k], t1[k]);  /* never past the exit */
-			x[k] = pk->ox[k] + u[k] * pk->dx[k];
-			y[k] = pk->oy[k] + u[k] * pk->dy[k];
-			z[k] = pk->oz[k] + u[k] * pk->dz[k];
-			if (s->de && mode[k] == M_DONE)
-				x[k] = NAN;   /* model_de8 skips the lane (its value is not used) */
-		}
-		/* a group of 8 lanes whose rays are all done is not evaluated */
+		int busy[RT_LANES / 8], brk[RT_LANES / 8];
 		for (int g = 0; g < RT_LANES; g += 8) {
-			int busy = 0;
-			for (int k = g; k < g + 8; k++)
-				busy |= mode[k] != M_DONE;
-			if (busy) {
-				rt_eval8(s, x + g, y + g, z + g, val + g);
-				*lanes += 8;
-			}
+			/* a group of 8 lanes whose rays are all done is neither evaluated nor updated */
+			busy[g / 8] = live8(mode + g) > 0;
+			if (!busy[g / 8])
+				continue;
+			brk[g / 8] = !shadow && bracketing8(mode + g);
+			propose8(pk, g, mode, t, st, lo, flo, hi, fhi, t1, u, x, y, z, de, brk[g / 8]);
+			rt_eval8(s, x + g, y + g, z + g, val + g);
+			*lanes += 8;
 		}
 		*evals += (uint64_t)n;
-		for (int k = 0; k < RT_LANES; k++)
-			val[k] *= sgn[k];
-		update8(mode, t, f, st, lo, flo, hi, fhi, side, pk->thit, u, val, pk->fa, pk->fb, t1, smin,
-		        L, invL, nolip, pk->acc, pk->step, shadow ? 1.0f : 0.0f, s->de ? 1.0f : 0.0f);
 		n = 0;
-		for (int k = 0; k < RT_LANES; k++)
-			n += mode[k] != M_DONE;
+		for (int g = 0; g < RT_LANES; g += 8) {
+			if (!busy[g / 8])
+				continue;
+			stf(val + g, ldf(val + g) * ldf(sgn + g));
+#define RT_UPDATE8(NOLIP, SHADOW, STRICT, BRK) \
+	update8(mode + g, t + g, f + g, st + g, lo + g, flo + g, hi + g, fhi + g, side + g, pk->thit + g, u + g, \
+	        val + g, pk->fa + g, pk->fb + g, t1 + g, smin + g, L, invL, NOLIP, pk->acc, pk->step, SHADOW, STRICT, BRK)
+			/* one copy for each common case (a Lipschitz bound or a distance estimate; a shadow
+			 * ray, a primary one with or without lanes in a bracket), the general one for the
+			 * bracketing fallback */
+			int b = brk[g / 8];
+			if (nolip)
+				RT_UPDATE8(1, shadow != 0, de, b);
+			else if (de)
+				shadow ? RT_UPDATE8(0, 1, 1, 0) : b ? RT_UPDATE8(0, 0, 1, 1) : RT_UPDATE8(0, 0, 1, 0);
+			else
+				shadow ? RT_UPDATE8(0, 1, 0, 0) : b ? RT_UPDATE8(0, 0, 0, 1) : RT_UPDATE8(0, 0, 0, 0);
+#undef RT_UPDATE8
+			n += live8(mode + g);
+		}
 	}
 }
