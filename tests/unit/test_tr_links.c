@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <sys/socket.h>
 #include <unistd.h>
+#include "hpgl/hpgl_link.h"
 #include "io/journal.h"
 #include "io/link.h"
 #include "unit.h"
@@ -116,6 +117,7 @@ static void dropped(void)
 
 int main(void)
 {
+	hpgl_link_register();   /* journal= keeps HP-GL checkpoints */
 	query();
 	journal();
 	dropped();
