@@ -22,6 +22,12 @@ typedef struct io_chan {
 	int (*reply)(io_transport_t *t, const char *what, char *buf, size_t len, long ms);
 	/* forget what the device sent and nobody read */
 	void (*discard)(io_transport_t *t);
+	/* the link's failure line, "NAME: " + the words (sets failed): -1 */
+	int (*fail)(io_transport_t *t, const char *fmt, ...)
+#ifdef __GNUC__
+		__attribute__((format(printf, 2, 3)))
+#endif
+		;
 	long timeout_ms;            /* a device that takes nothing for this long: a temporary failure */
 } io_chan_t;
 
@@ -57,9 +63,10 @@ typedef struct io_lang {
 	/* Links that read replies (flow=escb). At the open: learn the device's buffer size and
 	 * identification into p. 0, or -1 (message set). */
 	int (*hello)(const io_chan_t *c, io_pace_t *p);
-	/* Send some of buf/n once the device has room for it, and know it arrived: bytes sent (the
-	 * journal counts them as the device's), or -1 (message set). */
-	long (*pace)(const io_chan_t *c, io_pace_t *p, const void *buf, size_t n);
+	/* Ask the device how many bytes its buffer has room for now: 0, or -1 (message set). The
+	 * link sends at most half the buffer once there is room for it, then asks again: the answer,
+	 * read behind the chunk, confirms the chunk arrived (the journal counts it then). */
+	int (*room)(const io_chan_t *c, long *room);
 	/* At the end of a job: the device's error code (0: none). 0, or -1 (message set). */
 	int (*status)(const io_chan_t *c, long *code);
 	/* The words for an error code ("bad parameter"), or "unknown". */
