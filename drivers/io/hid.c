@@ -1,4 +1,4 @@
-/* tr-hid.c: the HID UART bridge link (Silicon Labs CP2110 and work-alikes) through hidapi:
+/* hid.c: the HID UART bridge link (Silicon Labs CP2110 and work-alikes) through hidapi:
  * the UART enabled and set up by feature reports (0x41 enable, 0x50 configuration, 0x43 purge),
  * data sent in interrupt reports whose report ID is the byte count (1..63), replies read back;
  * with flow=escb the registered language's own pacing through the bridge's replies (io/lang.h;

@@ -7,7 +7,7 @@
 #include "io/lang.h"
 #include "io/transport_int.h"
 
-/* tr-serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
+/* serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
  * &flow=xonxoff|rtscts|escb|none&timeout=S" (termios; escb: the registered language's
  * pacing, io/lang.h). */
 int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
@@ -15,7 +15,7 @@ long tr_serial_write(io_transport_t *t, const void *buf, size_t n);
 long tr_serial_read(io_transport_t *t, void *buf, size_t n);
 int tr_serial_close(io_transport_t *t);
 
-/* tr-tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
+/* tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
 int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_tcp_write(io_transport_t *t, const void *buf, size_t n);
 long tr_tcp_read(io_transport_t *t, void *buf, size_t n);
@@ -26,7 +26,7 @@ long long tr_tcp_acked(io_transport_t *t);
  * every byte, or reset the connection before it had them all. */
 int tr_tcp_drain(io_transport_t *t);
 
-/* tr-usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
+/* usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
 int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_usb_write(io_transport_t *t, const void *buf, size_t n);
 long tr_usb_read(io_transport_t *t, void *buf, size_t n);
@@ -40,7 +40,7 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
-/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
+/* hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
  * HID UART bridge through hidapi). */
 int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
@@ -56,7 +56,7 @@ int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
-/* link_signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
+/* signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
  * program left them at their default (nested opens count); the last one closed gives them back. */
 void tr_signals_take(void);
 void tr_signals_give(void);
