@@ -13,9 +13,13 @@ static void track_free(void *tr)
 	hpgl_track_free(tr);
 }
 
-static int track(void *tr, unsigned char c)
+static size_t track(void *tr, const unsigned char *p, size_t n)
 {
-	return hpgl_track_byte(tr, c);
+	size_t last = 0;
+	for (size_t k = 0; k < n; k++)
+		if (hpgl_track_byte(tr, p[k]))
+			last = k + 1;
+	return last;
 }
 
 static void restore(const void *tr, char *buf, size_t len)

@@ -27,15 +27,24 @@ struct jn {
 	int created;                /* jn_create made the file (removed again when refused) */
 };
 
-/* The job's next byte: the check sum, and the checkpoint the tracker may find after it. */
-static void feed(jn_t *j, unsigned char c)
+static uint64_t fnv(uint64_t h, const unsigned char *p, size_t n)
 {
-	j->off++;
-	j->hash = (j->hash ^ c) * 0x100000001b3ULL;
-	if (j->lang->track(j->tr, c)) {
-		j->safe = j->off;
+	for (size_t k = 0; k < n; k++)
+		h = (h ^ p[k]) * 0x100000001b3ULL;
+	return h;
+}
+
+/* The job's next n bytes: the check sum, and the last checkpoint the tracker finds in them. */
+static void feed(jn_t *j, const unsigned char *p, size_t n)
+{
+	size_t k = j->lang->track(j->tr, p, n);
+	if (k) {
+		j->hash = fnv(j->hash, p, k);
+		j->safe = j->off + k;
 		j->safe_hash = j->hash;
 	}
+	j->hash = fnv(j->hash, p + k, n - k);
+	j->off += n;
 }
 
 static int save(jn_t *j, const char *state)
@@ -174,8 +183,10 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 	const unsigned char *b = p;
 	size_t k = 0;
 	*restore = NULL;
-	while (k < n && j->off < j->skip_to)
-		feed(j, b[k++]);
+	if (j->off < j->skip_to) {
+		k = j->skip_to - j->off < n ? (size_t)(j->skip_to - j->off) : n;
+		feed(j, b, k);
+	}
 	if (j->off == j->skip_to) {
 		if (j->hash != j->want_hash) {
 			snprintf(err, errlen, "the job differs from the journaled one before byte %llu: resume with "
@@ -202,8 +213,7 @@ long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, 
 int jn_ack(jn_t *j, const void *p, size_t n)
 {
 	const unsigned char *b = p;
-	for (size_t k = 0; k < n; k++)
-		feed(j, b[k]);
+	feed(j, b, n);
 	return save(j, "running");
 }
 

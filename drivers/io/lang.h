@@ -46,8 +46,9 @@ typedef struct io_lang {
 	/* A tracker at the start of a job (NULL: out of memory), and its end. */
 	void *(*track_new)(void);
 	void (*track_free)(void *tr);
-	/* The job's next byte: 1 when a checkpoint follows it (the tracker keeps the state there). */
-	int (*track)(void *tr, unsigned char c);
+	/* The job's next n bytes p: k when the last checkpoint among them follows p[k - 1] (the
+	 * tracker keeps the state there), 0 when none does. */
+	size_t (*track)(void *tr, const unsigned char *p, size_t n);
 	/* What brings a device back to the last checkpoint's state (the journal's "restore" line). */
 	void (*restore)(const void *tr, char *buf, size_t len);
 	/* The bytes to send when a resumed job reaches its checkpoint (where tr stands): what ends
