@@ -5,6 +5,7 @@
 #include <string.h>
 #include "cli/cli.h"
 #include "device/device.h"
+#include "hpgl/hpgl_link.h"
 #include "io/transport.h"
 
 _Static_assert(CLI_AA_MAX == DEV_AA_MAX, "cli.h and device.h agree on the largest factor");
@@ -267,6 +268,7 @@ int cli_parse(cli_t *c, int argc, char **argv)
 	if (st != CLI_RUN)
 		return st;
 	resume_command(argc, argv);
+	hpgl_link_register();   /* the jobs sent to device links are HP-GL (or refused by its journal) */
 	size_t max = c->max_inputs ? c->max_inputs : 1;
 	if (max > sizeof c->in / sizeof c->in[0])
 		max = sizeof c->in / sizeof c->in[0];

@@ -1,4 +1,4 @@
-/* tr-file.c: the file transport: regular files through a temporary renamed into place, devices,
+/* file.c: the file transport: regular files through a temporary renamed into place, devices,
  * pipes, sockets and terminals written in place. */
 #include <errno.h>
 #include <fcntl.h>

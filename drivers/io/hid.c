@@ -1,8 +1,9 @@
-/* tr-hid.c: the HID UART bridge link (Silicon Labs CP2110 and work-alikes) through hidapi:
+/* hid.c: the HID UART bridge link (Silicon Labs CP2110 and work-alikes) through hidapi:
  * the UART enabled and set up by feature reports (0x41 enable, 0x50 configuration, 0x43 purge),
  * data sent in interrupt reports whose report ID is the byte count (1..63), replies read back;
- * with flow=escb HP-GL's own pacing through the bridge's replies (ESC.L once, ESC.B before each
- * chunk of at most half the buffer and after it, as on a serial line). */
+ * with flow=escb the registered language's own pacing through the bridge's replies (io/lang.h;
+ * HP-GL: ESC.L and OI once, ESC.B before each chunk of at most half the buffer and after it, OE
+ * at the end, as on a serial line). */
 #include <errno.h>
 #include <hidapi.h>
 #include <stdio.h>
@@ -18,9 +19,8 @@ typedef struct {
 	long long sent;
 	unsigned char in[64];   /* a reply report's bytes not yet read */
 	size_t nin, pos;
-	int escb;               /* flow=escb: HP-GL pacing */
-	long bufsize, space;    /* ESC.L's answer; the last ESC.B answer (-1: used) */
-	char ident[64];         /* OI's answer */
+	int escb;               /* flow=escb: the language's pacing */
+	io_pace_t pace;         /* its buffer size, last room answer (-1: used), identification */
 } hid_t_;
 
 /* Send all n bytes in reports of at most 63 (report ID = count). 0, or -1 (message set). */
@@ -87,6 +87,42 @@ static int hid_ask(io_transport_t *t, hid_t_ *s, const char *q, const char *what
 	if (e == rep)
 		return io_link_fail(t, "the answer to %s is no number: '%s'", what, rep);
 	return 0;
+}
+
+/* The bridge as the language's handshakes use it (io/lang.h); the pacing counts what it sends. */
+static int chan_put(io_transport_t *t, const void *buf, size_t n)
+{
+	hid_t_ *s = t->link_state;
+	if (hid_put(t, s, buf, n))
+		return -1;
+	s->sent += (long long)n;
+	return 0;
+}
+
+static int hello_put(io_transport_t *t, const void *buf, size_t n)
+{
+	return hid_put(t, t->link_state, buf, n);
+}
+
+static int chan_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
+{
+	return hid_ask(t, t->link_state, q, what, ms, out);
+}
+
+static int chan_reply(io_transport_t *t, const char *what, char *buf, size_t len, long ms)
+{
+	return hid_reply(t, t->link_state, what, buf, len, ms);
+}
+
+static void chan_discard(io_transport_t *t)
+{
+	hid_t_ *s = t->link_state;
+	s->pos = s->nin = 0;
+}
+
+static io_chan_t chan(io_transport_t *t, hid_t_ *s)
+{
+	return (io_chan_t){ t, chan_put, chan_ask, chan_reply, chan_discard, io_link_fail, s->timeout_ms };
 }
 
 static int parse_hex4(const char *s, size_t n, unsigned *v)
@@ -188,15 +224,14 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 	s->dev = dev;
 	s->timeout_ms = timeout * 1000;
 	s->escb = escb;
-	s->space = -1;
+	s->pace.space = -1;
 	t->link_state = s;
 	if (escb) {
-		/* HP-GL's own handshake through the bridge: learn the buffer, identify the plotter */
-		char rep[64];
-		if (hid_ask(t, s, "\033.L", "ESC.L (buffer size)", 3000, &s->bufsize) || (s->bufsize < 2
-				&& io_link_fail(t, "the plotter reports a buffer of %ld bytes", s->bufsize))
-			|| (s->pos = s->nin = 0, hid_put(t, s, "OI;", 3))
-			|| hid_reply(t, s, "OI (identification)", rep, sizeof rep, 3000)) {
+		/* the language's own handshake through the bridge: learn the buffer, identify the device
+		 * (its bytes are not counted in sent, as the pacing's are) */
+		io_chan_t c = chan(t, s);
+		c.put = hello_put;
+		if (tr_pace_hello(&c, &s->pace)) {
 			snprintf(err, errlen, "%s", t->err);
 			t->failed = 0;
 			t->link_state = NULL;
@@ -205,30 +240,14 @@ int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, siz
 			free(s);
 			return -1;
 		}
-		snprintf(s->ident, sizeof s->ident, "%s", rep);
 	}
 	return 0;
 }
 
-/* flow=escb through the shared pacing (link_escb.c) */
-static int escb_put(io_transport_t *t, const void *buf, size_t n)
-{
-	hid_t_ *s = t->link_state;
-	if (hid_put(t, s, buf, n))
-		return -1;
-	s->sent += (long long)n;
-	return 0;
-}
-
-static int escb_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
-{
-	return hid_ask(t, t->link_state, q, what, ms, out);
-}
-
 static long escb_write(io_transport_t *t, hid_t_ *s, const void *buf, size_t n)
 {
-	tr_escb_t e = { escb_put, escb_ask, s->bufsize, s->timeout_ms };
-	return tr_escb_write(t, &e, &s->space, buf, n);
+	io_chan_t c = chan(t, s);
+	return tr_pace_write(&c, &s->pace, buf, n);
 }
 
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n)
@@ -272,9 +291,9 @@ int tr_hid_close(io_transport_t *t)
 	hid_t_ *s = t->link_state;
 	int rc = 0;
 	long code = 0;
-	if (s->escb && !t->failed && t->writing && hid_ask(t, s, "OE;", "OE (error)", s->timeout_ms, &code) == 0
-		&& code != 0)
-		rc = io_link_fail(t, "the plotter (%s) reports error %ld after the job", s->ident[0] ? s->ident : "?", code);
+	io_chan_t c = chan(t, s);
+	if (s->escb && !t->failed && t->writing && io_lang()->status(&c, &code) == 0 && code != 0)
+		rc = io_link_fail(t, "the plotter (%s) reports error %ld after the job", s->pace.ident[0] ? s->pace.ident : "?", code);
 	else if (t->failed)
 		rc = -1;
 	hid_close(s->dev);

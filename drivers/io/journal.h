@@ -1,10 +1,12 @@
 /* journal.h: the job journal of a device link (journal=FILE, resume=FILE in the output name, or
  * the programs' --journal FILE, --resume FILE):
- * how far the device acknowledged an HP-GL job, at the last point where it can go on without
- * redrawing or skipping a stroke (after a command, or after a whole coordinate pair of PU, PD,
- * PA or PR), with the modal state there (pen, velocity, line type, scaling, position), so that
- * the same job, produced again, resumes from that point. The file is rewritten (through a
- * temporary and a rename) after every acknowledgement, so it is current after a crash too.
+ * how far the device acknowledged a job, at the last checkpoint (a point where it can go on
+ * without redrawing or skipping a stroke) with what restores the device's state there, so that
+ * the same job, produced again, resumes from that point. The checkpoints, the restore and the
+ * check of the job's language are the registered language's (io/lang.h: HP-GL registers them,
+ * hpgl/hpgl_link.h); the journal keeps them opaque. Without a registered language jn_create and
+ * jn_resume refuse. The file is rewritten (through a temporary and a rename) after every
+ * acknowledgement, so it is current after a crash too.
  */
 #ifndef LOCUS_JOURNAL_H
 #define LOCUS_JOURNAL_H
@@ -21,12 +23,13 @@ jn_t *jn_create(const char *path, const char *name, char *err, size_t errlen);
  * NULL with one line in err (missing, malformed, or the job was complete). */
 jn_t *jn_resume(const char *path, const char *name, char *err, size_t errlen);
 /* Resume mode: of the job's next n bytes p, how many to skip (the device has them). When the
- * skip ends, *restore points to the state-restoring HP-GL to send first (else NULL). -1 when
+ * skip ends, *restore points to the language's state-restoring bytes to send first (else NULL). -1 when
  * the job differs from the journaled one (message in err). */
 long jn_skip(jn_t *j, const void *p, size_t n, const char **restore, char *err, size_t errlen);
-/* The job's first bytes p (n of them; called before any is sent): 0 when they are HP-GL (or
- * only blanks so far), -1 with one line in err when the job is another language (PostScript,
- * PDF, PCL, raster): a journal resumes HP-GL only, and refuses the others before a byte goes.
+/* The job's first bytes p (n of them; called before any is sent): 0 when they are in the
+ * registered language (or only blanks so far), -1 with one line in err when the job is another
+ * (for HP-GL: PostScript, PDF, PCL, raster): a journal resumes its language only, and refuses
+ * the others before a byte goes.
  * A journal refused so is removed at jn_close when this run created it. */
 int jn_language(jn_t *j, const void *p, size_t n, char *err, size_t errlen);
 /* Resume mode: the journal's acked count (how far the device had the job: the restore's closer

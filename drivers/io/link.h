@@ -4,16 +4,18 @@
 #define LOCUS_TR_LINK_H
 
 #include <stddef.h>
+#include "io/lang.h"
 #include "io/transport_int.h"
 
-/* tr-serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
- * &flow=xonxoff|rtscts|escb|none&timeout=S" (termios; escb: HP-GL ESC.B pacing). */
+/* serial.c: "serial:/dev/X?baud=N&parity=none|even|odd&bits=5..8&stop=1|2
+ * &flow=xonxoff|rtscts|escb|none&timeout=S" (termios; escb: the registered language's
+ * pacing, io/lang.h). */
 int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_serial_write(io_transport_t *t, const void *buf, size_t n);
 long tr_serial_read(io_transport_t *t, void *buf, size_t n);
 int tr_serial_close(io_transport_t *t);
 
-/* tr-tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
+/* tcp.c: "tcp:HOST[:PORT][?timeout=S]" (raw AppSocket/JetDirect, port 9100). */
 int tr_tcp_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_tcp_write(io_transport_t *t, const void *buf, size_t n);
 long tr_tcp_read(io_transport_t *t, void *buf, size_t n);
@@ -24,7 +26,7 @@ long long tr_tcp_acked(io_transport_t *t);
  * every byte, or reset the connection before it had them all. */
 int tr_tcp_drain(io_transport_t *t);
 
-/* tr-usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
+/* usb.c: "usb:VID:PID[:SERIAL]" or "usb:any" (USB printer class through libusb-1.0). */
 int tr_usb_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_usb_write(io_transport_t *t, const void *buf, size_t n);
 long tr_usb_read(io_transport_t *t, void *buf, size_t n);
@@ -38,7 +40,7 @@ int io_link_fail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
-/* tr-hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
+/* hid.c: "hid:VID:PID[:SERIAL]?baud=N&parity=..&bits=..&stop=..&flow=none|rtscts|escb" (a CP2110
  * HID UART bridge through hidapi). */
 int tr_hid_open(io_transport_t *t, const char *rest, int writing, char *err, size_t errlen);
 long tr_hid_write(io_transport_t *t, const void *buf, size_t n);
@@ -54,7 +56,7 @@ int io_link_tempfail(io_transport_t *t, const char *fmt, ...)
 	__attribute__((format(printf, 2, 3)))
 #endif
 	;
-/* link_signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
+/* signals.c: a device link opens for writing: catch SIGINT, SIGTERM and SIGHUP where the
  * program left them at their default (nested opens count); the last one closed gives them back. */
 void tr_signals_take(void);
 void tr_signals_give(void);
@@ -74,20 +76,16 @@ int tr_check_interrupt(io_transport_t *t);
 int tr_query_next(const char **p, char *key, size_t klen, char *val, size_t vlen);
 /* Parse a whole decimal number in [lo, hi] into *out: 0, or -1. */
 int tr_parse_long(const char *s, long lo, long hi, long *out);
-/* flow=escb on a link that reads the plotter's replies (serial, HID): how it sends and asks. */
-typedef struct {
-	/* send all n bytes: 0, or -1 (message set) */
-	int (*put)(io_transport_t *t, const void *buf, size_t n);
-	/* send query q and read its number reply within ms: 0, or -1 (message set, naming what) */
-	int (*ask)(io_transport_t *t, const char *q, const char *what, long ms, long *out);
-	long bufsize;               /* the plotter's buffer (ESC.L) */
-	long timeout_ms;            /* a buffer full for this long: a temporary failure */
-} tr_escb_t;
-/* link_escb.c: send at most half the buffer of buf/n, after an ESC.B says there is room for it
- * (*space: the last answer not yet used, or -1; waiting while there is none), then ESC.B again:
- * its answer, read behind the chunk, confirms the chunk reached the plotter (the journal counts
- * what this returns) and is left in *space for the next chunk. Bytes sent, or -1. */
-long tr_escb_write(io_transport_t *t, const tr_escb_t *e, long *space, const void *buf, size_t n);
+/* pace.c: flow=escb, the registered language's pacing (io/lang.h) on a link that reads the
+ * device's replies (serial, HID): send at most half the buffer of buf/n, after the language's
+ * room query says there is room for it (p->space: the last answer not yet used, or -1; waiting
+ * while there is none, up to c->timeout_ms), then ask again: the answer, read behind the chunk,
+ * confirms the chunk reached the device (the journal counts what this returns) and is left in
+ * p->space for the next chunk. Bytes sent, or -1. */
+long tr_pace_write(const io_chan_t *c, io_pace_t *p, const void *buf, size_t n);
+/* flow=escb at the open: the registered language's handshake (buffer size, identification);
+ * -1 with the message set, also when no language that paces is registered. */
+int tr_pace_hello(const io_chan_t *c, io_pace_t *p);
 /* Milliseconds since an arbitrary start (CLOCK_MONOTONIC). */
 long long tr_now_ms(void);
 

@@ -1,5 +1,6 @@
-/* tr-serial.c: the serial link: termios set-up, XON/XOFF, RTS/CTS, and HP-GL's own pacing
- * (ESC.L buffer size, ESC.B free space before each chunk, OI identification, OS/OE at the end). */
+/* serial.c: the serial link: termios set-up, XON/XOFF, RTS/CTS, and (flow=escb) the registered
+ * language's own pacing (io/lang.h: for HP-GL, ESC.L buffer size and OI identification at the
+ * open, ESC.B free space around each chunk, OE at the end) over the line's replies. */
 #include <errno.h>
 #include <fcntl.h>
 #include <grp.h>
@@ -22,9 +23,7 @@ typedef struct {
 	struct termios saved;  /* the line as we found it: put back when the open fails */
 	int flow;
 	long timeout_ms;      /* no progress for this long: the write fails */
-	long bufsize;         /* escb: the plotter's buffer (ESC.L) */
-	long space;           /* escb: free space in the last ESC.B answer, -1 when used */
-	char ident[64];       /* escb: OI's answer */
+	io_pace_t pace;       /* escb: the device's buffer, its free space, its identification */
 } serial_t;
 
 static const struct { long baud; speed_t code; } bauds[] = {
@@ -32,13 +31,6 @@ static const struct { long baud; speed_t code; } bauds[] = {
 	{ 4800, B4800 }, { 9600, B9600 }, { 19200, B19200 }, { 38400, B38400 },
 	{ 57600, B57600 }, { 115200, B115200 }, { 230400, B230400 }, { 460800, B460800 },
 	{ 921600, B921600 },
-};
-
-/* The words for OE's error numbers (HP-GL). */
-static const char *const oe_words[] = {
-	"no error", "command not recognised", "wrong number of parameters",
-	"bad parameter", "unknown error 4", "unknown character set", "position overflow",
-	"unknown error 7", "vector received while the pinch wheels were raised",
 };
 
 static void sleep_ms(long ms)
@@ -133,6 +125,33 @@ static int ask_number(io_transport_t *t, serial_t *s, const char *q, const char 
 	if (e == rep)
 		return io_link_fail(t, "the answer to %s is no number: '%s'", what, rep);
 	return 0;
+}
+
+/* The line as the language's handshakes use it (io/lang.h). */
+static int chan_put(io_transport_t *t, const void *buf, size_t n)
+{
+	return put_all(t, t->link_state, buf, n);
+}
+
+static int chan_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
+{
+	return ask_number(t, t->link_state, q, what, ms, out);
+}
+
+static int chan_reply(io_transport_t *t, const char *what, char *buf, size_t len, long ms)
+{
+	return get_reply(t, t->link_state, what, buf, len, ms);
+}
+
+static void chan_discard(io_transport_t *t)
+{
+	serial_t *s = t->link_state;
+	tcflush(s->fd, TCIFLUSH);
+}
+
+static io_chan_t chan(io_transport_t *t, serial_t *s)
+{
+	return (io_chan_t){ t, chan_put, chan_ask, chan_reply, chan_discard, io_link_fail, s->timeout_ms };
 }
 
 /* 1 when path is the system console (/dev/console, /dev/tty, or a line the kernel writes its
@@ -268,7 +287,7 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 		return -1;
 	}
 	s->flow = FLOW_XONXOFF;
-	s->space = -1;
+	s->pace.space = -1;
 	s->timeout_ms = 30000;
 	struct termios tio;
 	memset(&tio, 0, sizeof tio);
@@ -308,15 +327,9 @@ int tr_serial_open(io_transport_t *t, const char *rest, int writing, char *err, 
 	tcflush(s->fd, TCIOFLUSH);
 	t->link_state = s;
 	if (s->flow == FLOW_ESCB) {
-		/* HP-GL's own handshake: learn the buffer, identify the plotter. */
-		if (ask_number(t, s, "\033.L", "ESC.L (buffer size)", 3000, &s->bufsize))
-			goto fail_t;
-		if (s->bufsize < 2) {
-			io_link_fail(t, "the plotter reports a buffer of %ld bytes", s->bufsize);
-			goto fail_t;
-		}
-		tcflush(s->fd, TCIFLUSH);
-		if (put_all(t, s, "OI;", 3) || get_reply(t, s, "OI (identification)", s->ident, sizeof s->ident, 3000))
+		/* the language's own handshake: learn the buffer, identify the device */
+		io_chan_t c = chan(t, s);
+		if (tr_pace_hello(&c, &s->pace))
 			goto fail_t;
 	}
 	return 0;
@@ -331,24 +344,14 @@ fail:
 	return -1;
 }
 
-static int escb_put(io_transport_t *t, const void *buf, size_t n)
-{
-	return put_all(t, t->link_state, buf, n);
-}
-
-static int escb_ask(io_transport_t *t, const char *q, const char *what, long ms, long *out)
-{
-	return ask_number(t, t->link_state, q, what, ms, out);
-}
-
 long tr_serial_write(io_transport_t *t, const void *buf, size_t n)
 {
 	serial_t *s = t->link_state;
 	if (s->flow != FLOW_ESCB)
 		return put_n(t, s, buf, n, 1);
-	/* ESC.B before each chunk of at most half the buffer (link_escb.c) */
-	tr_escb_t e = { escb_put, escb_ask, s->bufsize, s->timeout_ms };
-	return tr_escb_write(t, &e, &s->space, buf, n);
+	/* the language's room query before each chunk of at most half the buffer (pace.c) */
+	io_chan_t c = chan(t, s);
+	return tr_pace_write(&c, &s->pace, buf, n);
 }
 
 long tr_serial_read(io_transport_t *t, void *buf, size_t n)
@@ -369,14 +372,15 @@ int tr_serial_close(io_transport_t *t)
 	serial_t *s = t->link_state;
 	int rc = 0;
 	if (!t->failed && t->writing && s->flow == FLOW_ESCB) {
-		/* The plotter's own word on the job: OE's error, in words. */
+		/* The device's own word on the job (HP-GL: OE's error), in words. */
+		const io_lang_t *l = io_lang();
+		io_chan_t c = chan(t, s);
 		long code = 0;
-		tcflush(s->fd, TCIFLUSH);
-		if (ask_number(t, s, "OE;", "OE (error)", s->timeout_ms, &code))
+		if (l->status(&c, &code))
 			rc = -1;
 		else if (code != 0)
-			rc = io_link_fail(t, "the plotter (%s) reports error %ld: %s", s->ident[0] ? s->ident : "?",
-				code, code > 0 && code < (long)(sizeof oe_words / sizeof oe_words[0]) ? oe_words[code] : "unknown");
+			rc = io_link_fail(t, "the plotter (%s) reports error %ld: %s", s->pace.ident[0] ? s->pace.ident : "?",
+				code, l->status_words(code));
 	}
 	if (!t->failed) {
 		/* Wait, bounded, until the last bytes left the port (tcdrain could wait forever on XOFF). */

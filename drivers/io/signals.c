@@ -1,4 +1,4 @@
-/* link_signals.c: SIGINT, SIGTERM and SIGHUP during a device job: noted instead of ending the
+/* signals.c: SIGINT, SIGTERM and SIGHUP during a device job: noted instead of ending the
  * program, so that the link's waits end and the job stops with its journal current and a line
  * that says where (transport.h, io_open_write). */
 #include <errno.h>

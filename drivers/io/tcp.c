@@ -1,4 +1,4 @@
-/* tr-tcp.c: the network link: a raw job on a TCP port (AppSocket/JetDirect, 9100 by default). */
+/* tcp.c: the network link: a raw job on a TCP port (AppSocket/JetDirect, 9100 by default). */
 #include <errno.h>
 #include <fcntl.h>
 #include <netdb.h>

@@ -75,7 +75,7 @@ int io_oom(char *err, size_t errlen, const char *name);
  * ENOMEM by io_oom, 0 (then EIO) else. */
 extern _Thread_local int io_open_errno;
 
-/* tr-file.c: open t->name for writing: a regular file (or a name that does not exist yet)
+/* file.c: open t->name for writing: a regular file (or a name that does not exist yet)
  * through a new temporary beside it, anything else in place. 0, or -1 with a message in err. */
 int io_file_open(io_transport_t *t, char *err, size_t errlen);
 /* Rename the (closed) temporary over target (NULL: the one chosen at open), keeping that
@@ -94,7 +94,7 @@ void io_temp_drop(io_temp_t *e);
 void io_signals_block(sigset_t *old);
 void io_signals_restore(const sigset_t *old);
 
-/* link_signals.c: the signal (SIGINT, SIGTERM, SIGHUP) that arrived during a device job, or 0.
+/* signals.c: the signal (SIGINT, SIGTERM, SIGHUP) that arrived during a device job, or 0.
  * While a device link is open for writing those signals only set it (unless the program ignores
  * or handles them): the link's waits end and the job stops with a temporary failure, its
  * journal current, instead of the program dying mid-transfer; a second one ends the program. */

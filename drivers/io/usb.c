@@ -1,4 +1,4 @@
-/* tr-usb.c: the USB printer-class link through libusb-1.0: find interface class 7 (protocol 2
+/* usb.c: the USB printer-class link through libusb-1.0: find interface class 7 (protocol 2
  * preferred over 1), detach and re-attach the kernel driver, set the configuration only when it
  * differs, read the IEEE-1284 device ID and port status, bulk writes that advance by what was
  * sent, stall clearing with one retry, timeouts that keep the partial count, a back-channel. */

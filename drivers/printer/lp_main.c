@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "hpgl/hpgl_link.h"
 #include "printer/lp.h"
 
 #ifndef LOCUS_VERSION
@@ -282,6 +283,7 @@ int main(int argc, char **argv)
 			return 64;
 		}
 	}
+	hpgl_link_register();   /* the jobs its device links take are HP-GL (or refused by its journal) */
 	const char *sub = subcommand(argc, argv);
 	is_server = sub && !strcmp(sub, "server");
 	lp_drivers_init();

@@ -6,6 +6,7 @@
  * printable. */
 #include <unistd.h>
 #include "fuzz.h"
+#include "hpgl/hpgl_link.h"
 #include "hpgl/read/hpgl_read.h"
 #include "io/journal.h"
 
@@ -21,6 +22,7 @@ static const char job[] =
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
 int FUZZ_ENTRY(const uint8_t *data, size_t size)
 {
+	hpgl_link_register();
 	char path[96], err[600];
 	snprintf(path, sizeof path, "/tmp/locus-fuzz-journal-%ld.jnl", (long)getpid());
 	FILE *f = fopen(path, "wb");

@@ -8,6 +8,7 @@
 #include <unistd.h>
 #include "fuzz.h"
 #include "device/device.h"
+#include "hpgl/hpgl_link.h"
 #include "hpgl/read/hpgl_read.h"
 #include "io/journal.h"
 #include "import/meta_import.h"
@@ -121,6 +122,7 @@ static int make_job(const char *m, size_t n, char **job, size_t *njob)
 int FUZZ_ENTRY(const uint8_t *data, size_t size);
 int FUZZ_ENTRY(const uint8_t *data, size_t size)
 {
+	hpgl_link_register();
 	if (size < 3 || size > 32768)
 		return 0;
 	unsigned pick = (unsigned)data[0] << 8 | data[1];

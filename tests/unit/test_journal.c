@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "hpgl/read/hpgl_read.h"
+#include "hpgl/hpgl_link.h"
 #include "io/journal.h"
 #include "unit.h"
 
@@ -106,6 +107,7 @@ int main(void)
 {
 	const char *dir = getenv("T");
 	char path[512], err[512];
+	hpgl_link_register();   /* the journal's checkpoints are HP-GL's */
 	snprintf(path, sizeof path, "%s/test_journal.jnl", dir && dir[0] ? dir : "/tmp");
 	size_t n = strlen(job);
 	int nwhole;

@@ -1,10 +1,15 @@
-/* test_tr_links.c: the device links' shared parts: the query parser, the journal's resumable
+/* test_tr_links.c: the device links' shared parts: the query parser, journal= and flow=escb
+ * refused while no print language is registered (io/ knows none), the journal's resumable
  * boundaries and state restore, and a dropped TCP connection reported as a temporary failure. */
+#define _XOPEN_SOURCE 700   /* posix_openpt, ptsname */
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <netinet/in.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <sys/socket.h>
 #include <unistd.h>
+#include "hpgl/hpgl_link.h"
 #include "io/journal.h"
 #include "io/link.h"
 #include "unit.h"
@@ -22,6 +27,43 @@ static void query(void)
 	long x;
 	CHECK(tr_parse_long("115200", 1, 4000000, &x) == 0 && x == 115200, "a number in range");
 	CHECK(tr_parse_long("12x", 1, 100, &x) < 0 && tr_parse_long("0", 1, 100, &x) < 0, "junk and out of range refused");
+}
+
+/* io/ knows no print language: before one is registered, a journal and flow=escb are refused at
+ * the open, in one line, before anything is created or sent (a journal file included). */
+static void unregistered(void)
+{
+	char dir[] = "/tmp/locus-nl.XXXXXX", path[64], name[160], err[400];
+	if (!mkdtemp(dir)) {
+		CHECK(0, "mkdtemp");
+		return;
+	}
+	snprintf(path, sizeof path, "%s/j", dir);
+	CHECK(io_lang() == NULL, "no language before one is registered");
+	CHECK(jn_create(path, "usb:1:2?journal=x", err, sizeof err) == NULL && strstr(err, "registers none")
+		&& access(path, F_OK) != 0, "no language: jn_create refuses, and writes no file: %s", err);
+	snprintf(name, sizeof name, "tcp:127.0.0.1:1?journal=%s", path);
+	io_transport_t *t = io_open_write(name, err, sizeof err);
+	CHECK(t == NULL && strstr(err, "registers none") && !strchr(err, '\n'), "no language: journal= refused at the open: %s", err);
+	if (t)
+		io_close(t, IO_ABORT);
+	rmdir(dir);
+	int m = posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+	if (m >= 0 && grantpt(m) == 0 && unlockpt(m) == 0 && ptsname(m)) {
+		snprintf(name, sizeof name, "serial:%s?flow=escb&timeout=2", ptsname(m));
+		t = io_open_write(name, err, sizeof err);
+		char got[16];
+		ssize_t g = read(m, got, sizeof got);   /* (non-blocking: nothing was sent) */
+		CHECK(t == NULL && strstr(err, "flow=escb needs the pacing") && g <= 0,
+			"no language: flow=escb refused at the open, nothing sent: %s", err);
+		if (t)
+			io_close(t, IO_ABORT);
+	} else
+		CHECK(0, "a pseudo-terminal for the serial link");
+	if (m >= 0)
+		close(m);
+	hpgl_link_register();
+	CHECK(io_lang() == &hpgl_link_lang && !strcmp(io_lang()->name, "HP-GL"), "HP-GL registered");
 }
 
 static void journal(void)
@@ -117,6 +159,7 @@ static void dropped(void)
 int main(void)
 {
 	query();
+	unregistered();   /* then HP-GL registered: journal= keeps its checkpoints */
 	journal();
 	dropped();
 	return UNIT_DONE();
