@@ -33,6 +33,7 @@
 #include "locus_meta.h"
 #include "geom/scan.h"
 #include "io/transport.h"
+#include "device/writer.h"
 #include "render/band.h"
 
 /* Capability flags. */
@@ -253,19 +254,6 @@ const char *dev_option(const dev_device_t *d, const char *key, char *buf, size_t
  * message naming the unknown key and the known ones. dev_play() calls it before open(). */
 int dev_check_options(dev_device_t *d);
 #define DEV_EUSAGE (-21)
-
-/* Formatted output for text-format drivers (textout.c): printf through d->out (io_write); 0, or
- * <0 with a message naming the output (META_EIO) or the device. */
-int dev_printf(dev_device_t *d, const char *fmt, ...)
-#ifdef __GNUC__
-	__attribute__((format(printf, 2, 3)))
-#endif
-	;
-/* The fixed-point value v / 10^scale (scale 0..6; meta values have scale 3) rounded to at most
- * decimals places (halves away from zero, in integers), trailing zeros dropped, and never "-0":
- * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs IMG_FMT_SIZE bytes. */
-const char *dev_fmt_fix(char *buf, int64_t v, int scale, int decimals);
-#define IMG_FMT_SIZE 32
 
 /* The device registry (registry.c): NULL-terminated list, and lookup by name. */
 extern const dev_ops_t *const dev_registry[];

@@ -209,11 +209,11 @@ int hpgl_emit_fill(hpgl_emit_t *e, const popt_pt_t *pts, const size_t *starts, s
 		size_t npts, int even_odd);
 /* Bytes written as they are (PCL framing escapes), closing an open PE first. */
 int hpgl_emit_raw(hpgl_emit_t *e, const char *s, size_t n);
-/* Flush buffered bytes to the transport. */
+/* Pass buffered bytes to the transport (io_write; the caller io_flushes when it must). */
 int hpgl_emit_flush(hpgl_emit_t *e);
 /* Bytes written so far. */
 uint64_t hpgl_emit_bytes(const hpgl_emit_t *e);
-/* The last error (transport failures). */
+/* The transport's message when a write failed, else "". */
 const char *hpgl_emit_error(const hpgl_emit_t *e);
 
 /* ---- the plot-time model (hpgl_time.c) ---- */

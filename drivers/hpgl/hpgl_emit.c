@@ -1,37 +1,45 @@
-/* hpgl_emit.c: writes HP-GL and HP-GL/2 commands through a buffer: pen selection, polylines in
- * the shortest of absolute and relative form (PE-encoded in HP-GL/2), labels, native fills. */
+/* hpgl_emit.c: writes HP-GL and HP-GL/2 commands through the device writer (device/writer.h):
+ * pen selection, polylines in the shortest of absolute and relative form (PE-encoded in HP-GL/2),
+ * labels, native fills. The writer's byte count is the job offset pauses and resumes use. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "device/writer.h"
 #include "hpgl/hpgl.h"
-
-#define BUF_SIZE 65536
 
 enum { MODE_UNKNOWN, MODE_ABS, MODE_REL };
 
 struct hpgl_emit {
-	io_transport_t *out;
+	dev_writer_t w;             /* over out (first: it is large) */
+	io_transport_t *out;        /* NULL: the bytes are counted, not kept */
 	const hpgl_profile_t *prof;
-	char buf[BUF_SIZE];
-	size_t n;
-	uint64_t bytes;
 	int pen;                    /* selected pen slot, -1 unknown */
 	int mode;                   /* PA / PR in force */
 	int known;                  /* 1 when the pen position is known */
 	int32_t x, y;
 	unsigned pe_pairs;          /* pairs in the open PE command, 0 = none open */
 	int ft;                     /* 1 once FT1 is set for RA fills */
-	int failed;
-	char err[256];
 };
+
+/* The sink of an emitter without an output: bytes are dropped (and counted by the writer). */
+static int discard(void *user, const void *p, size_t n)
+{
+	(void)user;
+	(void)p;
+	(void)n;
+	return 0;
+}
 
 hpgl_emit_t *hpgl_emit_new(io_transport_t *out, const hpgl_profile_t *prof)
 {
 	hpgl_emit_t *e = calloc(1, sizeof *e);
 	if (!e)
 		return NULL;
+	dev_w_init(&e->w, out);
+	if (!out)
+		dev_w_set_sink(&e->w, discard, NULL);
 	e->out = out;
 	e->prof = prof;
 	e->pen = -1;
@@ -45,30 +53,12 @@ void hpgl_emit_free(hpgl_emit_t *e)
 
 int hpgl_emit_flush(hpgl_emit_t *e)
 {
-	if (e->failed)
-		return -1;
-	if (e->n && e->out && io_write(e->out, e->buf, e->n)) {
-		snprintf(e->err, sizeof e->err, "%s", io_error(e->out));
-		e->failed = 1;
-		return -1;
-	}
-	e->n = 0;
-	return 0;
+	return dev_w_drain(&e->w) ? -1 : 0;
 }
 
-static int raw(hpgl_emit_t *e, const char *s, size_t n)
+static inline int raw(hpgl_emit_t *e, const char *s, size_t n)
 {
-	while (n) {
-		if (e->n == BUF_SIZE && hpgl_emit_flush(e))
-			return -1;
-		size_t k = BUF_SIZE - e->n < n ? BUF_SIZE - e->n : n;
-		memcpy(e->buf + e->n, s, k);
-		e->n += k;
-		e->bytes += k;
-		s += k;
-		n -= k;
-	}
-	return 0;
+	return dev_w_write(&e->w, s, n) ? -1 : 0;
 }
 
 /* The end of a command: ';' and, for receivers that want it, a newline. */
@@ -388,10 +378,10 @@ int hpgl_emit_raw(hpgl_emit_t *e, const char *s, size_t n)
 
 uint64_t hpgl_emit_bytes(const hpgl_emit_t *e)
 {
-	return e->bytes;
+	return e->w.pos;
 }
 
 const char *hpgl_emit_error(const hpgl_emit_t *e)
 {
-	return e->err;
+	return e->w.err && e->out && io_failed(e->out) ? io_error(e->out) : "";
 }

@@ -30,15 +30,15 @@ static int pdf_fill(dev_device_t *d, const dev_path_t *dp, const dev_state_t *st
 /* q and the page's matrix (one unit a grid step), which everything but images is drawn in. */
 static void grid_matrix(pdf_t *s)
 {
-	pse_puts(&s->p.out, "q ");
-	pse_real(&s->p.out, s->p.sx / PSD_GRID, 8);
-	pse_puts(&s->p.out, " 0 0 ");
-	pse_real(&s->p.out, s->p.sy / PSD_GRID, 8);
-	pse_puts(&s->p.out, " ");
-	pse_real(&s->p.out, s->p.ox, 4);
-	pse_puts(&s->p.out, " ");
-	pse_real(&s->p.out, s->p.oy, 4);
-	pse_puts(&s->p.out, " cm\n");
+	dev_w_puts(&s->p.out, "q ");
+	dev_w_real(&s->p.out, s->p.sx / PSD_GRID, 8);
+	dev_w_puts(&s->p.out, " 0 0 ");
+	dev_w_real(&s->p.out, s->p.sy / PSD_GRID, 8);
+	dev_w_puts(&s->p.out, " ");
+	dev_w_real(&s->p.out, s->p.ox, 4);
+	dev_w_puts(&s->p.out, " ");
+	dev_w_real(&s->p.out, s->p.oy, 4);
+	dev_w_puts(&s->p.out, " cm\n");
 }
 
 static int pdf_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, meta_rgb_t rgb)
@@ -79,7 +79,7 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 	int rows = s->rows;
 	pdf_end_group(s);
 	psd_newline(p);
-	pse_puts(&p->out, "Q\n");   /* the grid matrix: images are placed in points (below) */
+	dev_w_puts(&p->out, "Q\n");   /* the grid matrix: images are placed in points (below) */
 	if ((rc = pdf_close_stream(s)))
 		goto done;
 	unsigned obj = pdf_new_obj(s);
@@ -88,26 +88,26 @@ static int pdf_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, c
 		goto done;
 	}
 	pdf_begin_obj(s, obj);
-	pse_printf(&p->out, "<< /Type /XObject /Subtype /Image /Width %u /Height %u /ColorSpace /Device%s\n"
+	dev_w_printf(&p->out, "<< /Type /XObject /Subtype /Image /Width %u /Height %u /ColorSpace /Device%s\n"
 		"/BitsPerComponent %d%s /Length %zu >>\nstream\n", sm.width, sm.height, sm.comps == 1 ? "Gray" : "RGB",
 		sm.bpc, filter, nbest);
-	pse_write(&p->out, best, nbest);
-	pse_puts(&p->out, "\nendstream\nendobj\n");
+	dev_w_write(&p->out, best, nbest);
+	dev_w_puts(&p->out, "\nendstream\nendobj\n");
 	if ((rc = pdf_open_stream(s, rows)))
 		goto done;
 	/* The image's matrix in points, not through the page's grid matrix: a reader that
 	 * multiplies matrices in single precision (MuPDF) finds 0.075 x 160 a little off 12 and
 	 * then resamples the image across pixel rows; 12 0 0 12 6 30 lands each sample on one
 	 * pixel. */
-	pse_puts(&p->out, "q ");
-	pse_real(&p->out, w * p->sx, 6);
-	pse_puts(&p->out, " 0 0 ");
-	pse_real(&p->out, h * p->sy, 6);
-	pse_puts(&p->out, " ");
-	pse_real(&p->out, p->ox + x * p->sx, 6);
-	pse_puts(&p->out, " ");
-	pse_real(&p->out, p->oy + y * p->sy, 6);
-	pse_printf(&p->out, " cm /I%zu Do Q\n", s->images.n);
+	dev_w_puts(&p->out, "q ");
+	dev_w_real(&p->out, w * p->sx, 6);
+	dev_w_puts(&p->out, " 0 0 ");
+	dev_w_real(&p->out, h * p->sy, 6);
+	dev_w_puts(&p->out, " ");
+	dev_w_real(&p->out, p->ox + x * p->sx, 6);
+	dev_w_puts(&p->out, " ");
+	dev_w_real(&p->out, p->oy + y * p->sy, 6);
+	dev_w_printf(&p->out, " cm /I%zu Do Q\n", s->images.n);
 	grid_matrix(s);
 	pdf_reset_state(s);   /* the Q undid colours and line state */
 	rc = pdf_failed(s);
@@ -123,8 +123,8 @@ done:
 static int start_doc(pdf_t *s)
 {
 	s->offsets.n = s->kids.n = 0;
-	pse_set_transport(&s->p.out, s->p.dev->out);
-	pse_puts(&s->p.out, "%PDF-1.4\n%\xe2\xe3\xcf\xd3\n");
+	dev_w_set_transport(&s->p.out, s->p.dev->out);
+	dev_w_puts(&s->p.out, "%PDF-1.4\n%\xe2\xe3\xcf\xd3\n");
 	/* 1: catalog, 2: page tree, both written at the end */
 	if (!pdf_new_obj(s) || !pdf_new_obj(s))
 		return META_ENOMEM;
@@ -135,37 +135,37 @@ static int start_doc(pdf_t *s)
 
 static int finish_doc(pdf_t *s)
 {
-	pse_out_t *o = &s->p.out;
+	dev_writer_t *o = &s->p.out;
 	pdf_begin_obj(s, 2);
-	pse_puts(o, "<< /Type /Pages /Kids [");
+	dev_w_puts(o, "<< /Type /Pages /Kids [");
 	for (size_t k = 0; k < s->kids.n; k++)
-		pse_printf(o, "%s%llu 0 R", k ? " " : "", (unsigned long long)s->kids.v[k]);
-	pse_printf(o, "] /Count %zu >>\nendobj\n", s->kids.n);
+		dev_w_printf(o, "%s%llu 0 R", k ? " " : "", (unsigned long long)s->kids.v[k]);
+	dev_w_printf(o, "] /Count %zu >>\nendobj\n", s->kids.n);
 	pdf_begin_obj(s, 1);
-	pse_puts(o, "<< /Type /Catalog /Pages 2 0 R >>\nendobj\n");
+	dev_w_puts(o, "<< /Type /Catalog /Pages 2 0 R >>\nendobj\n");
 	unsigned info = pdf_new_obj(s);
 	if (!info)
 		return META_ENOMEM;
 	pdf_begin_obj(s, info);
-	pse_puts(o, "<< /Producer (locus-ps " LOCUS_VERSION ")");
+	dev_w_puts(o, "<< /Producer (locus-ps " LOCUS_VERSION ")");
 	if (s->p.title[0]) {
-		pse_puts(o, " /Title ");
+		dev_w_puts(o, " /Title ");
 		psd_string(o, s->p.title);
 	}
 	if (s->p.date) {
 		char b[40];
 		psd_date(s->p.epoch, 1, b, sizeof b);
-		pse_printf(o, " /CreationDate (%s)", b);
+		dev_w_printf(o, " /CreationDate (%s)", b);
 	}
-	pse_puts(o, " >>\nendobj\n");
+	dev_w_puts(o, " >>\nendobj\n");
 	uint64_t xref = o->pos;
-	pse_printf(o, "xref\n0 %zu\n0000000000 65535 f \n", s->offsets.n + 1);
+	dev_w_printf(o, "xref\n0 %zu\n0000000000 65535 f \n", s->offsets.n + 1);
 	for (size_t k = 0; k < s->offsets.n; k++)
-		pse_printf(o, "%010llu 00000 n \n", (unsigned long long)s->offsets.v[k]);
-	pse_printf(o, "trailer\n<< /Size %zu /Root 1 0 R /Info %u 0 R >>\nstartxref\n%llu\n%%%%EOF\n",
+		dev_w_printf(o, "%010llu 00000 n \n", (unsigned long long)s->offsets.v[k]);
+	dev_w_printf(o, "trailer\n<< /Size %zu /Root 1 0 R /Info %u 0 R >>\nstartxref\n%llu\n%%%%EOF\n",
 		s->offsets.n + 1, info, (unsigned long long)xref);
 	s->p.doc_open = 0;
-	pse_flush(o);
+	dev_w_flush(o);
 	return pdf_failed(s);
 }
 
@@ -180,7 +180,7 @@ static int pdf_open(dev_device_t *d)
 	s->p.hooks.rect = pdf_rect;
 	s->p.per_page = d->out == NULL;
 	s->p.wrap = 0;   /* content streams: one line per path, which compresses better */
-	pse_init(&s->p.out, d->out);
+	dev_w_init(&s->p.out, d->out);
 	return 0;
 }
 
@@ -199,15 +199,15 @@ static int pdf_begin(dev_device_t *d, const dev_page_t *pg)
 	if (pdf_open_stream(s, 0))
 		return dev_fail(d, META_ENOMEM, "out of memory");
 	/* the clip of the page in points, outside the grid matrix's q ... Q (images leave it) */
-	pse_puts(&s->p.out, "/G0 gs ");
-	pse_real(&s->p.out, s->p.ox, 4);
-	pse_puts(&s->p.out, " ");
-	pse_real(&s->p.out, s->p.oy, 4);
-	pse_puts(&s->p.out, " ");
-	pse_real(&s->p.out, pg->width * s->p.sx, 6);
-	pse_puts(&s->p.out, " ");
-	pse_real(&s->p.out, pg->height * s->p.sy, 6);
-	pse_puts(&s->p.out, " re W n\n");
+	dev_w_puts(&s->p.out, "/G0 gs ");
+	dev_w_real(&s->p.out, s->p.ox, 4);
+	dev_w_puts(&s->p.out, " ");
+	dev_w_real(&s->p.out, s->p.oy, 4);
+	dev_w_puts(&s->p.out, " ");
+	dev_w_real(&s->p.out, pg->width * s->p.sx, 6);
+	dev_w_puts(&s->p.out, " ");
+	dev_w_real(&s->p.out, pg->height * s->p.sy, 6);
+	dev_w_puts(&s->p.out, " re W n\n");
 	grid_matrix(s);
 	return pdf_failed(s);
 }
@@ -215,35 +215,35 @@ static int pdf_begin(dev_device_t *d, const dev_page_t *pg)
 static int pdf_end(dev_device_t *d, const dev_page_t *pg)
 {
 	pdf_t *s = d->priv;
-	pse_out_t *o = &s->p.out;
+	dev_writer_t *o = &s->p.out;
 	(void)pg;
 	int rc = psd_flush(&s->p);
 	if (rc)
 		return rc;
 	pdf_end_group(s);
 	psd_newline(&s->p);
-	pse_puts(o, "Q\n");   /* the grid matrix */
+	dev_w_puts(o, "Q\n");   /* the grid matrix */
 	if ((rc = pdf_close_stream(s)))
 		return rc;
 	unsigned page = pdf_new_obj(s);
 	if (!page || pdf_list_add(&s->p, &s->kids, page))
 		return dev_fail(d, META_ENOMEM, "out of memory");
 	pdf_begin_obj(s, page);
-	pse_puts(o, "<< /Type /Page /Parent 2 0 R /MediaBox [0 0 ");
-	pse_real(o, s->p.media_w, 4);
-	pse_puts(o, " ");
-	pse_real(o, s->p.media_h, 4);
-	pse_puts(o, "]\n/Contents [");
+	dev_w_puts(o, "<< /Type /Page /Parent 2 0 R /MediaBox [0 0 ");
+	dev_w_real(o, s->p.media_w, 4);
+	dev_w_puts(o, " ");
+	dev_w_real(o, s->p.media_h, 4);
+	dev_w_puts(o, "]\n/Contents [");
 	for (size_t k = 0; k < s->contents.n; k++)
-		pse_printf(o, "%s%llu 0 R", k ? " " : "", (unsigned long long)s->contents.v[k]);
-	pse_puts(o, "]\n/Resources << /ExtGState << /G0 << /SA false >> >>");
+		dev_w_printf(o, "%s%llu 0 R", k ? " " : "", (unsigned long long)s->contents.v[k]);
+	dev_w_puts(o, "]\n/Resources << /ExtGState << /G0 << /SA false >> >>");
 	if (s->images.n) {
-		pse_puts(o, " /XObject <<");
+		dev_w_puts(o, " /XObject <<");
 		for (size_t k = 0; k < s->images.n; k++)
-			pse_printf(o, " /I%zu %llu 0 R", k + 1, (unsigned long long)s->images.v[k]);
-		pse_puts(o, " >>");
+			dev_w_printf(o, " /I%zu %llu 0 R", k + 1, (unsigned long long)s->images.v[k]);
+		dev_w_puts(o, " >>");
 	}
-	pse_puts(o, " >> >>\nendobj\n");
+	dev_w_puts(o, " >> >>\nendobj\n");
 	if (s->p.per_page && (rc = finish_doc(s)))
 		return rc;
 	return pdf_failed(s);
@@ -255,8 +255,7 @@ static int pdf_close(dev_device_t *d)
 	int rc = 0;
 	if (s->p.doc_open && !s->p.per_page && d->out && !s->stream_obj)
 		rc = finish_doc(s);
-	if (s->p.out.z)
-		pse_deflate_end(&s->p.out, NULL);
+	pse_deflate_end(&s->p.out, NULL);   /* frees a stream left open (nothing if none) */
 	psd_release(&s->p);
 	free(s->offsets.v);
 	free(s->kids.v);

@@ -70,7 +70,7 @@ static int ps_rect(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, met
 static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const uint8_t *rgb)
 {
 	ps_t *s = (ps_t *)p;
-	pse_out_t *o = &p->out;
+	dev_writer_t *o = &p->out;
 	psd_samples_t sm;
 	uint8_t *rle = NULL, *z = NULL;
 	size_t nrle = 0, nz = 0;
@@ -104,26 +104,26 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 			best = a, pick = FL;
 	}
 	psd_newline(&s->p);
-	pse_printf(o, "gsave %lld %lld translate %lld %lld scale\n", (long long)x * PSD_GRID,
+	dev_w_printf(o, "gsave %lld %lld translate %lld %lld scale\n", (long long)x * PSD_GRID,
 		(long long)y * PSD_GRID, (long long)w * PSD_GRID, (long long)h * PSD_GRID);
 	if (s->packed) {
 		/* inside the compressed body: the samples as they are, compressed harder */
-		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
+		dev_w_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
 			"/Decode [%s] /ImageMatrix [%u 0 0 -%u 0 %u] /DataSource currentfile >> image\n",
 			space, iw, ih, sm.bpc, decode, iw, ih, ih);
 		pse_deflate_level(o, 6);
-		pse_write(o, data, n);
+		dev_w_write(o, data, n);
 		pse_deflate_level(o, PSE_HUFFMAN);
-		pse_puts(o, "\n");
+		dev_w_puts(o, "\n");
 	} else if (pick == HEX) {
-		pse_printf(o, "/picstr %zu string def\n%u %u %d [%u 0 0 -%u 0 %u]\n"
+		dev_w_printf(o, "/picstr %zu string def\n%u %u %d [%u 0 0 -%u 0 %u]\n"
 			"{currentfile picstr readhexstring pop} %s\n", n / ih, iw, ih, sm.bpc, iw, ih, ih,
 			sm.comps == 1 ? "image" : "CI");
 		if (sm.comps == 3)
 			s->colorimage = 1;
 		pse_hex_write(o, data, n);
 	} else {
-		pse_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
+		dev_w_printf(o, "/Device%s setcolorspace\n<< /ImageType 1 /Width %u /Height %u /BitsPerComponent %d\n"
 			"/Decode [%s] /ImageMatrix [%u 0 0 -%u 0 %u]\n"
 			"/DataSource currentfile /ASCII85Decode filter%s >> image\n",
 			space, iw, ih, sm.bpc, decode, iw, ih, ih,
@@ -135,7 +135,7 @@ static int ps_image(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, co
 		else
 			pse_a85_write(o, z, nz);
 	}
-	pse_puts(o, "grestore\n");
+	dev_w_puts(o, "grestore\n");
 	s->known = 0;   /* setcolorspace reset the colour */
 	if (o->err)
 		rc = psd_out_fail(p);
@@ -152,121 +152,121 @@ done:
 static void comments(ps_t *s, const double *box, int have)
 {
 	psd_t *p = &s->p;
-	pse_out_t *o = &p->out;
+	dev_writer_t *o = &p->out;
 	int eps = p->form == PSD_EPS;
-	pse_puts(o, eps ? "%!PS-Adobe-3.0 EPSF-3.0\n" : "%!PS-Adobe-3.0\n");
+	dev_w_puts(o, eps ? "%!PS-Adobe-3.0 EPSF-3.0\n" : "%!PS-Adobe-3.0\n");
 	if (!box) {
-		pse_puts(o, "%%BoundingBox: (atend)\n%%HiResBoundingBox: (atend)\n%%Pages: (atend)\n");
+		dev_w_puts(o, "%%BoundingBox: (atend)\n%%HiResBoundingBox: (atend)\n%%Pages: (atend)\n");
 	} else if (have) {
-		pse_printf(o, "%%%%BoundingBox: %.0f %.0f %.0f %.0f\n", floor(box[0] + 1e-6), floor(box[1] + 1e-6), ceil(box[2] - 1e-6), ceil(box[3] - 1e-6));
-		pse_printf(o, "%%%%HiResBoundingBox: %.4f %.4f %.4f %.4f\n", box[0], box[1], box[2], box[3]);
+		dev_w_printf(o, "%%%%BoundingBox: %.0f %.0f %.0f %.0f\n", floor(box[0] + 1e-6), floor(box[1] + 1e-6), ceil(box[2] - 1e-6), ceil(box[3] - 1e-6));
+		dev_w_printf(o, "%%%%HiResBoundingBox: %.4f %.4f %.4f %.4f\n", box[0], box[1], box[2], box[3]);
 	} else {
-		pse_puts(o, "%%BoundingBox: 0 0 0 0\n%%HiResBoundingBox: 0 0 0 0\n");
+		dev_w_puts(o, "%%BoundingBox: 0 0 0 0\n%%HiResBoundingBox: 0 0 0 0\n");
 	}
-	pse_puts(o, "%%Creator: locus-ps " LOCUS_VERSION "\n");
+	dev_w_puts(o, "%%Creator: locus-ps " LOCUS_VERSION "\n");
 	if (p->title[0]) {
-		pse_puts(o, "%%Title: ");
+		dev_w_puts(o, "%%Title: ");
 		psd_string(o, p->title);
-		pse_puts(o, "\n");
+		dev_w_puts(o, "\n");
 	}
 	if (p->date) {
 		char b[40];
 		psd_date(p->epoch, 0, b, sizeof b);
-		pse_printf(o, "%%%%CreationDate: (%s)\n", b);
+		dev_w_printf(o, "%%%%CreationDate: (%s)\n", b);
 	}
-	pse_printf(o, "%%%%LanguageLevel: %d\n", p->level);
+	dev_w_printf(o, "%%%%LanguageLevel: %d\n", p->level);
 	/* colorimage is Level 1's CMYK extension: CI falls back to grey where it is missing, which
 	 * is no full emulation, so the document says it wants it (EPSF 3.0, section 2.2). EPS
 	 * knows whether it drew a colour image when its header is written; PostScript's header
 	 * comes first, so a colour Level 1 document declares it always. */
 	if (p->level == 1 && !p->grey && (eps ? s->colorimage : 1))
-		pse_puts(o, "%%Extensions: CMYK\n");
+		dev_w_puts(o, "%%Extensions: CMYK\n");
 	if (eps)
-		pse_puts(o, "%%Pages: 1\n");
+		dev_w_puts(o, "%%Pages: 1\n");
 	if (!eps && p->media)
-		pse_printf(o, "%%%%DocumentMedia: Plain %.0f %.0f 0 () ()\n", p->media_w, p->media_h);
-	pse_puts(o, "%%EndComments\n");
+		dev_w_printf(o, "%%%%DocumentMedia: Plain %.0f %.0f 0 () ()\n", p->media_w, p->media_h);
+	dev_w_puts(o, "%%EndComments\n");
 }
 
 /* The prolog. EPS: the definitions live in a dictionary of their own inside a save (undone in
  * the trailer), so that the page it is placed on finds its state and dictionaries as they were. */
 static void prolog_section(ps_t *s)
 {
-	pse_out_t *o = &s->p.out;
+	dev_writer_t *o = &s->p.out;
 	int eps = s->p.form == PSD_EPS;
-	pse_puts(o, "%%BeginProlog\n");
-	pse_puts(o, eps ? "save\n40 dict begin\n" : "/LocusDict 40 dict def LocusDict begin\n");
-	pse_puts(o, prolog_head);
+	dev_w_puts(o, "%%BeginProlog\n");
+	dev_w_puts(o, eps ? "save\n40 dict begin\n" : "/LocusDict 40 dict def LocusDict begin\n");
+	dev_w_puts(o, prolog_head);
 	/* K: at level 2 and 3 the page keeps DeviceRGB (start_page) and K sets the colour only.
 	 * setrgbcolor installs the colour space again at every call: in Ghostscript 10 that is a
 	 * third of the operator's cost, 23 M of 643 M instructions on workload b's 10,000 fills. */
-	pse_printf(o, "/K {{255 div} forall %s} bind def /G {255 div setgray} bind def\n",
+	dev_w_printf(o, "/K {{255 div} forall %s} bind def /G {255 div setgray} bind def\n",
 		s->p.level >= 2 ? "setcolor" : "setrgbcolor");
-	pse_puts(o, prolog_tail);
+	dev_w_puts(o, prolog_tail);
 	/* CI: a colour image through colorimage, which a Level 1 interpreter has only with the CMYK
 	 * extension; without it each row of RGB samples is turned into luminance (BT.601, as
 	 * --grey) and drawn by image */
 	if (s->p.level == 1 && !s->p.grey)
-		pse_puts(o, "/CI {/colorimage where {pop false 3 colorimage} {/Lp exch def /Lg 4 index string def\n"
+		dev_w_puts(o, "/CI {/colorimage where {pop false 3 colorimage} {/Lp exch def /Lg 4 index string def\n"
 			"{Lp dup length 3 idiv 0 1 3 -1 roll 1 sub {2 copy 3 mul 3 getinterval {} forall .114 mul exch\n"
 			".587 mul add exch .299 mul add round cvi Lg 3 1 roll put} for pop Lg} image} ifelse} bind def\n");
 	if (s->p.level >= 3)   /* H: draws from a binary number array (pspath.c) */
-		pse_puts(o, "/H {aload length 2 idiv {rlineto} repeat} bind def\n");
-	pse_puts(o, eps ? "%%EndProlog\n" : "end\n%%EndProlog\n");
+		dev_w_puts(o, "/H {aload length 2 idiv {rlineto} repeat} bind def\n");
+	dev_w_puts(o, eps ? "%%EndProlog\n" : "end\n%%EndProlog\n");
 }
 
 static void start_page(ps_t *s)
 {
 	psd_t *p = &s->p;
-	pse_out_t *o = &p->out;
+	dev_writer_t *o = &p->out;
 	int eps = p->form == PSD_EPS;
 	p->doc_pages++;
-	pse_printf(o, "%%%%Page: %u %u\n", p->doc_pages, p->doc_pages);
+	dev_w_printf(o, "%%%%Page: %u %u\n", p->doc_pages, p->doc_pages);
 	if (!eps)
-		pse_puts(o, "%%PageBoundingBox: (atend)\n");
-	pse_puts(o, "%%BeginPageSetup\n");
+		dev_w_puts(o, "%%PageBoundingBox: (atend)\n");
+	dev_w_puts(o, "%%BeginPageSetup\n");
 	if (!eps && p->media && p->level >= 2)
 	{
-		pse_puts(o, "<< /PageSize [");
-		pse_real(o, p->media_w, 4);
-		pse_puts(o, " ");
-		pse_real(o, p->media_h, 4);
-		pse_puts(o, "] >> setpagedevice\n");
+		dev_w_puts(o, "<< /PageSize [");
+		dev_w_real(o, p->media_w, 4);
+		dev_w_puts(o, " ");
+		dev_w_real(o, p->media_h, 4);
+		dev_w_puts(o, "] >> setpagedevice\n");
 	}
-	pse_puts(o, eps ? "gsave\n" : "save LocusDict begin\n");
-	pse_real(o, p->ox, 4);
-	pse_puts(o, " ");
-	pse_real(o, p->oy, 4);
-	pse_puts(o, " translate ");
-	pse_real(o, p->sx / PSD_GRID, 8);
-	pse_puts(o, " ");
-	pse_real(o, p->sy / PSD_GRID, 8);
+	dev_w_puts(o, eps ? "gsave\n" : "save LocusDict begin\n");
+	dev_w_real(o, p->ox, 4);
+	dev_w_puts(o, " ");
+	dev_w_real(o, p->oy, 4);
+	dev_w_puts(o, " translate ");
+	dev_w_real(o, p->sx / PSD_GRID, 8);
+	dev_w_puts(o, " ");
+	dev_w_real(o, p->sy / PSD_GRID, 8);
 	/* exact geometry: the meta-language's pixels, not widths snapped for thin-line looks */
-	pse_puts(o, " scale\n/setstrokeadjust where {pop false setstrokeadjust} if\n");
+	dev_w_puts(o, " scale\n/setstrokeadjust where {pop false setstrokeadjust} if\n");
 	if (p->level >= 2 && !p->grey)   /* for K (prolog_section); images set theirs in a gsave */
-		pse_puts(o, "/DeviceRGB setcolorspace\n");
+		dev_w_puts(o, "/DeviceRGB setcolorspace\n");
 	/* everything is clipped to the page (meta-language 1) */
-	pse_printf(o, "0 0 M %lld 0 l 0 %lld l %lld 0 l Z clip newpath\n%%%%EndPageSetup\n",
+	dev_w_printf(o, "0 0 M %lld 0 l 0 %lld l %lld 0 l Z clip newpath\n%%%%EndPageSetup\n",
 		(long long)p->page.width * PSD_GRID, (long long)p->page.height * PSD_GRID,
 		-(long long)p->page.width * PSD_GRID);
 	/* level 3: the page body is executed from a Flate-compressed ASCII85 stream (3 to 4 times
 	 * smaller than the plain body; DSC comments stay outside, readable) */
 	s->packed = p->level >= 3;
 	if (s->packed) {
-		pse_puts(o, "currentfile /ASCII85Decode filter /FlateDecode filter cvx exec\n");
+		dev_w_puts(o, "currentfile /ASCII85Decode filter /FlateDecode filter cvx exec\n");
 		pse_deflate_begin(o, 1, PSE_HUFFMAN);
 	}
 	s->known = 0;
 	s->p.col = 0;
 }
 
-static void box_line(pse_out_t *o, const char *what, int have, const double *b)
+static void box_line(dev_writer_t *o, const char *what, int have, const double *b)
 {
 	if (!have) {
-		pse_printf(o, "%%%%%sBoundingBox: 0 0 0 0\n", what);
+		dev_w_printf(o, "%%%%%sBoundingBox: 0 0 0 0\n", what);
 		return;
 	}
-	pse_printf(o, "%%%%%sBoundingBox: %.0f %.0f %.0f %.0f\n", what, floor(b[0] + 1e-6), floor(b[1] + 1e-6), ceil(b[2] - 1e-6), ceil(b[3] - 1e-6));
+	dev_w_printf(o, "%%%%%sBoundingBox: %.0f %.0f %.0f %.0f\n", what, floor(b[0] + 1e-6), floor(b[1] + 1e-6), ceil(b[2] - 1e-6), ceil(b[3] - 1e-6));
 }
 
 static int ps_open(dev_device_t *d)
@@ -285,7 +285,7 @@ static int ps_open(dev_device_t *d)
 	p->hooks.rect = ps_rect;
 	p->wrap = 120;   /* DSC lines stay under 255 characters */
 	p->per_page = d->out == NULL;
-	pse_init(&p->out, d->out);
+	dev_w_init(&p->out, d->out);
 	return 0;
 }
 
@@ -299,7 +299,7 @@ static int ps_begin(dev_device_t *d, const dev_page_t *pg)
 		return dev_fail(d, META_ESTATE, "an EPS file holds one page: write to a file (one EPS per page) or use -f ps");
 	psd_page(p, pg);
 	if (!p->doc_open) {
-		pse_set_transport(&p->out, d->out);
+		dev_w_set_transport(&p->out, d->out);
 		p->doc_open = 1;
 		p->doc_pages = 0;
 		s->colorimage = 0;
@@ -318,26 +318,26 @@ static int ps_begin(dev_device_t *d, const dev_page_t *pg)
 static int finish_doc(ps_t *s)
 {
 	psd_t *p = &s->p;
-	pse_out_t *o = &p->out;
+	dev_writer_t *o = &p->out;
 	double b[4] = { p->dbx0, p->dby0, p->dbx1, p->dby1 };
 	if (p->form == PSD_EPS) {
-		pse_puts(o, "%%Trailer\nend restore\n%%EOF\n");
+		dev_w_puts(o, "%%Trailer\nend restore\n%%EOF\n");
 		void *body = pse_spool_end(o);
 		comments(s, b, p->ddrawn);
 		if (body)
 			pse_spool_copy(o, body);
 	} else {
-		pse_puts(o, "%%Trailer\n");
-		pse_printf(o, "%%%%Pages: %u\n", p->doc_pages);
+		dev_w_puts(o, "%%Trailer\n");
+		dev_w_printf(o, "%%%%Pages: %u\n", p->doc_pages);
 		box_line(o, "", p->ddrawn, b);
 		if (p->ddrawn)
-			pse_printf(o, "%%%%HiResBoundingBox: %.4f %.4f %.4f %.4f\n", b[0], b[1], b[2], b[3]);
+			dev_w_printf(o, "%%%%HiResBoundingBox: %.4f %.4f %.4f %.4f\n", b[0], b[1], b[2], b[3]);
 		else
-			pse_puts(o, "%%HiResBoundingBox: 0 0 0 0\n");
-		pse_puts(o, "%%EOF\n");
+			dev_w_puts(o, "%%HiResBoundingBox: 0 0 0 0\n");
+		dev_w_puts(o, "%%EOF\n");
 	}
 	p->doc_open = 0;
-	pse_flush(o);
+	dev_w_flush(o);
 	return o->err;
 }
 
@@ -345,7 +345,7 @@ static int ps_end(dev_device_t *d, const dev_page_t *pg)
 {
 	ps_t *s = st_of(d);
 	psd_t *p = &s->p;
-	pse_out_t *o = &p->out;
+	dev_writer_t *o = &p->out;
 	(void)pg;
 	int rc = psd_flush(p);
 	if (rc)
@@ -367,9 +367,9 @@ static int ps_end(dev_device_t *d, const dev_page_t *pg)
 		}
 	}
 	if (p->form == PSD_EPS) {
-		pse_puts(o, "grestore\nshowpage\n%%PageTrailer\n");
+		dev_w_puts(o, "grestore\nshowpage\n%%PageTrailer\n");
 	} else {
-		pse_puts(o, "end restore showpage\n%%PageTrailer\n");
+		dev_w_puts(o, "end restore showpage\n%%PageTrailer\n");
 		box_line(o, "Page", have, b);
 	}
 	if (p->per_page || p->form == PSD_EPS)
@@ -388,8 +388,7 @@ static int ps_close(dev_device_t *d)
 		if (finish_doc(s))
 			rc = p->out.err ? psd_out_fail(p) : dev_fail(d, META_EIO, "%s: write failed", io_name(d->out));
 	}
-	if (p->out.z)
-		pse_deflate_end(&p->out, NULL);   /* after a failure mid-page */
+	pse_deflate_end(&p->out, NULL);   /* a stream left open by a failure mid-page (nothing if none) */
 	void *sp = pse_spool_end(&p->out);
 	if (sp)
 		fclose(sp);

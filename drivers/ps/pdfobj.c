@@ -26,7 +26,7 @@ unsigned pdf_new_obj(pdf_t *s)
 void pdf_begin_obj(pdf_t *s, unsigned n)
 {
 	s->offsets.v[n - 1] = s->p.out.pos;
-	pse_printf(&s->p.out, "%u 0 obj\n", n);
+	dev_w_printf(&s->p.out, "%u 0 obj\n", n);
 }
 
 int pdf_failed(pdf_t *s)

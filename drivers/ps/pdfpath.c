@@ -67,7 +67,7 @@ static void line_state(pdf_t *s, const dev_state_t *st)
 	}
 	if (!s->g.known || s->g.miter != st->miter_limit) {
 		psd_sep(&s->p);
-		pse_fix(&s->p.out, st->miter_limit);
+		dev_w_fix(&s->p.out, st->miter_limit);
 		s->p.col += 6;
 		tok(s, "M");
 	}
@@ -75,7 +75,7 @@ static void line_state(pdf_t *s, const dev_state_t *st)
 		tok(s, "[");
 		for (size_t k = 0; k < st->ndash; k++) {
 			psd_sep(&s->p);
-			pse_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
+			dev_w_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
 			s->p.col += 6;
 		}
 		tok(s, "] 0 d");
@@ -383,14 +383,14 @@ static void text_points(pdf_t *s)
  * path less the padded head before it); a closepath is a sample "h". */
 static void row_points(pdf_t *s)
 {
-	pse_out_t *o = &s->p.out;
-	pse_write(o, "\n", 1);   /* ends the head even where it fills its sample exactly */
+	dev_writer_t *o = &s->p.out;
+	dev_w_write(o, "\n", 1);   /* ends the head even where it fills its sample exactly */
 	pse_rows_pad(o, ' ');
 	for (size_t k = 0; k < s->npts; k++) {
 		const pdf_pt_t *q = &s->pts[k];
 		char r[PDF_ROW];
 		if (q->op == 'h') {
-			pse_write(o, "h", 1);
+			dev_w_write(o, "h", 1);
 			pse_rows_pad(o, ' ');
 			continue;
 		}
@@ -400,7 +400,7 @@ static void row_points(pdf_t *s)
 		r[9] = ' ';
 		r[10] = q->op;
 		r[11] = '\n';
-		pse_write(o, r, PDF_ROW);
+		dev_w_write(o, r, PDF_ROW);
 	}
 	s->p.col = 0;
 }
@@ -518,10 +518,10 @@ int pdf_open_stream(pdf_t *s, int rows)
 	if (!n || pdf_list_add(&s->p, &s->contents, n) || !pdf_new_obj(s))
 		return META_ENOMEM;
 	pdf_begin_obj(s, n);
-	pse_printf(&s->p.out, "<< /Length %u 0 R /Filter /FlateDecode", n + 1);
+	dev_w_printf(&s->p.out, "<< /Length %u 0 R /Filter /FlateDecode", n + 1);
 	if (rows)
-		pse_printf(&s->p.out, " /DecodeParms << /Predictor 2 /Colors %d /Columns %d >>", PDF_ROW, PDF_COLUMNS);
-	pse_puts(&s->p.out, " >>\nstream\n");
+		dev_w_printf(&s->p.out, " /DecodeParms << /Predictor 2 /Colors %d /Columns %d >>", PDF_ROW, PDF_COLUMNS);
+	dev_w_puts(&s->p.out, " >>\nstream\n");
 	s->stream_obj = n;
 	s->stream_start = s->p.out.pos;
 	s->p.col = 0;
@@ -540,9 +540,9 @@ int pdf_close_stream(pdf_t *s)
 	pse_rows_end(&s->p.out, ' ');   /* rows end whole */
 	pse_deflate_end(&s->p.out, NULL);
 	uint64_t len = s->p.out.pos - s->stream_start;
-	pse_puts(&s->p.out, "\nendstream\nendobj\n");
+	dev_w_puts(&s->p.out, "\nendstream\nendobj\n");
 	pdf_begin_obj(s, s->stream_obj + 1);
-	pse_printf(&s->p.out, "%llu\nendobj\n", (unsigned long long)len);
+	dev_w_printf(&s->p.out, "%llu\nendobj\n", (unsigned long long)len);
 	s->stream_obj = 0;
 	return pdf_failed(s);
 }

@@ -513,10 +513,10 @@ int psd_samples(psd_t *p, unsigned x, unsigned y, unsigned w, unsigned h, const 
 void psd_sep(psd_t *p)
 {
 	if (p->wrap && p->col > p->wrap) {
-		pse_write(&p->out, "\n", 1);
+		dev_w_write(&p->out, "\n", 1);
 		p->col = 0;
 	} else if (p->col) {
-		pse_write(&p->out, " ", 1);
+		dev_w_write(&p->out, " ", 1);
 		p->col++;
 	}
 }
@@ -524,14 +524,14 @@ void psd_sep(psd_t *p)
 void psd_tok(psd_t *p, const char *t)
 {
 	psd_sep(p);
-	pse_puts(&p->out, t);
+	dev_w_puts(&p->out, t);
 	p->col += (int)strlen(t);
 }
 
 void psd_int(psd_t *p, long long v)
 {
 	psd_sep(p);
-	pse_int(&p->out, v);
+	dev_w_int(&p->out, v);
 	p->col += v < 0 ? 2 : 1;
 	for (long long a = v < 0 ? -v : v; a >= 10; a /= 10)
 		p->col++;
@@ -540,20 +540,20 @@ void psd_int(psd_t *p, long long v)
 void psd_newline(psd_t *p)
 {
 	if (p->col) {
-		pse_write(&p->out, "\n", 1);
+		dev_w_write(&p->out, "\n", 1);
 		p->col = 0;
 	}
 }
 
-void psd_string(pse_out_t *o, const char *t)
+void psd_string(dev_writer_t *o, const char *t)
 {
-	pse_puts(o, "(");
+	dev_w_puts(o, "(");
 	for (; *t; t++) {
 		if (*t == '(' || *t == ')' || *t == '\\')
-			pse_puts(o, "\\");
-		pse_write(o, t, 1);
+			dev_w_puts(o, "\\");
+		dev_w_write(o, t, 1);
 	}
-	pse_puts(o, ")");
+	dev_w_puts(o, ")");
 }
 
 /* ---- small helpers ---- */

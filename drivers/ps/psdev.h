@@ -43,7 +43,7 @@ typedef struct {
 } psd_hooks_t;
 
 struct psd {
-	pse_out_t out;                  /* the writer (first: it is large) */
+	dev_writer_t out;                  /* the writer (first: it is large) */
 	dev_device_t *dev;
 	int form;                       /* PSD_* */
 	psd_hooks_t hooks;
@@ -125,7 +125,7 @@ void psd_int(psd_t *p, long long v);
 /* End the current line, if any. */
 void psd_newline(psd_t *p);
 /* Write a string literal (...) with ( ) and \ escaped (titles). */
-void psd_string(pse_out_t *o, const char *t);
+void psd_string(dev_writer_t *o, const char *t);
 
 /* Emit the open block (before anything else paints, and at the end of the page). */
 int psd_flush(psd_t *p);

@@ -1,10 +1,8 @@
-/* psenc.h: buffered PostScript/PDF output and its encoders (hex, ASCII85, RunLength, Flate).
+/* psenc.h: PostScript/PDF encoders over the device writer (hex, ASCII85, RunLength, Flate).
  *
- * pse_out_t is a small buffered writer over a borrowed transport that counts the bytes it has
- * passed on (PDF needs exact offsets for its cross-reference table). Errors are sticky: after
- * the first failed write every call returns it and writes nothing, so callers may check once at
- * the end of a statement. A writer can route its bytes through a Flate compressor (and then,
- * for 7-bit PostScript, through ASCII85) between pse_deflate_begin() and pse_deflate_end().
+ * PDF needs exact byte offsets for its cross-reference table: the writer's pos. A writer can
+ * route its bytes through a Flate compressor (and then, for 7-bit PostScript, through ASCII85)
+ * between pse_deflate_begin() and pse_deflate_end().
  * The image encoders work on whole buffers so that a device can try each and keep the smallest.
  */
 #ifndef LOCUS_PSENC_H
@@ -12,60 +10,21 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include "io/transport.h"
+#include "device/writer.h"
 
 #define PSE_ROW_MAX 32       /* the longest predictor row (bytes) */
 
-/* The writer. Members are private to psenc.c except pos (read it) and err. */
-typedef struct pse_out {
-	io_transport_t *t;          /* borrowed */
-	void *spool;                /* a FILE * that takes the bytes instead of t, or NULL */
-	uint64_t pos;               /* bytes passed to the transport since pse_init */
-	int err;                    /* 0, or the first error (<0) */
-	void *z;                    /* deflate state while compressing, else NULL */
-	int a85;                    /* 1: compressed bytes go through ASCII85 */
-	uint32_t tuple;             /* ASCII85: bytes of the open group */
-	int ntuple, col;            /* ASCII85: bytes in the group, output column */
-	uint64_t zout;              /* bytes the compressor produced (before ASCII85) */
-	size_t n;                   /* bytes in buf */
-	size_t nzin;                /* bytes in zin, waiting for the compressor */
-	unsigned rows;              /* TIFF predictor samples of this many bytes (0: none), see pse_rows_begin */
-	size_t rowlen;              /* bytes of a predictor row */
-	size_t rowpos;              /* bytes of the current row written */
-	unsigned char prev[PSE_ROW_MAX];  /* the last sample's bytes (by position in the sample) */
-	unsigned char buf[1 << 16];
-	unsigned char zin[1 << 16]; /* what is to be compressed, gathered for fewer deflate calls */
-} pse_out_t;
+/* The writer is the shared one (device/writer.h: buffer, byte offset, sticky error, printf and
+ * numbers); this file adds PostScript's spool for EPS and the Flate/ASCII85/predictor stage,
+ * which it puts in front of the writer's buffer as its filter while a stream is compressed. */
 
-/* Start a writer over t (which may be NULL until the first write: pse_set_transport). */
-void pse_init(pse_out_t *o, io_transport_t *t);
-/* Point the writer at another transport (after pse_flush). pos restarts at 0. */
-void pse_set_transport(pse_out_t *o, io_transport_t *t);
 /* Send the bytes to a temporary file from now on: for EPS, whose bounding box heads the file
  * but is known only at its end. 0 or <0. */
-int pse_spool(pse_out_t *o);
+int pse_spool(dev_writer_t *o);
 /* Stop spooling: the spool (a FILE *) is returned for pse_spool_copy, NULL if none. */
-void *pse_spool_end(pse_out_t *o);
+void *pse_spool_end(dev_writer_t *o);
 /* Write the spool's bytes through the writer (after what was written since) and close it. */
-int pse_spool_copy(pse_out_t *o, void *spool);
-/* Append n bytes. Returns 0 or the sticky error. */
-int pse_write(pse_out_t *o, const void *p, size_t n);
-/* Append a NUL-terminated string. */
-int pse_puts(pse_out_t *o, const char *s);
-/* Append a signed decimal integer. */
-int pse_int(pse_out_t *o, long long v);
-/* Append a number given in thousandths as the shortest decimal (12, 12.5, -0.001). */
-int pse_fix(pse_out_t *o, long long thousandths);
-/* Append a real with up to `decimals` decimals, trailing zeros dropped (for matrices). */
-int pse_real(pse_out_t *o, double v, int decimals);
-/* printf-style formatted output (for the prolog and comments, not for bulk data). */
-int pse_printf(pse_out_t *o, const char *fmt, ...)
-#ifdef __GNUC__
-	__attribute__((format(printf, 2, 3)))
-#endif
-	;
-/* Pass everything buffered to the transport (and io_flush it). */
-int pse_flush(pse_out_t *o);
+int pse_spool_copy(dev_writer_t *o, void *spool);
 
 /* A compression level: Huffman coding only, no string matching. On the number text of paths
  * it is as small as level 1 (random walks: 1% smaller, contours 15% larger) at 2/3 the time. */
@@ -82,14 +41,14 @@ int pse_flush(pse_out_t *o);
 /* Compress what follows with zlib's deflate (the zlib format FlateDecode reads), written as
  * ASCII85 (ended by ~>) when a85 is 1; level 1..9, PSE_HUFFMAN, PSE_TEXT or PSE_ROWS.
  * Returns 0 or <0. */
-int pse_deflate_begin(pse_out_t *o, int a85, int level);
+int pse_deflate_begin(dev_writer_t *o, int a85, int level);
 /* Change the compression level (1..9 or PSE_HUFFMAN) from here on (what is buffered is compressed
  * at the old one). */
-int pse_deflate_level(pse_out_t *o, int level);
+int pse_deflate_level(dev_writer_t *o, int level);
 /* End compression: flush the compressor (and the ASCII85 group); rows end (the last one must be
  * complete: pse_rows_end). *zlen, if not NULL, gets the
  * number of compressed bytes (before ASCII85). */
-int pse_deflate_end(pse_out_t *o, uint64_t *zlen);
+int pse_deflate_end(dev_writer_t *o, uint64_t *zlen);
 
 /* ---- TIFF predictor 2 inside a Flate stream (/DecodeParms << /Predictor 2 /Colors W
  * /Columns C >>) ----
@@ -101,13 +60,13 @@ int pse_deflate_end(pse_out_t *o, uint64_t *zlen);
 
 /* Start predictor rows of `columns` samples of w bytes (1..PSE_ROW_MAX) after
  * pse_deflate_begin. Returns 0 or <0. */
-int pse_rows_begin(pse_out_t *o, unsigned w, unsigned columns);
+int pse_rows_begin(dev_writer_t *o, unsigned w, unsigned columns);
 /* Bytes written into the current sample (0: at a sample boundary). */
-unsigned pse_rows_col(const pse_out_t *o);
+unsigned pse_rows_col(const dev_writer_t *o);
 /* Write the byte c up to the end of the current sample (nothing at a boundary). */
-int pse_rows_pad(pse_out_t *o, char c);
+int pse_rows_pad(dev_writer_t *o, char c);
 /* Write the byte c up to the end of the current row (before pse_deflate_end: rows end whole). */
-int pse_rows_end(pse_out_t *o, char c);
+int pse_rows_end(dev_writer_t *o, char c);
 
 /* ---- Whole-buffer encoders ---- */
 
@@ -121,10 +80,10 @@ int pse_flate_encode(const uint8_t *in, size_t n, int level, uint8_t **out, size
 /* Exact number of bytes pse_a85_write writes for these n bytes (line breaks and ~> included). */
 size_t pse_a85_size(const uint8_t *in, size_t n);
 /* Write n bytes as ASCII85 lines of at most 75 characters, ended by ~> and a newline. */
-int pse_a85_write(pse_out_t *o, const uint8_t *in, size_t n);
+int pse_a85_write(dev_writer_t *o, const uint8_t *in, size_t n);
 /* Exact size of pse_hex_write's output for n bytes. */
 size_t pse_hex_size(size_t n);
 /* Write n bytes as hex lines of 78 digits, ended by a newline (Level 1 readhexstring data). */
-int pse_hex_write(pse_out_t *o, const uint8_t *in, size_t n);
+int pse_hex_write(dev_writer_t *o, const uint8_t *in, size_t n);
 
 #endif

@@ -43,7 +43,7 @@ void psp_line(ps_t *s, const dev_state_t *st)
 	}
 	if (!s->known || s->miter != st->miter_limit) {
 		psd_sep(&s->p);
-		pse_fix(&s->p.out, st->miter_limit);
+		dev_w_fix(&s->p.out, st->miter_limit);
 		s->p.col += 6;
 		psd_tok(&s->p, "X");
 		s->miter = st->miter_limit;
@@ -52,7 +52,7 @@ void psp_line(ps_t *s, const dev_state_t *st)
 		psd_tok(&s->p, "[");
 		for (size_t k = 0; k < st->ndash; k++) {
 			psd_sep(&s->p);
-			pse_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
+			dev_w_real(&s->p.out, (double)st->dash[k] * PSD_GRID / 1000, 2);
 			s->p.col += 6;
 		}
 		psd_tok(&s->p, "] 0 setdash");
@@ -108,7 +108,7 @@ static int binary_chunk(ps_t *s, size_t at, size_t k)
 	b[2] = (uint8_t)(2 * k >> 8);
 	b[3] = (uint8_t)(2 * k);
 	psd_sep(&s->p);
-	pse_write(&s->p.out, b, (size_t)(q - b));
+	dev_w_write(&s->p.out, b, (size_t)(q - b));
 	s->p.col += 8;
 	psd_tok(&s->p, "H");
 	return 1;
@@ -170,9 +170,9 @@ static void arc_start(ps_t *s, const dev_elem_t *e)
 {
 	double a = e->f[3] / 180000.0 * M_PI;
 	psd_sep(&s->p);
-	pse_real(&s->p.out, (e->f[0] + e->f[2] * cos(a)) * PSD_GRID / 1000.0, 2);
+	dev_w_real(&s->p.out, (e->f[0] + e->f[2] * cos(a)) * PSD_GRID / 1000.0, 2);
 	psd_sep(&s->p);
-	pse_real(&s->p.out, (e->f[1] + e->f[2] * sin(a)) * PSD_GRID / 1000.0, 2);
+	dev_w_real(&s->p.out, (e->f[1] + e->f[2] * sin(a)) * PSD_GRID / 1000.0, 2);
 	s->p.col += 20;
 	psd_tok(&s->p, "M");
 }
@@ -205,9 +205,9 @@ static int path_elems(ps_t *s, const dev_path_t *dp, int fill)
 			psd_int(&s->p, y);
 			psd_int(&s->p, psd_grid(e->f[2]) > 0 ? psd_grid(e->f[2]) : 1);
 			psd_sep(&s->p);
-			pse_fix(&s->p.out, e->f[3]);
+			dev_w_fix(&s->p.out, e->f[3]);
 			psd_sep(&s->p);
-			pse_fix(&s->p.out, (long long)e->f[3] + e->f[4]);
+			dev_w_fix(&s->p.out, (long long)e->f[3] + e->f[4]);
 			s->p.col += 16;
 			psd_tok(&s->p, e->f[4] >= 0 ? "A" : "N");
 			w.on_grid = 0;

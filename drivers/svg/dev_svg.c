@@ -12,9 +12,10 @@
  * base64 even where deflate gains nothing). */
 #define SVG_STRIP_BYTES ((size_t)4 << 20)
 
-/* Per-instance state: the page height, to turn y up into SVG's y down, and the image strip
- * being collected. */
+/* Per-instance state: the writer, the page height, to turn y up into SVG's y down, and the
+ * image strip being collected. */
 typedef struct {
+	dev_writer_t w;             /* over d->out for the page (first: it is large) */
 	int64_t height;             /* thousandths */
 	int crisp;                  /* -O crisp=1: shape-rendering="crispEdges" */
 	/* the strip: consecutive rows of one image (same x and width, each row the one below the
@@ -26,7 +27,6 @@ typedef struct {
 	uint8_t *pix;               /* nrows rows of sw * 3 bytes */
 	size_t capbytes;            /* allocated, at most SVG_STRIP_BYTES or one row */
 	/* base64 of the PNG on its way out */
-	dev_device_t *d;
 	unsigned char carry[3];
 	size_t ncarry, nout;
 	char out[4096];
@@ -43,6 +43,22 @@ static const char *num(char *buf, int64_t v)
 	return dev_fmt_fix(buf, v, 3, 3);
 }
 
+/* The writer's failure on the device: the transport's message and the code of its errno, or
+ * (a format that did not fit) a device error. */
+static int w_fail(dev_device_t *d)
+{
+	if (d->out && io_failed(d->out))
+		return dev_fail(d, dev_code_of_errno(io_errno(d->out)), "%s", io_error(d->out));
+	return dev_fail(d, DEV_EDEVICE, "svg: bad output format");
+}
+
+/* 0, or the writer's failure on the device. */
+static int w_done(dev_device_t *d)
+{
+	svg_t *s = d->priv;
+	return s->w.err ? w_fail(d) : 0;
+}
+
 static int s_open(dev_device_t *d)
 {
 	svg_t *s = d->priv;
@@ -57,20 +73,23 @@ static int s_open(dev_device_t *d)
 static int s_begin(dev_device_t *d, const dev_page_t *pg)
 {
 	svg_t *s = d->priv;
-	char w[IMG_FMT_SIZE], h[IMG_FMT_SIZE];
+	char wb[IMG_FMT_SIZE], hb[IMG_FMT_SIZE];
 	s->nrows = 0;
 	s->height = (int64_t)pg->height * 1000;
-	int rc = dev_printf(d, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+	if (!d->out)
+		return dev_fail(d, DEV_EDEVICE, "svg: no output");
+	dev_w_init(&s->w, d->out);
+	dev_writer_t *w = &s->w;
+	dev_w_printf(w, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
 		"<svg xmlns=\"http://www.w3.org/2000/svg\" "
 		"xmlns:xlink=\"http://www.w3.org/1999/xlink\" version=\"1.1\" ");
-	if (!rc && pg->has_size)
-		rc = dev_printf(d, "width=\"%smm\" height=\"%smm\" ", num(w, pg->width_mm), num(h, pg->height_mm));
-	else if (!rc)
-		rc = dev_printf(d, "width=\"%u\" height=\"%u\" ", pg->width, pg->height);
-	if (!rc)
-		rc = dev_printf(d, "viewBox=\"0 0 %u %u\"%s>\n<rect width=\"%u\" height=\"%u\" fill=\"#ffffff\"/>\n",
+	if (pg->has_size)
+		dev_w_printf(w, "width=\"%smm\" height=\"%smm\" ", num(wb, pg->width_mm), num(hb, pg->height_mm));
+	else
+		dev_w_printf(w, "width=\"%u\" height=\"%u\" ", pg->width, pg->height);
+	dev_w_printf(w, "viewBox=\"0 0 %u %u\"%s>\n<rect width=\"%u\" height=\"%u\" fill=\"#ffffff\"/>\n",
 			pg->width, pg->height, s->crisp ? " shape-rendering=\"crispEdges\"" : "", pg->width, pg->height);
-	return rc;
+	return w_done(d);
 }
 
 /* Base64 (RFC 4648, no line breaks: a data: URI is one token) of the PNG as libpng hands it
@@ -79,7 +98,7 @@ static const char b64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0
 
 static int b64_drain(svg_t *s)
 {
-	int rc = s->nout ? io_write(s->d->out, s->out, s->nout) : 0;
+	int rc = s->nout ? dev_w_write(&s->w, s->out, s->nout) : s->w.err;
 	s->nout = 0;
 	return rc;
 }
@@ -124,21 +143,20 @@ static int strip_flush(dev_device_t *d)
 		return 0;
 	unsigned n = s->nrows;
 	s->nrows = 0;
-	int rc = dev_printf(d, "<image x=\"%u\" y=\"%lld\" width=\"%u\" height=\"%u\" "
+	int rc = dev_w_printf(&s->w, "<image x=\"%u\" y=\"%lld\" width=\"%u\" height=\"%u\" "
 		"image-rendering=\"optimizeSpeed\" style=\"image-rendering:optimizeSpeed;"
 		"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,", s->sx,
 		(long long)(s->height / 1000 - 1 - s->stop), s->sw, n);
 	if (rc)
-		return rc;
+		return w_fail(d);
 	char err[256];
-	s->d = d;
 	s->ncarry = s->nout = 0;
 	img_writer_t *w = img_writer_new_png_fn(b64_write, s, 1, s->sw, n, err, sizeof err);
 	if (!w)
-		return io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
+		return s->w.err ? dev_fail(d, META_EIO, "%s", io_error(d->out))
 			: dev_fail(d, META_ENOMEM, "svg: %s", err);
 	if (img_writer_rows(w, s->pix, (size_t)s->sw * 3, n) || img_writer_finish(w)) {
-		rc = io_failed(d->out) ? dev_fail(d, META_EIO, "%s", io_error(d->out))
+		rc = s->w.err ? dev_fail(d, META_EIO, "%s", io_error(d->out))
 			: dev_fail(d, strstr(img_writer_error(w), "memory") ? META_ENOMEM : DEV_EDEVICE,
 				"svg: %s", img_writer_error(w));
 		img_writer_abort(w);
@@ -146,55 +164,64 @@ static int strip_flush(dev_device_t *d)
 	}
 	if ((s->ncarry && b64_quad(s, s->carry, s->ncarry)) || b64_drain(s))
 		return dev_fail(d, META_EIO, "%s", io_error(d->out));
-	return dev_printf(d, "\"/>\n");
+	dev_w_puts(&s->w, "\"/>\n");
+	return w_done(d);
 }
 
 static int s_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
 {
+	svg_t *s = d->priv;
 	int rc = strip_flush(d);
-	return rc ? rc : dev_printf(d, "<rect width=\"%u\" height=\"%u\" fill=\"#%06x\"/>\n", pg->width, pg->height, rgb);
+	if (rc)
+		return rc;
+	dev_w_printf(&s->w, "<rect width=\"%u\" height=\"%u\" fill=\"#%06x\"/>\n", pg->width, pg->height, rgb);
+	return w_done(d);
 }
 
-/* The path data: subpaths of the flattened path, y turned down. */
-static int path_data(dev_device_t *d, const scan_path_t *p)
+/* The path data: subpaths of the flattened path, y turned down. 0 or the writer's error. */
+static int path_data(svg_t *s, const scan_path_t *p)
 {
-	svg_t *s = d->priv;
+	dev_writer_t *w = &s->w;
 	char x[IMG_FMT_SIZE], y[IMG_FMT_SIZE];
-	int rc = dev_printf(d, "<path d=\"");
+	int rc = dev_w_puts(w, "<path d=\"");
 	for (size_t k = 0; k < p->nsubs && !rc; k++) {
 		const scan_subpath_t *sub = &p->subs[k];
 		for (size_t i = 0; i < sub->n && !rc; i++) {
 			const scan_pt_t *q = &p->pts[sub->start + i];
-			rc = dev_printf(d, "%s%s %s", i ? " L" : k ? " M" : "M", num(x, q->x), num(y, s->height - q->y));
+			rc = dev_w_printf(w, "%s%s %s", i ? " L" : k ? " M" : "M", num(x, q->x), num(y, s->height - q->y));
 		}
 		if (!rc && sub->closed)
-			rc = dev_printf(d, " Z");
+			rc = dev_w_puts(w, " Z");
 	}
-	return rc ? rc : dev_printf(d, "\"");
+	return rc ? rc : dev_w_puts(w, "\"");
 }
 
 static int s_fill(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
+	svg_t *s = d->priv;
 	int rc = strip_flush(d);
-	if (!rc)
-		rc = path_data(d, p->flat);
-	return rc ? rc : dev_printf(d, " fill=\"#%06x\" fill-rule=\"%s\"/>\n", st->colour,
-		st->rule == META_RULE_EVEN_ODD ? "evenodd" : "nonzero");
+	if (rc)
+		return rc;
+	if (!path_data(s, p->flat))
+		dev_w_printf(&s->w, " fill=\"#%06x\" fill-rule=\"%s\"/>\n", st->colour,
+			st->rule == META_RULE_EVEN_ODD ? "evenodd" : "nonzero");
+	return w_done(d);
 }
 
 static int s_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 {
 	static const char *const caps[] = { "butt", "round", "square" };
 	static const char *const joins[] = { "miter", "round", "bevel" };
+	svg_t *s = d->priv;
 	char w[IMG_FMT_SIZE], m[IMG_FMT_SIZE];
 	int rc = strip_flush(d);
-	if (!rc)
-		rc = path_data(d, p->flat);
-	if (!rc)
-		rc = dev_printf(d, " fill=\"none\" stroke=\"#%06x\" stroke-width=\"%s\" stroke-linecap=\"%s\" "
+	if (rc)
+		return rc;
+	if (!path_data(s, p->flat))
+		dev_w_printf(&s->w, " fill=\"none\" stroke=\"#%06x\" stroke-width=\"%s\" stroke-linecap=\"%s\" "
 			"stroke-linejoin=\"%s\" stroke-miterlimit=\"%s\"/>\n", st->colour, num(w, st->line_width),
 			caps[st->cap % 3], joins[st->join % 3], num(m, st->miter_limit));
-	return rc;
+	return w_done(d);
 }
 
 /* A span is one run of one colour: a one-row <rect> is exact, and smaller than any PNG. */
@@ -202,8 +229,11 @@ static int s_span(dev_device_t *d, unsigned x, unsigned y, unsigned n, meta_rgb_
 {
 	svg_t *s = d->priv;
 	int rc = strip_flush(d);
-	return rc ? rc : dev_printf(d, "<rect x=\"%u\" y=\"%lld\" width=\"%u\" height=\"1\" fill=\"#%06x\"/>\n", x,
+	if (rc)
+		return rc;
+	dev_w_printf(&s->w, "<rect x=\"%u\" y=\"%lld\" width=\"%u\" height=\"1\" fill=\"#%06x\"/>\n", x,
 		(long long)(s->height / 1000 - 1 - y), n, rgb);
+	return w_done(d);
 }
 
 /* An image row joins the strip when it continues it (the row below, same x, same width), else
@@ -254,8 +284,14 @@ static int s_row(dev_device_t *d, unsigned x, unsigned y, const meta_run_t *runs
 static int s_end(dev_device_t *d, const dev_page_t *pg)
 {
 	(void)pg;
+	svg_t *s = d->priv;
 	int rc = strip_flush(d);
-	return rc ? rc : dev_printf(d, "</svg>\n");
+	if (rc)
+		return rc;
+	/* everything to the transport (the framework flushes and closes it) */
+	dev_w_puts(&s->w, "</svg>\n");
+	dev_w_drain(&s->w);
+	return w_done(d);
 }
 
 static int s_close(dev_device_t *d)

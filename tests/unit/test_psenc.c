@@ -12,7 +12,7 @@
 static char path[64];
 
 /* Run fn on a writer over a fresh file; return the file's bytes (malloc'd) and length. */
-static uint8_t *written(void (*fn)(pse_out_t *, void *), void *arg, size_t *len)
+static uint8_t *written(void (*fn)(dev_writer_t *, void *), void *arg, size_t *len)
 {
 	char err[256];
 	strcpy(path, "/tmp/locus-psenc-XXXXXX");
@@ -21,12 +21,12 @@ static uint8_t *written(void (*fn)(pse_out_t *, void *), void *arg, size_t *len)
 		return NULL;
 	close(fd);
 	io_transport_t *t = io_open_write(path, err, sizeof err);
-	pse_out_t *o = malloc(sizeof *o);
+	dev_writer_t *o = malloc(sizeof *o);
 	if (!t || !o)
 		return NULL;
-	pse_init(o, t);
+	dev_w_init(o, t);
 	fn(o, arg);
-	pse_flush(o);
+	dev_w_flush(o);
 	int bad = o->err;
 	io_close(t, IO_COMMIT);
 	free(o);
@@ -104,44 +104,44 @@ typedef struct {
 	size_t n;
 } buf_t;
 
-static void write_a85(pse_out_t *o, void *arg)
+static void write_a85(dev_writer_t *o, void *arg)
 {
 	buf_t *b = arg;
 	pse_a85_write(o, b->p, b->n);
 }
 
-static void write_hex(pse_out_t *o, void *arg)
+static void write_hex(dev_writer_t *o, void *arg)
 {
 	buf_t *b = arg;
 	pse_hex_write(o, b->p, b->n);
 }
 
-static void write_packed(pse_out_t *o, void *arg)
+static void write_packed(dev_writer_t *o, void *arg)
 {
 	buf_t *b = arg;
-	pse_puts(o, "head\n");
+	dev_w_puts(o, "head\n");
 	pse_deflate_begin(o, 1, 1);
-	pse_write(o, b->p, b->n / 2);
+	dev_w_write(o, b->p, b->n / 2);
 	pse_deflate_level(o, 6);
-	pse_write(o, b->p + b->n / 2, b->n - b->n / 2);
+	dev_w_write(o, b->p + b->n / 2, b->n - b->n / 2);
 	pse_deflate_end(o, NULL);
-	pse_puts(o, "tail\n");
+	dev_w_puts(o, "tail\n");
 }
 
-static void write_numbers(pse_out_t *o, void *arg)
+static void write_numbers(dev_writer_t *o, void *arg)
 {
 	(void)arg;
-	pse_fix(o, 12000); pse_puts(o, " ");
-	pse_fix(o, 12500); pse_puts(o, " ");
-	pse_fix(o, -1); pse_puts(o, " ");
-	pse_fix(o, 0); pse_puts(o, " ");
-	pse_int(o, -9876543210LL); pse_puts(o, " ");
-	pse_real(o, 0.07499941, 8); pse_puts(o, " ");
-	pse_real(o, -0.00001, 4);
+	dev_w_fix(o, 12000); dev_w_puts(o, " ");
+	dev_w_fix(o, 12500); dev_w_puts(o, " ");
+	dev_w_fix(o, -1); dev_w_puts(o, " ");
+	dev_w_fix(o, 0); dev_w_puts(o, " ");
+	dev_w_int(o, -9876543210LL); dev_w_puts(o, " ");
+	dev_w_real(o, 0.07499941, 8); dev_w_puts(o, " ");
+	dev_w_real(o, -0.00001, 4);
 }
 
 /* Contour-like records, one per 12-byte sample, with text between and a padded sample. */
-static void write_rows(pse_out_t *o, void *arg)
+static void write_rows(dev_writer_t *o, void *arg)
 {
 	buf_t *b = arg;   /* gets the plain text the stream must decode to */
 	static char plain[200000];
@@ -152,7 +152,7 @@ static void write_rows(pse_out_t *o, void *arg)
 		char rec[16];
 		if (k % 500 == 0) {   /* a path head: text of any length, then padded to a sample */
 			int m = snprintf(rec, sizeof rec, "q %d cm ", k);
-			pse_write(o, rec, (size_t)m);
+			dev_w_write(o, rec, (size_t)m);
 			memcpy(plain + n, rec, (size_t)m);
 			n += (size_t)m;
 			unsigned col = pse_rows_col(o);
@@ -163,7 +163,7 @@ static void write_rows(pse_out_t *o, void *arg)
 			}
 		}
 		snprintf(rec, sizeof rec, "%4d %4d l\n", 20 * (k % 40), 7 * k % 1000);
-		pse_write(o, rec, 12);
+		dev_w_write(o, rec, 12);
 		memcpy(plain + n, rec, 12);
 		n += 12;
 	}

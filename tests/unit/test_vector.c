@@ -1,6 +1,6 @@
 /* test_vector.c: what the framework supplies to vector devices by their capabilities: dash
  * pieces, stroke outlines, hatching, raw elements for text, the page on clear, clipped image
- * rows, minimum widths; and dev_printf / dev_fmt_fix. */
+ * rows, minimum widths; and dev_fmt_fix. */
 #include <stdlib.h>
 #include "device/device.h"
 #include "unit.h"
