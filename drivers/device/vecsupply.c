@@ -1,4 +1,4 @@
-/* devvec.c: vector devices get what they cannot draw built from §5.3's pieces and §5.1's rule. */
+/* vecsupply.c: vector devices get what they cannot draw built from §5.3's pieces and §5.1's rule. */
 #include <stdlib.h>
 #include <string.h>
 #include "device/vecsupply.h"
@@ -10,7 +10,8 @@ static unsigned caps_of(const dev_device_t *d)
 }
 
 /* Raw elements for a path the framework made (dash pieces, outlines, text, rectangles), so that
- * a DEV_CAP_ARCS device reading elems draws it too. */
+ * a DEV_CAP_ARCS device reading elems draws it too (no other device reads them: call() makes them
+ * for those devices only, and hands the others the meta file's own elements or none). */
 static int synth(dev_vec_t *v, const scan_path_t *p, size_t *n)
 {
 	size_t need = p->npts + p->nsubs;
@@ -45,7 +46,9 @@ static int call(dev_device_t *d, dev_vec_t *v, int (*op)(dev_device_t *, const d
 {
 	if (!op)
 		return 0;
-	if (!elems) {
+	if (!elems)
+		nelems = 0;
+	if (!elems && (dev_caps(d) & DEV_CAP_ARCS)) {   /* only such devices read elems */
 		int rc = synth(v, path, &nelems);
 		if (rc)
 			return dev_fail(d, rc, "out of memory");

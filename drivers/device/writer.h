@@ -97,8 +97,8 @@ int dev_w_flush(dev_writer_t *w);
 
 /* The fixed-point value v / 10^scale (scale 0..6; meta values have scale 3) rounded to at most
  * decimals places (halves away from zero, in integers), trailing zeros dropped, and never "-0":
- * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs IMG_FMT_SIZE bytes. */
+ * 1500,3,3 -> "1.5"; -1,3,2 -> "0"; -2500,3,0 -> "-3". buf needs DEV_FMT_SIZE bytes. */
 const char *dev_fmt_fix(char *buf, int64_t v, int scale, int decimals);
-#define IMG_FMT_SIZE 32
+#define DEV_FMT_SIZE 32
 
 #endif

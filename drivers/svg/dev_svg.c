@@ -73,7 +73,7 @@ static int s_open(dev_device_t *d)
 static int s_begin(dev_device_t *d, const dev_page_t *pg)
 {
 	svg_t *s = d->priv;
-	char wb[IMG_FMT_SIZE], hb[IMG_FMT_SIZE];
+	char wb[DEV_FMT_SIZE], hb[DEV_FMT_SIZE];
 	s->nrows = 0;
 	s->height = (int64_t)pg->height * 1000;
 	if (!d->out)
@@ -182,7 +182,7 @@ static int s_clear(dev_device_t *d, const dev_page_t *pg, meta_rgb_t rgb)
 static int path_data(svg_t *s, const scan_path_t *p)
 {
 	dev_writer_t *w = &s->w;
-	char x[IMG_FMT_SIZE], y[IMG_FMT_SIZE];
+	char x[DEV_FMT_SIZE], y[DEV_FMT_SIZE];
 	int rc = dev_w_puts(w, "<path d=\"");
 	for (size_t k = 0; k < p->nsubs && !rc; k++) {
 		const scan_subpath_t *sub = &p->subs[k];
@@ -213,7 +213,7 @@ static int s_stroke(dev_device_t *d, const dev_path_t *p, const dev_state_t *st)
 	static const char *const caps[] = { "butt", "round", "square" };
 	static const char *const joins[] = { "miter", "round", "bevel" };
 	svg_t *s = d->priv;
-	char w[IMG_FMT_SIZE], m[IMG_FMT_SIZE];
+	char w[DEV_FMT_SIZE], m[DEV_FMT_SIZE];
 	int rc = strip_flush(d);
 	if (rc)
 		return rc;

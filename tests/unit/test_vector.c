@@ -107,9 +107,12 @@ static void test_caps(void)
 		"no DEV_CAP_ONLY: the device gets the path, its dash and width as they are");
 	r = run(DEV_CAP_ONLY | DEV_CAP_FILL | DEV_CAP_WIDTH, 0, dashed, &rc);
 	/* 95 pixels of 10 on, 5 off: dashes at 0, 15, 30, 45, 60, 75, 90 (the last 5 long) */
-	CHECK(rc == 0 && r.strokes == 1 && r.last_ndash == 0 && r.last_nsubs == 7 && r.elems_ok &&
-		r.last_nelems == 14, "without DEV_CAP_DASH: seven dash pieces, no dash, raw elements made (%zu subpaths)",
+	CHECK(rc == 0 && r.strokes == 1 && r.last_ndash == 0 && r.last_nsubs == 7 && r.last_nelems == 0,
+		"without DEV_CAP_DASH: seven dash pieces, no dash, no raw elements for a device without arcs (%zu subpaths)",
 		r.last_nsubs);
+	r = run(DEV_CAP_ONLY | DEV_CAP_ARCS | DEV_CAP_FILL | DEV_CAP_WIDTH, 0, dashed, &rc);
+	CHECK(rc == 0 && r.strokes == 1 && r.last_nsubs == 7 && r.elems_ok && r.last_nelems == 14,
+		"without DEV_CAP_DASH, with DEV_CAP_ARCS: the pieces' raw elements made (%zu)", r.last_nelems);
 	r = run(DEV_CAP_ONLY | DEV_CAP_FILL | DEV_CAP_DASH, 0, dashed, &rc);
 	CHECK(rc == 0 && r.strokes == 0 && r.fills == 1 && r.last_rule == META_RULE_NON_ZERO &&
 		r.last_nsubs == 1 && r.last_npts == 4, "without DEV_CAP_WIDTH: the 3-pixel stroke reaches fill_path as its piece");
@@ -141,7 +144,7 @@ static void test_misc(void)
 		"text reaches a DEV_CAP_ARCS device with raw elements (%zu)", r.last_nelems);
 	r = run(0, 0, "LOCUS-META 1\npage 40 30\ndash 0.001\nstroke\nmove 0 0\ndraw 40 0\nend\nend-page\n", &rc);
 	CHECK(rc == 0 && r.last_ndash == 0, "a dash finer than a pixel reaches devices as solid");
-	char b[IMG_FMT_SIZE];
+	char b[DEV_FMT_SIZE];
 	CHECK_STR(dev_fmt_fix(b, 1500, 3, 3), "1.5", "1.5");
 	CHECK_STR(dev_fmt_fix(b, -1, 3, 2), "0", "-0.001 to 2 places is 0, not -0");
 	CHECK_STR(dev_fmt_fix(b, -2500, 3, 0), "-3", "halves away from zero");

@@ -135,7 +135,7 @@ int main(void)
 	free(w);
 
 	/* dev_fmt_fix */
-	char b[IMG_FMT_SIZE];
+	char b[DEV_FMT_SIZE];
 	CHECK_STR(dev_fmt_fix(b, -1500, 3, 3), "-1.5", "-1.5");
 	CHECK_STR(dev_fmt_fix(b, -4, 3, 2), "0", "rounds to zero: 0, not -0");
 	free(pat);
