@@ -236,12 +236,18 @@ timeout 10 sacct -j "$job2" --format=$fmt
 echo "== task 2's logs (the failure, then the rerun)"
 sed 's|'"$S"'|TMP|g; s|'"$TOP"'/||g' "$S/tasklogs"
 echo "== joined 16 frames: identical to one locus-render --frames 16 run ($(wc -c < "$S/one.meta") bytes)"
+# sbatch --wait looks at the job at intervals, so its wall time is rounded up; sacct's Start and
+# End (whole seconds) give the array's own span: first task started to last task ended
+span() { timeout 10 sacct -n -X -P -j "$1" -o Start,End 2> /dev/null | awk -F'|' '
+	{ cmd = "date -d " $1 " +%s"; cmd | getline a; close(cmd); cmd = "date -d " $2 " +%s"; cmd | getline b; close(cmd)
+	  if (lo == "" || a < lo) lo = a; if (hi == "" || b > hi) hi = b }
+	END { if (lo != "") print hi - lo; else print "?" }'; }
 echo "== timings (wall, seconds)"
 echo "MariaDB install + start      $(secs "$T0" "$T1")"
 echo "munged + slurmdbd + cluster  $(secs "$T1" "$T2")"
 echo "slurmctld + slurmd to idle   $(secs "$T2" "$T3")"
-echo "array job (sbatch --wait)    $(secs "$ta" "$tb")"
-echo "rerun of task 2              $(secs "$tc" "$td")"
+echo "array job (sbatch --wait)    $(secs "$ta" "$tb")   (sacct: first start to last end $(span "$job1") s)"
+echo "rerun of task 2              $(secs "$tc" "$td")   (sacct: $(span "$job2") s)"
 echo "locus-meta cat, 16 frames    $(secs "$te" "$tf")"
 echo "one process, --frames 16     $(secs "$tf" "$tg")"
 echo "whole script so far          $(secs "$T0" "$tg")"
