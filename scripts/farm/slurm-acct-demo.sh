@@ -227,6 +227,10 @@ until timeout 10 sacct -n -P -j "$job1,$job2" -o JobID,JobName,State > "$S/sacct
 	&& [ "$(grep -c -E '^[0-9]+_[0-9]+\.batch\|batch\|(COMPLETED|FAILED)$' "$S/sacct.poll")" = 5 ]; do
 	i=$((i + 1)); [ $i -lt 30 ] || { say "sacct did not show both jobs whole within 30 s:"; cat "$S/sacct.poll" >&2; break; }; sleep 1
 done
+# what accounting must say: tasks 0, 1, 3 of the array and the rerun COMPLETED 0:0, task 2 FAILED 74:0
+timeout 10 sacct -n -X -P -j "$job1,$job2" -o JobID,State,ExitCode > "$S/sacct.x" 2>&1
+want=$(printf '%s\n' "${job1}_0|COMPLETED|0:0" "${job1}_1|COMPLETED|0:0" "${job1}_2|FAILED|74:0" "${job1}_3|COMPLETED|0:0" "${job2}_2|COMPLETED|0:0")
+[ "$(sort "$S/sacct.x")" = "$(echo "$want" | sort)" ] || { say "sacct does not show what happened:"; cat "$S/sacct.x" >&2; sacct_bad=1; }
 cat "$S"/log/task-2.log "$S"/log/rerun-2.log > "$S/tasklogs"
 echo "== $(date -u '+%Y-%m-%d %H:%M UTC'), $(sacct -V), $(mariadbd --version | sed 's/ *Ver /: /; s/ for .*//'), host $node"
 echo "== array job $job1: sbatch --array=0-3%2 slurm-array.sh anim-trifocal.scene${ACCT_SIZE:+ (size $ACCT_SIZE)} 0-15 4 (frames 0-1 there, frame 9 unwritable)"
@@ -251,4 +255,5 @@ echo "rerun of task 2              $(secs "$tc" "$td")   (sacct: $(span "$job2")
 echo "locus-meta cat, 16 frames    $(secs "$te" "$tf")"
 echo "one process, --frames 16     $(secs "$tf" "$tg")"
 echo "whole script so far          $(secs "$T0" "$tg")"
+[ -z "${sacct_bad:-}" ] || exit 1
 exit 0
