@@ -1,5 +1,5 @@
 /* instance.c: device instances (dev_new, dev_free) and their error (dev_fail, dev_error): the bottom
- * of device/, which options.c, fit.c, vecsupply.c, textout.c and the replay loop in device.c call
+ * of device/, which options.c, fit.c, vecsupply.c and the replay loop in device.c call
  * and which calls none of them. */
 #include <errno.h>
 #include <stdarg.h>
