@@ -5,6 +5,7 @@
 #include <string.h>
 #ifdef __AVX__
 #include <immintrin.h>
+#include "rt_points8.h"
 #endif
 
 enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
@@ -196,6 +197,174 @@ static inline void propose8(const rt_packet_t *pk, int g, const int *mode, const
 	stf(z + g, ldf(pk->oz + g) + U * ldf(pk->dz + g));
 }
 
+#ifdef __AVX__
+/* The march of a points-and-segments shape (s->fast_points, a Lipschitz bound, no distance
+ * estimate) with each group of 8 lanes' state in vector registers and the kernel inlined: the
+ * general loop below keeps its state in arrays and goes through them and model_eval8's call at
+ * every step. The same operations in the same order lane by lane as propose8, model_eval8 and
+ * update8 (nolip 0, strict 0), so the same bits. */
+/* maxf and minf lane by lane in one instruction each: MAXPS(a, b) is a > b ? a : b and MINPS(a, b)
+ * is a < b ? a : b (b when either is NaN), the same as vmax and vmin */
+#define hmax(a, b) ((vf8)_mm256_max_ps((__m256)(a), (__m256)(b)))
+#define hmin(a, b) ((vf8)_mm256_min_ps((__m256)(a), (__m256)(b)))
+
+typedef struct {
+	vf8 t, f, s, lo, flo, hi, fhi, side, hit, t1, sgn, fa, fb, ox, oy, oz, dx, dy, dz;
+	vi8 md;
+} grp_t;
+
+static inline __attribute__((always_inline)) void
+update_fast(grp_t *G, vf8 uk, vf8 v, float L, float invL, float acc, int shadow, int brk)
+{
+	const float Lv = L, capk = 16.0f;
+	const vi8 ones = spliti(-1), zero = spliti(0);
+	vf8 F = G->f, S = G->s, T = G->t;
+	vf8 LO = G->lo, FLO = G->flo, HI = G->hi, FHI = G->fhi, SD = G->side;
+	vi8 md = G->md;
+	vf8 fp = G->fa + G->fb * uk, emin = 0.05f * fp;
+	vf8 eps = hmax(acc * fp, 2e-6f * (vabs(uk) + 1.0f));
+	v = self(v == v, v, emin * Lv);
+	vi8 inm = md == M_MARCH, inb = brk ? md == M_BRACKET : zero;
+	vi8 beyond = uk >= G->t1;
+	vi8 cross_raw = v <= 0.0f;
+	vi8 c1 = (F + v) * invL >= S * 0.999999f;
+	vi8 c2 = S <= emin * 1.0001f;
+	vi8 cert = c1 | c2;
+	vi8 cross_ok = ones;
+	vi8 cross = cross_raw & cross_ok;
+	vf8 dv = v - F;
+	vf8 den = self(dv < 0.0f, -dv * (1.0f / 1.05f), (L * S - dv) * (1.0f / 1.8f));
+	vf8 safe = v * invL;
+	vf8 sg = self(den > 0.0f, v * S / den, safe);
+	sg = hmax(hmax(safe, hmin(sg, capk * safe)), emin);
+	vf8 rej = hmax(F * invL, emin);
+	vi8 m_brk = shadow ? zero : inm & cross;
+	vi8 m_shd = shadow ? inm & cross : zero;
+	vi8 m_out = inm & ~cross_raw & beyond & cert;
+	vi8 m_acc = inm & ~cross_raw & ~beyond & cert;
+	vi8 m_rej = inm & ~cross & ~(~cross_raw & cert);
+	vi8 conv = (vabs(v) < eps * Lv) | (HI - LO < eps);
+	vi8 pos = v > 0.0f;
+	vi8 b_hit = inb & conv;
+	vi8 b_lo = inb & ~conv & pos, b_hi = inb & ~conv & ~pos;
+	vf8 nlo = self(m_brk, T, self(b_lo, uk, LO));
+	vf8 nflo = self(m_brk, F, self(b_lo, v, self(b_hi & (SD < 0.0f), 0.5f * FLO, FLO)));
+	vf8 nhi = self(m_brk | b_hi, uk, HI);
+	vf8 nfhi = self(m_brk | b_hi, v, self(b_lo & (SD > 0.0f), 0.5f * FHI, FHI));
+	G->side = self(m_brk, splat(0.0f), self(b_lo, splat(1.0f), self(b_hi, splat(-1.0f), SD)));
+	G->lo = nlo;
+	G->flo = nflo;
+	G->hi = nhi;
+	G->fhi = nfhi;
+	vi8 narrow = inb & ~b_hit & (nhi - nlo < eps);
+	G->hit = self(m_shd | b_hit, uk, self(narrow, 0.5f * (nlo + nhi), G->hit));
+	G->t = self(m_acc, uk, T);
+	G->f = self(m_acc, v, F);
+	G->s = self(m_acc, sg, self(m_rej, rej, S));
+	vi8 done = m_shd | m_out | b_hit | narrow;
+	G->md = seli(done, spliti(M_DONE), seli(m_brk, spliti(M_BRACKET), md));
+}
+
+/* One step of a group: propose, evaluate, update; returns the mask of its lanes still live. */
+static inline __attribute__((always_inline)) unsigned
+step_fast(const model_shape_t *s, grp_t *G, float L, float invL, float acc, int shadow)
+{
+	int brk = !shadow && _mm256_movemask_ps((__m256)(G->md == M_BRACKET)) != 0;
+	vf8 U = hmin(G->t + G->s, G->t1);
+	if (brk) {
+		vf8 LO = G->lo, HI = G->hi, FLO = G->flo, FHI = G->fhi;
+		vf8 rf = LO + (HI - LO) * FLO / (FLO - FHI);
+		rf = self((rf > LO) & (rf < HI), rf, 0.5f * (LO + HI));
+		U = self(G->md == M_BRACKET, rf, U);
+	}
+	vf8 v = rt_points8v(s, G->ox + U * G->dx, G->oy + U * G->dy, G->oz + U * G->dz);
+	v = v * G->sgn;
+	if (shadow)
+		update_fast(G, U, v, L, invL, acc, 1, 0);
+	else if (brk)
+		update_fast(G, U, v, L, invL, acc, 0, 1);
+	else
+		update_fast(G, U, v, L, invL, acc, 0, 0);
+	return (unsigned)_mm256_movemask_ps((__m256)(G->md != M_DONE));
+}
+
+static inline __attribute__((always_inline)) void
+load_grp(grp_t *G, const rt_packet_t *pk, int g, const int *mode, const float *t, const float *f, const float *st,
+         const float *t1, const float *sgn)
+{
+	G->md = ldi(mode + g);
+	G->t = ldf(t + g);
+	G->f = ldf(f + g);
+	G->s = ldf(st + g);
+	G->lo = G->flo = G->hi = G->fhi = G->side = splat(0.0f);
+	G->hit = ldf(pk->thit + g);
+	G->t1 = ldf(t1 + g);
+	G->sgn = ldf(sgn + g);
+	G->fa = ldf(pk->fa + g);
+	G->fb = ldf(pk->fb + g);
+	G->ox = ldf(pk->ox + g);
+	G->oy = ldf(pk->oy + g);
+	G->oz = ldf(pk->oz + g);
+	G->dx = ldf(pk->dx + g);
+	G->dy = ldf(pk->dy + g);
+	G->dz = ldf(pk->dz + g);
+}
+
+/* The march loop of rt_march8 for such a shape: both groups stepped together while both are live
+ * (their dependency chains overlap), then the one left alone; the same steps, the same count. */
+static void march_fast(const model_shape_t *s, rt_packet_t *pk, int shadow, const int *mode, const float *t,
+                       const float *f, const float *st, const float *t1, const float *sgn, float L, float invL,
+                       uint64_t *evals, uint64_t *lanes)
+{
+	_Static_assert(RT_LANES == 16, "march_fast marches two groups of 8");
+	grp_t A, B;
+	const float acc = pk->acc;
+	load_grp(&A, pk, 0, mode, t, f, st, t1, sgn);
+	load_grp(&B, pk, 8, mode, t, f, st, t1, sgn);
+	unsigned la = (unsigned)_mm256_movemask_ps((__m256)(A.md != M_DONE));
+	unsigned lb = (unsigned)_mm256_movemask_ps((__m256)(B.md != M_DONE));
+	int iter = 0;
+	uint64_t ev = 0, ln = 0;
+	if (shadow) {
+		while (la && lb && iter < 4000) {
+			iter++;
+			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
+			ln += 16;
+			la = step_fast(s, &A, L, invL, acc, 1);
+			lb = step_fast(s, &B, L, invL, acc, 1);
+		}
+		for (; la && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(la);
+			la = step_fast(s, &A, L, invL, acc, 1);
+		}
+		for (; lb && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(lb);
+			lb = step_fast(s, &B, L, invL, acc, 1);
+		}
+	} else {
+		while (la && lb && iter < 4000) {
+			iter++;
+			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
+			ln += 16;
+			la = step_fast(s, &A, L, invL, acc, 0);
+			lb = step_fast(s, &B, L, invL, acc, 0);
+		}
+		for (; la && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(la);
+			la = step_fast(s, &A, L, invL, acc, 0);
+		}
+		for (; lb && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(lb);
+			lb = step_fast(s, &B, L, invL, acc, 0);
+		}
+	}
+	*evals += ev;
+	*lanes += ln;
+	stf(pk->thit, A.hit);
+	stf(pk->thit + 8, B.hit);
+}
+#endif
+
 void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *evals, uint64_t *lanes)
 {
 	int mode[RT_LANES];
@@ -285,6 +454,12 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	for (int k = 0; k < RT_LANES; k++)
 		if (mode[k] == M_MARCH)
 			pk->side[k] = sgn[k];
+#ifdef __AVX__
+	if (s->fast_points && !nolip && !de) {
+		march_fast(s, pk, shadow, mode, t, f, st, t1, sgn, L, invL, evals, lanes);
+		return;
+	}
+#endif
 	while (n > 0 && iter++ < 4000) {
 		int busy[RT_LANES / 8], brk[RT_LANES / 8];
 		for (int g = 0; g < RT_LANES; g += 8) {
