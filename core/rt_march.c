@@ -10,9 +10,83 @@
 
 enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
 
-static float minf(float a, float b) { return a < b ? a : b; }
+static __attribute__((unused)) float minf(float a, float b) { return a < b ? a : b; }
 static float maxf(float a, float b) { return a > b ? a : b; }
 
+/* 8 lanes in vector registers (gcc's vector extensions: AVX2 and AVX-512 alike, without relying
+ * on the auto-vectoriser's if-conversion). Masks are all-ones or zero per lane. */
+typedef float vf8 __attribute__((vector_size(32)));
+typedef int vi8 __attribute__((vector_size(32)));
+
+/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
+ * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
+ * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
+typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
+typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
+#define ldf(p) ((vf8) * (const vf8u *)(p))
+#define ldi(p) ((vi8) * (const vi8u *)(p))
+#define stf(p, v) (*(vf8u *)(p) = (v))
+#define sti(p, v) (*(vi8u *)(p) = (v))
+/* m ? a : b lane by lane (m all ones or zero) */
+#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
+#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
+/* maxf and minf lane by lane (a NaN gives b, as there) */
+#define vmax(a, b) self((a) > (b), (a), (b))
+#define vmin(a, b) self((a) < (b), (a), (b))
+#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
+#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
+
+#ifdef __AVX__
+/* maxf and minf lane by lane in one instruction each: MAXPS(a, b) is a > b ? a : b and MINPS(a, b)
+ * is a < b ? a : b (b when either is NaN), the same as vmax and vmin */
+#define hmax(a, b) ((vf8)_mm256_max_ps((__m256)(a), (__m256)(b)))
+#define hmin(a, b) ((vf8)_mm256_min_ps((__m256)(a), (__m256)(b)))
+
+/* Clip the rays to the object's region (box and, if bounded, sphere): [a, b] per lane, empty when
+ * a > b; on[k] = 1 when the entry a lies on the bounding sphere. Eight lanes at a time in vector
+ * registers (gcc left the loop scalar), the same float operations lane by lane. */
+static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict a, float *restrict b,
+                  float *restrict on)
+{
+	const float bx0 = (float)s->box[0], by0 = (float)s->box[1], bz0 = (float)s->box[2];
+	const float bx1 = (float)s->box[3], by1 = (float)s->box[4], bz1 = (float)s->box[5];
+	const float cx = (float)s->centre[0], cy = (float)s->centre[1], cz = (float)s->centre[2];
+	const float r2 = s->bounded ? (float)(s->radius * s->radius) : 0.0f;
+	const int sph = s->bounded != 0;
+	for (int k = 0; k < RT_LANES; k += 8) {
+		vf8 OX = ldf(pk->ox + k), OY = ldf(pk->oy + k), OZ = ldf(pk->oz + k);
+		vf8 DX = ldf(pk->dx + k), DY = ldf(pk->dy + k), DZ = ldf(pk->dz + k);
+		vf8 lo = ldf(pk->tmin + k), hi = ldf(pk->tmax + k);
+		vf8 ix = 1.0f / DX, iy = 1.0f / DY, iz = 1.0f / DZ;
+		vf8 u0 = (bx0 - OX) * ix, u1 = (bx1 - OX) * ix;
+		vf8 v0 = (by0 - OY) * iy, v1 = (by1 - OY) * iy;
+		vf8 w0 = (bz0 - OZ) * iz, w1 = (bz1 - OZ) * iz;
+		lo = hmax(lo, hmin(u0, u1));
+		hi = hmin(hi, hmax(u0, u1));
+		lo = hmax(lo, hmin(v0, v1));
+		hi = hmin(hi, hmax(v0, v1));
+		lo = hmax(lo, hmin(w0, w1));
+		hi = hmin(hi, hmax(w0, w1));
+		if (sph) {
+			vf8 ox = OX - cx, oy = OY - cy, oz = OZ - cz;
+			vf8 bb = ox * DX + oy * DY + oz * DZ;
+			vf8 disc = bb * bb - (ox * ox + oy * oy + oz * oz - r2);
+			vf8 q = (vf8)_mm256_sqrt_ps((__m256)hmax(disc, splat(0.0f)));
+			vi8 in = disc >= 0.0f;
+			vf8 slo = self(in, -bb - q, splat(INFINITY)), shi = self(in, -bb + q, splat(-INFINITY));
+			stf(on + k, self(slo >= lo, splat(1.0f), splat(0.0f)));
+			lo = hmax(lo, slo);
+			hi = hmin(hi, shi);
+		} else {
+			stf(on + k, splat(0.0f));
+		}
+		/* NaN (a zero direction component with the origin on a slab face) counts as empty */
+		stf(a + k, self(lo == lo, lo, splat(INFINITY)));
+		stf(b + k, self(hi == hi, hi, splat(-INFINITY)));
+	}
+}
+#else
 /* Clip the 8 rays to the object's region (box and, if bounded, sphere):
  * [a, b] per lane, empty when a > b; on[k] = 1 when the entry a lies on the
  * bounding sphere. Branch-free so that it vectorises. */
@@ -49,29 +123,7 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 	}
 }
 
-/* 8 lanes in vector registers (gcc's vector extensions: AVX2 and AVX-512 alike, without relying
- * on the auto-vectoriser's if-conversion). Masks are all-ones or zero per lane. */
-typedef float vf8 __attribute__((vector_size(32)));
-typedef int vi8 __attribute__((vector_size(32)));
-
-/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
- * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
- * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
-typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
-typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
-#define ldf(p) ((vf8) * (const vf8u *)(p))
-#define ldi(p) ((vi8) * (const vi8u *)(p))
-#define stf(p, v) (*(vf8u *)(p) = (v))
-#define sti(p, v) (*(vi8u *)(p) = (v))
-/* m ? a : b lane by lane (m all ones or zero) */
-#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
-#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
-/* maxf and minf lane by lane (a NaN gives b, as there) */
-#define vmax(a, b) self((a) > (b), (a), (b))
-#define vmin(a, b) self((a) < (b), (a), (b))
-#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
-#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
-#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#endif
 
 /* 1 when one of the 8 lanes from mode is bracketing. */
 static inline int bracketing8(const int *mode)
@@ -203,11 +255,6 @@ static inline void propose8(const rt_packet_t *pk, int g, const int *mode, const
  * general loop below keeps its state in arrays and goes through them and model_eval8's call at
  * every step. The same operations in the same order lane by lane as propose8, model_eval8 and
  * update8 (nolip 0, strict 0), so the same bits. */
-/* maxf and minf lane by lane in one instruction each: MAXPS(a, b) is a > b ? a : b and MINPS(a, b)
- * is a < b ? a : b (b when either is NaN), the same as vmax and vmin */
-#define hmax(a, b) ((vf8)_mm256_max_ps((__m256)(a), (__m256)(b)))
-#define hmin(a, b) ((vf8)_mm256_min_ps((__m256)(a), (__m256)(b)))
-
 typedef struct {
 	vf8 t, f, s, lo, flo, hi, fhi, side, hit, t1, sgn, fa, fb, ox, oy, oz, dx, dy, dz;
 	vi8 md;
