@@ -30,9 +30,15 @@ typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
 /* m ? a : b lane by lane (m all ones or zero) */
 #define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
 #define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
-/* maxf and minf lane by lane (a NaN gives b, as there) */
+/* maxf and minf lane by lane (a NaN gives b, as there): with AVX one MAXPS/MINPS each (hmax, hmin
+ * below), which are exactly a > b ? a : b and a < b ? a : b */
+#ifdef __AVX__
+#define vmax(a, b) hmax(a, b)
+#define vmin(a, b) hmin(a, b)
+#else
 #define vmax(a, b) self((a) > (b), (a), (b))
 #define vmin(a, b) self((a) < (b), (a), (b))
+#endif
 #define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
 #define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
 #define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
