@@ -469,7 +469,12 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			busy |= mode[k] != M_DONE;
 		}
 		if (busy) {
-			rt_eval8(s, x + g, y + g, z + g, val + g);
+#ifdef __AVX__
+			if (s->fast_points && !de)   /* the kernel inline, the same bits */
+				stf(val + g, rt_points8v(s, ldf(x + g), ldf(y + g), ldf(z + g)));
+			else
+#endif
+				rt_eval8(s, x + g, y + g, z + g, val + g);
 			*lanes += 8;
 		}
 	}
