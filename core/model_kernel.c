@@ -177,41 +177,18 @@ static void elem8(const model_elem_t *e, const v8 x, const v8 y, const v8 z,
 /* Points and segments only, constant c, translated frame: the benchmarks'
  * case, with the same arithmetic as the general path below (same results). */
 #ifdef __AVX__
-/* The same in vector registers from end to end (the arrays of the loops below go through the
- * stack between their loops): the same float operations in the same order, lane by lane. */
-typedef float vf8 __attribute__((vector_size(32)));
-typedef int vi8 __attribute__((vector_size(32)));
-
-static inline vf8 vsplat(float x) { return (vf8){x, x, x, x, x, x, x, x}; }
-static inline vf8 vsqrt(vf8 a) { return (vf8)_mm256_sqrt_ps((__m256)a); }
-/* m ? a : b lane by lane (m all ones or zero) */
-static inline vf8 vsel(vi8 m, vf8 a, vf8 b) { return (vf8)(((vi8)a & m) | ((vi8)b & ~m)); }
+/* The same in vector registers from end to end (rt_points8.h, which the packet marcher inlines too):
+ * the same float operations in the same order, lane by lane. */
+#include "rt_points8.h"
 
 static void points8(const model_shape_t *s, const float *restrict x, const float *restrict y,
                     const float *restrict z, float *restrict out)
 {
-	vf8 qx, qy, qz, sum = vsplat(0.0f);
+	vf8 qx, qy, qz;
 	memcpy(&qx, x, sizeof qx);
 	memcpy(&qy, y, sizeof qy);
 	memcpy(&qz, z, sizeof qz);
-	qx = qx + s->mf[3];
-	qy = qy + s->mf[7];
-	qz = qz + s->mf[11];
-	for (size_t i = 0; i < s->nel; i++) {
-		const model_elem_t *e = &s->el[i];
-		const float *a = e->pf, w = (float)e->w;
-		vf8 px = qx - a[0], py = qy - a[1], pz = qz - a[2];
-		if (e->kind != MODEL_POINT) {   /* segment8 */
-			const float bx = a[3], by = a[4], bz = a[5];
-			vf8 h = (px * bx + py * by + pz * bz) * a[6];
-			vf8 hc = vsel(h < 0.0f, vsplat(0.0f), vsel(h > 1.0f, vsplat(1.0f), h));
-			px = px - hc * bx;
-			py = py - hc * by;
-			pz = pz - hc * bz;
-		}
-		sum = sum + w * vsqrt(px * px + py * py + pz * pz);
-	}
-	sum = sum - (float)s->c.c0;
+	vf8 sum = rt_points8v(s, qx, qy, qz);
 	memcpy(out, &sum, sizeof sum);
 }
 #else

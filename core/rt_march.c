@@ -5,13 +5,94 @@
 #include <string.h>
 #ifdef __AVX__
 #include <immintrin.h>
+#include "rt_points8.h"
 #endif
 
 enum { M_MARCH = 0, M_BRACKET = 1, M_DONE = 2 };
 
-static float minf(float a, float b) { return a < b ? a : b; }
+static __attribute__((unused)) float minf(float a, float b) { return a < b ? a : b; }
 static float maxf(float a, float b) { return a > b ? a : b; }
 
+/* 8 lanes in vector registers (gcc's vector extensions: AVX2 and AVX-512 alike, without relying
+ * on the auto-vectoriser's if-conversion). Masks are all-ones or zero per lane. */
+typedef float vf8 __attribute__((vector_size(32)));
+typedef int vi8 __attribute__((vector_size(32)));
+
+/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
+ * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
+ * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
+typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
+typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
+#define ldf(p) ((vf8) * (const vf8u *)(p))
+#define ldi(p) ((vi8) * (const vi8u *)(p))
+#define stf(p, v) (*(vf8u *)(p) = (v))
+#define sti(p, v) (*(vi8u *)(p) = (v))
+/* m ? a : b lane by lane (m all ones or zero) */
+#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
+#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
+/* maxf and minf lane by lane (a NaN gives b, as there): with AVX one MAXPS/MINPS each (hmax, hmin
+ * below), which are exactly a > b ? a : b and a < b ? a : b */
+#ifdef __AVX__
+#define vmax(a, b) hmax(a, b)
+#define vmin(a, b) hmin(a, b)
+#else
+#define vmax(a, b) self((a) > (b), (a), (b))
+#define vmin(a, b) self((a) < (b), (a), (b))
+#endif
+#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
+#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
+
+#ifdef __AVX__
+/* maxf and minf lane by lane in one instruction each: MAXPS(a, b) is a > b ? a : b and MINPS(a, b)
+ * is a < b ? a : b (b when either is NaN), the same as vmax and vmin */
+#define hmax(a, b) ((vf8)_mm256_max_ps((__m256)(a), (__m256)(b)))
+#define hmin(a, b) ((vf8)_mm256_min_ps((__m256)(a), (__m256)(b)))
+
+/* Clip the rays to the object's region (box and, if bounded, sphere): [a, b] per lane, empty when
+ * a > b; on[k] = 1 when the entry a lies on the bounding sphere. Eight lanes at a time in vector
+ * registers (gcc left the loop scalar), the same float operations lane by lane. */
+static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict a, float *restrict b,
+                  float *restrict on)
+{
+	const float bx0 = (float)s->box[0], by0 = (float)s->box[1], bz0 = (float)s->box[2];
+	const float bx1 = (float)s->box[3], by1 = (float)s->box[4], bz1 = (float)s->box[5];
+	const float cx = (float)s->centre[0], cy = (float)s->centre[1], cz = (float)s->centre[2];
+	const float r2 = s->bounded ? (float)(s->radius * s->radius) : 0.0f;
+	const int sph = s->bounded != 0;
+	for (int k = 0; k < RT_LANES; k += 8) {
+		vf8 OX = ldf(pk->ox + k), OY = ldf(pk->oy + k), OZ = ldf(pk->oz + k);
+		vf8 DX = ldf(pk->dx + k), DY = ldf(pk->dy + k), DZ = ldf(pk->dz + k);
+		vf8 lo = ldf(pk->tmin + k), hi = ldf(pk->tmax + k);
+		vf8 ix = 1.0f / DX, iy = 1.0f / DY, iz = 1.0f / DZ;
+		vf8 u0 = (bx0 - OX) * ix, u1 = (bx1 - OX) * ix;
+		vf8 v0 = (by0 - OY) * iy, v1 = (by1 - OY) * iy;
+		vf8 w0 = (bz0 - OZ) * iz, w1 = (bz1 - OZ) * iz;
+		lo = hmax(lo, hmin(u0, u1));
+		hi = hmin(hi, hmax(u0, u1));
+		lo = hmax(lo, hmin(v0, v1));
+		hi = hmin(hi, hmax(v0, v1));
+		lo = hmax(lo, hmin(w0, w1));
+		hi = hmin(hi, hmax(w0, w1));
+		if (sph) {
+			vf8 ox = OX - cx, oy = OY - cy, oz = OZ - cz;
+			vf8 bb = ox * DX + oy * DY + oz * DZ;
+			vf8 disc = bb * bb - (ox * ox + oy * oy + oz * oz - r2);
+			vf8 q = (vf8)_mm256_sqrt_ps((__m256)hmax(disc, splat(0.0f)));
+			vi8 in = disc >= 0.0f;
+			vf8 slo = self(in, -bb - q, splat(INFINITY)), shi = self(in, -bb + q, splat(-INFINITY));
+			stf(on + k, self(slo >= lo, splat(1.0f), splat(0.0f)));
+			lo = hmax(lo, slo);
+			hi = hmin(hi, shi);
+		} else {
+			stf(on + k, splat(0.0f));
+		}
+		/* NaN (a zero direction component with the origin on a slab face) counts as empty */
+		stf(a + k, self(lo == lo, lo, splat(INFINITY)));
+		stf(b + k, self(hi == hi, hi, splat(-INFINITY)));
+	}
+}
+#else
 /* Clip the 8 rays to the object's region (box and, if bounded, sphere):
  * [a, b] per lane, empty when a > b; on[k] = 1 when the entry a lies on the
  * bounding sphere. Branch-free so that it vectorises. */
@@ -48,29 +129,7 @@ static void clip8(const model_shape_t *s, const rt_packet_t *pk, float *restrict
 	}
 }
 
-/* 8 lanes in vector registers (gcc's vector extensions: AVX2 and AVX-512 alike, without relying
- * on the auto-vectoriser's if-conversion). Masks are all-ones or zero per lane. */
-typedef float vf8 __attribute__((vector_size(32)));
-typedef int vi8 __attribute__((vector_size(32)));
-
-/* The helpers are macros, not functions: without AVX, gcc notes at every function that takes or
- * returns a 32-byte vector that its ABI changed (a pragma does not silence the note). Their
- * arguments are plain expressions without side effects. Unaligned loads and stores of 8 lanes: */
-typedef float vf8u __attribute__((vector_size(32), aligned(4), may_alias));
-typedef int vi8u __attribute__((vector_size(32), aligned(4), may_alias));
-#define ldf(p) ((vf8) * (const vf8u *)(p))
-#define ldi(p) ((vi8) * (const vi8u *)(p))
-#define stf(p, v) (*(vf8u *)(p) = (v))
-#define sti(p, v) (*(vi8u *)(p) = (v))
-/* m ? a : b lane by lane (m all ones or zero) */
-#define self(m, a, b) ((vf8)(((vi8)(a) & (m)) | ((vi8)(b) & ~(m))))
-#define seli(m, a, b) (((a) & (m)) | ((b) & ~(m)))
-/* maxf and minf lane by lane (a NaN gives b, as there) */
-#define vmax(a, b) self((a) > (b), (a), (b))
-#define vmin(a, b) self((a) < (b), (a), (b))
-#define vabs(a) ((vf8)((vi8)(a) & 0x7fffffff))
-#define splat(x) ((vf8){(x), (x), (x), (x), (x), (x), (x), (x)})
-#define spliti(x) ((vi8){(x), (x), (x), (x), (x), (x), (x), (x)})
+#endif
 
 /* 1 when one of the 8 lanes from mode is bracketing. */
 static inline int bracketing8(const int *mode)
@@ -196,6 +255,169 @@ static inline void propose8(const rt_packet_t *pk, int g, const int *mode, const
 	stf(z + g, ldf(pk->oz + g) + U * ldf(pk->dz + g));
 }
 
+#ifdef __AVX__
+/* The march of a points-and-segments shape (s->fast_points, a Lipschitz bound, no distance
+ * estimate) with each group of 8 lanes' state in vector registers and the kernel inlined: the
+ * general loop below keeps its state in arrays and goes through them and model_eval8's call at
+ * every step. The same operations in the same order lane by lane as propose8, model_eval8 and
+ * update8 (nolip 0, strict 0), so the same bits. */
+typedef struct {
+	vf8 t, f, s, lo, flo, hi, fhi, side, hit, t1, sgn, fa, fb, ox, oy, oz, dx, dy, dz;
+	vi8 md;
+} grp_t;
+
+static inline __attribute__((always_inline)) void
+update_fast(grp_t *G, vf8 uk, vf8 v, float L, float invL, float acc, int shadow, int brk)
+{
+	const float Lv = L, capk = 16.0f;
+	const vi8 ones = spliti(-1), zero = spliti(0);
+	vf8 F = G->f, S = G->s, T = G->t;
+	vf8 LO = G->lo, FLO = G->flo, HI = G->hi, FHI = G->fhi, SD = G->side;
+	vi8 md = G->md;
+	vf8 fp = G->fa + G->fb * uk, emin = 0.05f * fp;
+	vf8 eps = hmax(acc * fp, 2e-6f * (vabs(uk) + 1.0f));
+	v = self(v == v, v, emin * Lv);
+	vi8 inm = md == M_MARCH, inb = brk ? md == M_BRACKET : zero;
+	vi8 beyond = uk >= G->t1;
+	vi8 cross_raw = v <= 0.0f;
+	vi8 c1 = (F + v) * invL >= S * 0.999999f;
+	vi8 c2 = S <= emin * 1.0001f;
+	vi8 cert = c1 | c2;
+	vi8 cross_ok = ones;
+	vi8 cross = cross_raw & cross_ok;
+	vf8 dv = v - F;
+	vf8 den = self(dv < 0.0f, -dv * (1.0f / 1.05f), (L * S - dv) * (1.0f / 1.8f));
+	vf8 safe = v * invL;
+	vf8 sg = self(den > 0.0f, v * S / den, safe);
+	sg = hmax(hmax(safe, hmin(sg, capk * safe)), emin);
+	vf8 rej = hmax(F * invL, emin);
+	vi8 m_brk = shadow ? zero : inm & cross;
+	vi8 m_shd = shadow ? inm & cross : zero;
+	vi8 m_out = inm & ~cross_raw & beyond & cert;
+	vi8 m_acc = inm & ~cross_raw & ~beyond & cert;
+	vi8 m_rej = inm & ~cross & ~(~cross_raw & cert);
+	vi8 conv = (vabs(v) < eps * Lv) | (HI - LO < eps);
+	vi8 pos = v > 0.0f;
+	vi8 b_hit = inb & conv;
+	vi8 b_lo = inb & ~conv & pos, b_hi = inb & ~conv & ~pos;
+	vf8 nlo = self(m_brk, T, self(b_lo, uk, LO));
+	vf8 nflo = self(m_brk, F, self(b_lo, v, self(b_hi & (SD < 0.0f), 0.5f * FLO, FLO)));
+	vf8 nhi = self(m_brk | b_hi, uk, HI);
+	vf8 nfhi = self(m_brk | b_hi, v, self(b_lo & (SD > 0.0f), 0.5f * FHI, FHI));
+	G->side = self(m_brk, splat(0.0f), self(b_lo, splat(1.0f), self(b_hi, splat(-1.0f), SD)));
+	G->lo = nlo;
+	G->flo = nflo;
+	G->hi = nhi;
+	G->fhi = nfhi;
+	vi8 narrow = inb & ~b_hit & (nhi - nlo < eps);
+	G->hit = self(m_shd | b_hit, uk, self(narrow, 0.5f * (nlo + nhi), G->hit));
+	G->t = self(m_acc, uk, T);
+	G->f = self(m_acc, v, F);
+	G->s = self(m_acc, sg, self(m_rej, rej, S));
+	vi8 done = m_shd | m_out | b_hit | narrow;
+	G->md = seli(done, spliti(M_DONE), seli(m_brk, spliti(M_BRACKET), md));
+}
+
+/* One step of a group: propose, evaluate, update; returns the mask of its lanes still live. */
+static inline __attribute__((always_inline)) unsigned
+step_fast(const model_shape_t *s, grp_t *G, float L, float invL, float acc, int shadow)
+{
+	int brk = !shadow && _mm256_movemask_ps((__m256)(G->md == M_BRACKET)) != 0;
+	vf8 U = hmin(G->t + G->s, G->t1);
+	if (brk) {
+		vf8 LO = G->lo, HI = G->hi, FLO = G->flo, FHI = G->fhi;
+		vf8 rf = LO + (HI - LO) * FLO / (FLO - FHI);
+		rf = self((rf > LO) & (rf < HI), rf, 0.5f * (LO + HI));
+		U = self(G->md == M_BRACKET, rf, U);
+	}
+	vf8 v = rt_points8v(s, G->ox + U * G->dx, G->oy + U * G->dy, G->oz + U * G->dz);
+	v = v * G->sgn;
+	if (shadow)
+		update_fast(G, U, v, L, invL, acc, 1, 0);
+	else if (brk)
+		update_fast(G, U, v, L, invL, acc, 0, 1);
+	else
+		update_fast(G, U, v, L, invL, acc, 0, 0);
+	return (unsigned)_mm256_movemask_ps((__m256)(G->md != M_DONE));
+}
+
+static inline __attribute__((always_inline)) void
+load_grp(grp_t *G, const rt_packet_t *pk, int g, const int *mode, const float *t, const float *f, const float *st,
+         const float *t1, const float *sgn)
+{
+	G->md = ldi(mode + g);
+	G->t = ldf(t + g);
+	G->f = ldf(f + g);
+	G->s = ldf(st + g);
+	G->lo = G->flo = G->hi = G->fhi = G->side = splat(0.0f);
+	G->hit = ldf(pk->thit + g);
+	G->t1 = ldf(t1 + g);
+	G->sgn = ldf(sgn + g);
+	G->fa = ldf(pk->fa + g);
+	G->fb = ldf(pk->fb + g);
+	G->ox = ldf(pk->ox + g);
+	G->oy = ldf(pk->oy + g);
+	G->oz = ldf(pk->oz + g);
+	G->dx = ldf(pk->dx + g);
+	G->dy = ldf(pk->dy + g);
+	G->dz = ldf(pk->dz + g);
+}
+
+/* The march loop of rt_march8 for such a shape: both groups stepped together while both are live
+ * (their dependency chains overlap), then the one left alone; the same steps, the same count. */
+static void march_fast(const model_shape_t *s, rt_packet_t *pk, int shadow, const int *mode, const float *t,
+                       const float *f, const float *st, const float *t1, const float *sgn, float L, float invL,
+                       uint64_t *evals, uint64_t *lanes)
+{
+	_Static_assert(RT_LANES == 16, "march_fast marches two groups of 8");
+	grp_t A, B;
+	const float acc = pk->acc;
+	load_grp(&A, pk, 0, mode, t, f, st, t1, sgn);
+	load_grp(&B, pk, 8, mode, t, f, st, t1, sgn);
+	unsigned la = (unsigned)_mm256_movemask_ps((__m256)(A.md != M_DONE));
+	unsigned lb = (unsigned)_mm256_movemask_ps((__m256)(B.md != M_DONE));
+	int iter = 0;
+	uint64_t ev = 0, ln = 0;
+	if (shadow) {
+		while (la && lb && iter < 4000) {
+			iter++;
+			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
+			ln += 16;
+			la = step_fast(s, &A, L, invL, acc, 1);
+			lb = step_fast(s, &B, L, invL, acc, 1);
+		}
+		for (; la && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(la);
+			la = step_fast(s, &A, L, invL, acc, 1);
+		}
+		for (; lb && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(lb);
+			lb = step_fast(s, &B, L, invL, acc, 1);
+		}
+	} else {
+		while (la && lb && iter < 4000) {
+			iter++;
+			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
+			ln += 16;
+			la = step_fast(s, &A, L, invL, acc, 0);
+			lb = step_fast(s, &B, L, invL, acc, 0);
+		}
+		for (; la && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(la);
+			la = step_fast(s, &A, L, invL, acc, 0);
+		}
+		for (; lb && iter < 4000; iter++, ln += 8) {
+			ev += (unsigned)__builtin_popcount(lb);
+			lb = step_fast(s, &B, L, invL, acc, 0);
+		}
+	}
+	*evals += ev;
+	*lanes += ln;
+	stf(pk->thit, A.hit);
+	stf(pk->thit + 8, B.hit);
+}
+#endif
+
 void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *evals, uint64_t *lanes)
 {
 	int mode[RT_LANES];
@@ -247,7 +469,12 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 			busy |= mode[k] != M_DONE;
 		}
 		if (busy) {
-			rt_eval8(s, x + g, y + g, z + g, val + g);
+#ifdef __AVX__
+			if (s->fast_points && !de)   /* the kernel inline, the same bits */
+				stf(val + g, rt_points8v(s, ldf(x + g), ldf(y + g), ldf(z + g)));
+			else
+#endif
+				rt_eval8(s, x + g, y + g, z + g, val + g);
 			*lanes += 8;
 		}
 	}
@@ -285,6 +512,12 @@ void rt_march8(const model_shape_t *s, rt_packet_t *pk, int shadow, uint64_t *ev
 	for (int k = 0; k < RT_LANES; k++)
 		if (mode[k] == M_MARCH)
 			pk->side[k] = sgn[k];
+#ifdef __AVX__
+	if (s->fast_points && !nolip && !de) {
+		march_fast(s, pk, shadow, mode, t, f, st, t1, sgn, L, invL, evals, lanes);
+		return;
+	}
+#endif
 	while (n > 0 && iter++ < 4000) {
 		int busy[RT_LANES / 8], brk[RT_LANES / 8];
 		for (int g = 0; g < RT_LANES; g += 8) {
