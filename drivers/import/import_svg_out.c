@@ -284,6 +284,16 @@ static int write_item(wst_t *s, const svg_item_t *it)
 	if ((long)it->rgb != s->rgb && (r = meta_colour(w, it->rgb)) < 0)
 		return r;
 	s->rgb = it->rgb;
+	if (it->kind == SVGI_TEXT) {   /* drawn with the colour and width; cap, join, dashes its own */
+		double wd = fmin(it->width, 1e6), x, y;
+		if (wd != s->width && (r = meta_width(w, wd)) < 0)
+			return r;
+		s->width = wd;
+		coord(s, it->tx, &x);
+		coord(s, s->ph - it->ty, &y);
+		double a = fmod(it->tangle, 360);
+		return meta_text(w, x, y, isfinite(it->tsize) ? fmin(it->tsize, 1e6) : 0, isfinite(a) ? a : 0, it->text);
+	}
 	if (it->kind == SVGI_FILL) {
 		if (it->rule != s->rule && (r = meta_fill_rule(w, it->rule)) < 0)
 			return r;
@@ -389,7 +399,7 @@ int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen)
 				goto werr;
 		}
 	for (size_t i = 0; i < d->n; i++) {
-		if (!d->it[i].g.nsub)
+		if (!d->it[i].g.nsub && d->it[i].kind != SVGI_TEXT)
 			continue;
 		if ((r = write_item(&s, &d->it[i])) < 0) {
 			if (r == -65) {
