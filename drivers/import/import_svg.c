@@ -883,7 +883,7 @@ static void text_segment(text_t *t, const char *raw, const style_t *st)
 		double sx = hypot(m.a, m.b), sy = hypot(m.c, m.d), det = m.a * m.d - m.b * m.c;
 		double sc = sqrt(fabs(det));
 		if (!(det > 0) || fabs(sx - sy) > 1e-9 * (sx + sy) || fabs(m.a * m.c + m.b * m.d) > 1e-9 * sx * sy)
-			warn_kind(s, "text under a skew, mirror or non-uniform scale (drawn upright at the mean scale)", t->line);
+			warn_kind(s, "text under a skew, mirror or non-uniform scale (drawn along its baseline at the mean scale, unskewed and unmirrored)", t->line);
 		svg_item_t it = { .kind = SVGI_TEXT, .layer = s->layer, .cap = META_CAP_ROUND, .join = META_JOIN_ROUND,
 			.miter = st->miter, .rule = st->rule, .text = b, .tadv = adv };
 		it.tx = m.a * t->x + m.c * t->y + m.e;
