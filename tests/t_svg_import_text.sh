@@ -41,6 +41,12 @@ grep -q '^width 2.268$' "$T/t.meta" && ok "stroked text drawn with its stroke wi
 # --- pens by colour: text items take part like other items ---
 timeout 20 "$M" import --pens by-colour "$F" -o "$T/p.meta" 2> /dev/null && [ "$(grep -c '^text' "$T/p.meta")" = 6 ] &&
 	ok "--pens by-colour keeps the text statements" || notok "by-colour"
+# --- --stats counts the glyphs' strokes: I (2 + 6 + 2 units) and - (3) at 1 mm a unit, rotated ---
+printf '%s\n' '<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" viewBox="0 0 100 100">' \
+	'<text x="10" y="50" style="font-size:8.5714286px" transform="rotate(90 10 50)">I-</text></svg>' > "$T/st.svg"
+timeout 20 "$M" import --stats "$T/st.svg" -o "$T/st.meta" > "$T/err" 2>&1
+grep -q 'before: pen-down 13.0 mm, .* 4 lifts' "$T/err" && ok "--stats: text's pen-down length and lifts from the font's strokes (13.0 mm, 4 lifts)" ||
+	notok "stats of text: $(cat "$T/err")"
 # --- what the statement cannot carry: one warning per kind with its line; bad values as SVG says ---
 printf '%s\n' '<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" width="100" height="100">' \
 	'<text x="1 2 3" y="50" letter-spacing="2">A</text>' \
