@@ -64,7 +64,7 @@ svg '<svg xmlns="http://www.w3.org/2000/svg"><defs><linearGradient id="g"><stop 
 <text x="1" y="1">a</text><text x="1" y="1">b</text>
 <image href="x.png" width="1" height="1"/><rect fill="url(#g)" width="1" height="1"/><rect fill="url(#g)" width="1" height="1"/></svg>' w
 "$M" import "$T/w.svg" -o "$T/w.meta" 2> "$T/err"
-[ "$(grep -c 'text (left out' "$T/err")" = 1 ] && grep -q 'w.svg:2: warning: text' "$T/err" && grep -q 'w.svg:3: warning: raster image' "$T/err" &&
+[ "$(grep -c 'text drawn in the stroke font' "$T/err")" = 1 ] && grep -q 'w.svg:2: warning: text' "$T/err" && grep -q 'w.svg:3: warning: raster image' "$T/err" &&
 	grep -q 'w.svg:3: warning: gradient paint' "$T/err" && grep -q '^colour #808080$' "$T/w.meta" &&
 	ok "text, images, gradients: one warning per kind with its line; a gradient drawn in its mean colour" || notok "warnings: $(cat "$T/err")"
 # markers, clip-path and mask: each kind named once with the line of its first element (also

@@ -9,6 +9,7 @@
 #include <libxml/tree.h>
 #include <libxml/hash.h>
 #include "util/grow.h"
+#include "geom/scan.h"
 #include "import/svg_import.h"
 
 #define MAX_BYTES (64u << 20)   /* an SVG file larger than this is refused */
@@ -28,6 +29,8 @@ typedef struct {
 	double width, miter, dash[16], dashoff, font;
 	int ndash;
 	uint32_t color;
+	int anchor;             /* text-anchor: 0 start, 1 middle, 2 end */
+	int spacing;            /* letter-spacing or word-spacing other than normal (not drawn) */
 } style_t;
 
 /* The viewport lengths in percent refer to. */
@@ -323,6 +326,17 @@ static void compute(st_t *s, xmlNode *el, const style_t *parent, const vp_t *vp,
 		st->join = k == 1 ? META_JOIN_ROUND : k == 2 ? META_JOIN_BEVEL : META_JOIN_MITER;
 	if (v[SP_VISIBILITY] && (k = keyword(v[SP_VISIBILITY], vis, 3)) >= 0)
 		st->visible = k == 0;
+	static const char *const anchors[] = { "start", "middle", "end" };
+	if (v[SP_TEXT_ANCHOR] && (k = keyword(v[SP_TEXT_ANCHOR], anchors, 3)) >= 0)
+		st->anchor = k;
+	for (int p = SP_LETTER_SPACING; p <= SP_WORD_SPACING; p++)
+		if (v[p]) {
+			double sp;
+			if (keyword(v[p], (const char *const[]){ "normal" }, 1) == 0)
+				st->spacing = 0;
+			else if (!length(v[p], vp, AX_D, st->font, &sp))
+				st->spacing = sp != 0;
+		}
 	if (v[SP_DISPLAY] && keyword(v[SP_DISPLAY], (const char *const[]){ "none" }, 1) == 0)
 		*display = 0;
 	double x;
@@ -774,6 +788,202 @@ static int layer_of(st_t *s, xmlNode *el)
 	return s->d.nlayer++;
 }
 
+/* ---- text: meta text statements in the stroke font ---- */
+
+#define CAP_PER_EM 0.7          /* capital height of a font-size (an em): Helvetica's 0.72, DejaVu's 0.73 */
+#define TEXT_MAX 4000           /* bytes of one text statement (the meta-language takes 4096) */
+
+/* The state of one <text> element's layout, in its user units. */
+typedef struct {
+	st_t *s;
+	svg_mat_t m;
+	const vp_t *vp;
+	double x, y;            /* the current text position */
+	int anchor;             /* the text-anchor of the chunk's first element */
+	size_t first;           /* the chunk's first item */
+	double adv;             /* the chunk's advance so far */
+	int space;              /* the last character laid out was a space (or none yet) */
+	double last_sp;         /* the advance of the trailing space of the last segment, else 0 */
+	long last_it;           /* that segment's item, or -1 */
+	long line;
+} text_t;
+
+/* The chunk ends: its items shifted by its text-anchor along the baseline. */
+static void text_chunk_end(text_t *t)
+{
+	double sh = t->anchor == 1 ? -t->adv / 2 : t->anchor == 2 ? -t->adv : 0;
+	for (size_t i = t->first; i < t->s->d.n; i++)
+		if (t->s->d.it[i].kind == SVGI_TEXT)
+			t->s->d.it[i].tx += t->m.a * sh, t->s->d.it[i].ty += t->m.b * sh;
+	t->first = t->s->d.n;
+	t->adv = 0;
+}
+
+/* The first value of a list of lengths (x, y, dx, dy): 0 and *out, or -1 when absent or bad
+ * (SVG: an invalid list is as if not given). More than one value: a warning. */
+static int first_len(text_t *t, xmlNode *el, const char *name, int axis, double font, double *out)
+{
+	char *v = prop(el, name);
+	if (!v)
+		return -1;
+	char *p = v;
+	while (isspace((unsigned char)*p))
+		p++;
+	size_t n = strcspn(p, " \t\r\n,");
+	char *rest = p + n;
+	while (*rest && (isspace((unsigned char)*rest) || *rest == ','))
+		rest++;
+	if (*rest)
+		warn_kind(t->s, "per-character text positions (first value only)", xmlGetLineNo(el));
+	p[n] = 0;
+	int r = length(p, t->vp, axis, font, out);
+	xmlFree(v);
+	return r;
+}
+
+/* One text node's characters at the current position in the element's style. */
+static void text_segment(text_t *t, const char *raw, const style_t *st)
+{
+	st_t *s = t->s;
+	size_t n = strlen(raw), k = 0;
+	char *b = malloc(n + 1);
+	if (!b) {
+		s->fatal = -70;
+		snprintf(s->err, s->errlen, "locus-meta: out of memory importing %s", s->d.name);
+		return;
+	}
+	/* xml:space default: newlines removed, tabs are spaces, spaces collapsed, none leading */
+	for (const char *p = raw; *p; p++) {
+		char c = *p == '\t' ? ' ' : *p;
+		if (c == '\n' || c == '\r')
+			continue;
+		if (c == ' ' && t->space)
+			continue;
+		t->space = c == ' ';
+		if (k < TEXT_MAX)
+			b[k++] = c;
+	}
+	while (k == TEXT_MAX && k > 0 && ((unsigned char)b[k - 1] & 0xc0) == 0x80)
+		k--;    /* not in the middle of a UTF-8 sequence */
+	if (k == TEXT_MAX && k > 0 && ((unsigned char)b[k - 1] & 0xc0) == 0xc0)
+		k--;
+	b[k] = 0;
+	if (!k) {
+		free(b);
+		return;
+	}
+	double cap = CAP_PER_EM * st->font, u = cap / 6;
+	double adv = scan_text_advance(b, k) * u;
+	t->last_sp = b[k - 1] == ' ' ? scan_text_advance(" ", 1) * u : 0;
+	t->last_it = -1;
+	svg_mat_t m = t->m;
+	double fa = st->fill_op * st->opacity * st->fill.a, sa = st->stroke_op * st->opacity * st->stroke.a;
+	int want_fill = st->fill.kind && fa > 0, want_stroke = st->stroke.kind && sa > 0 && st->width > 0;
+	if (st->visible && (want_fill || want_stroke) && !s->fatal) {
+		double sx = hypot(m.a, m.b), sy = hypot(m.c, m.d), det = m.a * m.d - m.b * m.c;
+		double sc = sqrt(fabs(det));
+		if (!(det > 0) || fabs(sx - sy) > 1e-9 * (sx + sy) || fabs(m.a * m.c + m.b * m.d) > 1e-9 * sx * sy)
+			warn_kind(s, "text under a skew, mirror or non-uniform scale (drawn along its baseline at the mean scale, unskewed and unmirrored)", t->line);
+		svg_item_t it = { .kind = SVGI_TEXT, .layer = s->layer, .cap = META_CAP_ROUND, .join = META_JOIN_ROUND,
+			.miter = st->miter, .rule = st->rule, .text = b, .tadv = adv };
+		it.tx = m.a * t->x + m.c * t->y + m.e;
+		it.ty = m.b * t->x + m.d * t->y + m.f;
+		it.tsize = cap * sc;
+		it.tangle = atan2(-m.b, m.a) * 180 / M_PI;
+		if (want_stroke) {   /* the stroke's colour is the pen; else the fill's, as plotter users expect */
+			it.src_rgb = st->stroke.rgb;
+			it.rgb = over_white(st->stroke.rgb, sa);
+			it.width = st->width * sc;
+		} else {
+			it.src_rgb = st->fill.rgb;
+			it.rgb = over_white(st->fill.rgb, fa);
+			it.width = it.tsize / 10;
+		}
+		if (add_item(s, &it)) {
+			free(b);
+			s->fatal = -70;
+			snprintf(s->err, s->errlen, "locus-meta: out of memory importing %s", s->d.name);
+			return;
+		}
+		t->last_it = (long)s->d.n - 1;
+	} else {
+		free(b);
+	}
+	t->x += adv;
+	t->adv += adv;
+}
+
+/* A text or tspan element: its position, then its content in order. */
+static void text_run(text_t *t, xmlNode *el, const style_t *st)
+{
+	st_t *s = t->s;
+	long line = xmlGetLineNo(el);
+	double x, y, dx, dy;
+	int hx = !first_len(t, el, "x", AX_X, st->font, &x), hy = !first_len(t, el, "y", AX_Y, st->font, &y);
+	if (hx || hy) {   /* an absolute position starts a new chunk */
+		text_chunk_end(t);
+		t->anchor = st->anchor;
+		if (hx)
+			t->x = x;
+		if (hy)
+			t->y = y;
+	}
+	if (!first_len(t, el, "dx", AX_X, st->font, &dx))
+		t->x += dx;
+	if (!first_len(t, el, "dy", AX_Y, st->font, &dy))
+		t->y += dy;
+	static const char *const unsup[] = { "rotate", "textLength", "lengthAdjust" };
+	for (size_t k = 0; k < sizeof unsup / sizeof *unsup; k++)
+		if (xmlHasProp(el, (const xmlChar *)unsup[k]))
+			warn_kind(s, "text rotate, textLength or lengthAdjust (drawn without them)", line);
+	if (st->spacing)
+		warn_kind(s, "letter-spacing or word-spacing (text drawn without them)", line);
+	for (xmlNode *c = el->children; c && !s->fatal; c = c->next) {
+		if (c->type == XML_TEXT_NODE || c->type == XML_CDATA_SECTION_NODE) {
+			if (c->content)
+				text_segment(t, (const char *)c->content, st);
+		} else if (is_svg(c, "tspan") || is_svg(c, "a")) {
+			if (++s->visits > MAX_VISITS) {
+				snprintf(s->err, s->errlen, "%s:%ld:1: expected at most %d elements drawn (use references included), found more",
+						s->d.name, xmlGetLineNo(c), MAX_VISITS);
+				s->fatal = -65;
+				return;
+			}
+			style_t cst;
+			int display;
+			char *origin = NULL;
+			compute(s, c, st, t->vp, &cst, &display, &origin);
+			free(origin);
+			free(s->transform);
+			s->transform = NULL;
+			if (display)
+				text_run(t, c, &cst);
+		} else if (is_svg(c, "textPath")) {
+			warn_kind(s, "textPath (left out)", xmlGetLineNo(c));
+		}
+	}
+}
+
+static void draw_text(st_t *s, xmlNode *el, const style_t *st, svg_mat_t m, const vp_t *vp)
+{
+	text_t t = { .s = s, .m = m, .vp = vp, .anchor = st->anchor, .first = s->d.n, .space = 1, .last_it = -1,
+		.line = xmlGetLineNo(el) };
+	text_run(&t, el, st);
+	if (s->fatal)
+		return;
+	if (t.space && t.last_sp > 0) {   /* no trailing space */
+		t.adv -= t.last_sp;
+		if (t.last_it >= 0) {
+			svg_item_t *it = &s->d.it[t.last_it];
+			size_t k = strlen(it->text);
+			if (k > 1)
+				it->text[k - 1] = 0, it->tadv -= t.last_sp;
+		}
+	}
+	text_chunk_end(&t);
+	warn_kind(s, "text drawn in the stroke font (font-family, weight and style not followed)", t.line);
+}
+
 static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const vp_t *vp)
 {
 	if (el->type != XML_ELEMENT_NODE || !is_svg(el, NULL) || s->fatal)
@@ -910,7 +1120,7 @@ static void walk(st_t *s, xmlNode *el, const style_t *parent, svg_mat_t m, const
 	} else if (!strcmp(name, "polyline") || !strcmp(name, "polygon")) {
 		draw(s, el, &st, m, g_poly, vp);
 	} else if (!strcmp(name, "text")) {
-		warn_kind(s, "text (left out: no stroke-font match)", line);
+		draw_text(s, el, &st, m, vp);
 	} else if (!strcmp(name, "image")) {
 		warn_kind(s, "raster image (left out)", line);
 	} else if (!strcmp(name, "foreignObject")) {
@@ -1078,7 +1288,7 @@ int svgimp_import(const void *buf, size_t n, const char *name, const svgimp_opts
 	if (!rc)
 		rc = svg_doc_write(&s.d, w, err, errlen);
 	for (size_t i = 0; i < s.d.n; i++)
-		svg_geom_free(&s.d.it[i].g);
+		svg_geom_free(&s.d.it[i].g), free(s.d.it[i].text);
 	free(s.d.it);
 	for (int i = 0; i < s.d.nlayer; i++)
 		free(s.d.layer[i].label);

@@ -13,7 +13,8 @@ const char *const svg_prop_name[SP_NPROP] = {
 	"fill", "fill-opacity", "fill-rule", "stroke", "stroke-width", "stroke-opacity",
 	"stroke-dasharray", "stroke-dashoffset", "stroke-linecap", "stroke-linejoin",
 	"stroke-miterlimit", "color", "display", "visibility", "opacity", "font-size", "clip-path",
-	"mask", "filter", "marker-start", "marker-mid", "marker-end", "transform-origin", "transform"
+	"mask", "filter", "marker-start", "marker-mid", "marker-end", "transform-origin", "transform",
+	"text-anchor", "letter-spacing", "word-spacing"
 };
 
 int svg_prop_find(const char *name, size_t len)

@@ -8,6 +8,7 @@
 #include "hpgl/hpgl.h"
 #include "hpgl/pathopt.h"
 #include "import/svg_import.h"
+#include "geom/scan.h"
 
 #define PATH_POINTS 900000   /* points per meta path at most (the meta-language allows 10^6) */
 
@@ -205,6 +206,43 @@ typedef struct {
 	unsigned long lifts, changes;
 } stats_t;
 
+/* A text item's glyph strokes (docs/stroke-font.md, spec §5.5) into g, page pixels, y down:
+ * what the pen draws, for --stats. 0, or -1 out of memory. */
+static int text_strokes(const svg_item_t *it, svg_geom_t *g)
+{
+	double u = it->tsize / 6, a = it->tangle * M_PI / 180, ca = cos(a), sa = sin(a), pen = 0;
+	const unsigned char *t = (const unsigned char *)it->text;
+	size_t len = strlen(it->text), k = 0;
+	g->m = (svg_mat_t){ 1, 0, 0, 1, 0, 0 };
+	g->tol = 1;
+	while (k < len) {
+		uint32_t cp;
+		k += meta_utf8_next(t + k, len - k, &cp);
+		double adv;
+		const char *src = scan_glyph_source(cp >= 0x20 && cp <= 0x7e ? (int)cp : -1, &adv);
+		int first = 1;
+		for (const char *p = src; *p;) {
+			char *e;
+			double gx = strtod(p, &e);
+			if (e == p) {   /* ';' starts a polyline, blanks part points */
+				first |= *p == ';';
+				p++;
+				continue;
+			}
+			p = e + (*e == ',');
+			double gy = strtod(p, &e);
+			p = e;
+			double U = (pen + gx) * u, V = gy * u;
+			double x = it->tx + U * ca - V * sa, y = it->ty - (U * sa + V * ca);
+			if ((first ? svg_geom_move(g, x, y) : svg_geom_line(g, x, y)) < 0 || g->oom)
+				return -1;
+			first = 0;
+		}
+		pen += adv;
+	}
+	return 0;
+}
+
 static void measure(const svg_doc_t *d, stats_t *st)
 {
 	const hpgl_profile_t *prof = hpgl_profile_find(d->o->profile ? d->o->profile : "7475a");
@@ -219,13 +257,19 @@ static void measure(const svg_doc_t *d, stats_t *st)
 	size_t pcap = 0;
 	for (size_t i = 0; i < d->n; i++) {
 		const svg_item_t *it = &d->it[i];
-		if (!it->g.nsub)
+		svg_geom_t tg = { 0 };
+		if (it->kind == SVGI_TEXT && (!(fabs(it->tx) < 1e6 && fabs(it->ty) < 1e6 && it->tsize < 1e6) ||
+				text_strokes(it, &tg) < 0 || !tg.nsub)) {
+			svg_geom_free(&tg);
+			continue;   /* off the meta file's range, out of memory, or only spaces */
+		}
+		if (!it->g.nsub && !tg.nsub)
 			continue;   /* nothing left to draw (cut away, or a white fill that only hides) */
 		long pen = d->o->pens_mode ? it->pen : (long)it->rgb;
 		if (pen != last && last != -1)
 			st->changes++;
 		last = pen;
-		const svg_geom_t *g = &it->g;
+		const svg_geom_t *g = it->kind == SVGI_TEXT ? &tg : &it->g;
 		for (size_t s = 0; s < g->nsub; s++) {
 			size_t a = g->sub[s], b = s + 1 < g->nsub ? g->sub[s + 1] : g->n, n = b - a + (g->closed[s] ? 1 : 0);
 			if (dev_grow((void **)&pp, &pcap, n, sizeof *pp, 256))
@@ -240,6 +284,7 @@ static void measure(const svg_doc_t *d, stats_t *st)
 			at = g->pt[n - 1 < b - a ? a + n - 1 : a];
 			st->lifts++;
 		}
+		svg_geom_free(&tg);
 	}
 	free(pp);
 	st->down_mm = t.down_mm, st->up_mm = t.up_mm;
@@ -284,6 +329,16 @@ static int write_item(wst_t *s, const svg_item_t *it)
 	if ((long)it->rgb != s->rgb && (r = meta_colour(w, it->rgb)) < 0)
 		return r;
 	s->rgb = it->rgb;
+	if (it->kind == SVGI_TEXT) {   /* drawn with the colour and width; cap, join, dashes its own */
+		double wd = fmin(it->width, 1e6), x, y;
+		if (wd != s->width && (r = meta_width(w, wd)) < 0)
+			return r;
+		s->width = wd;
+		coord(s, it->tx, &x);
+		coord(s, s->ph - it->ty, &y);
+		double a = fmod(it->tangle, 360);
+		return meta_text(w, x, y, isfinite(it->tsize) ? fmin(it->tsize, 1e6) : 0, isfinite(a) ? a : 0, it->text);
+	}
 	if (it->kind == SVGI_FILL) {
 		if (it->rule != s->rule && (r = meta_fill_rule(w, it->rule)) < 0)
 			return r;
@@ -389,7 +444,7 @@ int svg_doc_write(svg_doc_t *d, meta_writer_t *w, char *err, size_t errlen)
 				goto werr;
 		}
 	for (size_t i = 0; i < d->n; i++) {
-		if (!d->it[i].g.nsub)
+		if (!d->it[i].g.nsub && d->it[i].kind != SVGI_TEXT)
 			continue;
 		if ((r = write_item(&s, &d->it[i])) < 0) {
 			if (r == -65) {

@@ -83,7 +83,8 @@ enum {
 	SP_FILL, SP_FILL_OPACITY, SP_FILL_RULE, SP_STROKE, SP_STROKE_WIDTH, SP_STROKE_OPACITY,
 	SP_DASHARRAY, SP_DASHOFFSET, SP_LINECAP, SP_LINEJOIN, SP_MITERLIMIT, SP_COLOR, SP_DISPLAY,
 	SP_VISIBILITY, SP_OPACITY, SP_FONT_SIZE, SP_CLIP_PATH, SP_MASK, SP_FILTER, SP_MARKER_START,
-	SP_MARKER_MID, SP_MARKER_END, SP_TRANSFORM_ORIGIN, SP_TRANSFORM, SP_NPROP
+	SP_MARKER_MID, SP_MARKER_END, SP_TRANSFORM_ORIGIN, SP_TRANSFORM, SP_TEXT_ANCHOR, SP_LETTER_SPACING,
+	SP_WORD_SPACING, SP_NPROP
 };
 extern const char *const svg_prop_name[SP_NPROP];
 int svg_prop_find(const char *name, size_t len);   /* SP_* or -1 */
@@ -101,7 +102,7 @@ void svg_sheet_free(svg_sheet_t *s);
 void svg_cascade(const svg_sheet_t *s, struct _xmlNode *el, char **val);
 
 /* ---- what the reader collects (import_svg.c) and writes (import_svg_out.c) ---- */
-enum { SVGI_FILL, SVGI_STROKE };
+enum { SVGI_FILL, SVGI_STROKE, SVGI_TEXT };   /* SVGI_TEXT: a meta text statement, g empty */
 
 typedef struct {
 	int kind;               /* SVGI_* */
@@ -114,6 +115,10 @@ typedef struct {
 	int pen;                /* pen number given by --pens, 0: none */
 	int stroked;            /* a fill whose element is stroked too (-O occlude: the stroke draws its edge) */
 	svg_geom_t g;           /* the subpaths, page pixels, y down (dashes already split) */
+	char *text;             /* SVGI_TEXT: the string (malloc'ed), drawn in the stroke font */
+	double tx, ty;          /* its baseline origin, page pixels, y down */
+	double tsize, tangle;   /* capital height in page pixels; angle in degrees, counter-clockwise on the page */
+	double tadv;            /* its advance in the user units of its element (text-anchor shifts) */
 } svg_item_t;
 
 typedef struct {
