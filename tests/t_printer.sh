@@ -556,20 +556,28 @@ fi
 # The plotter's own state (ESC.O, OS, OE) in printer-state-reasons. The emulator of tests/emu has
 # no paper lever, so a plotter that has one is played here by a small pseudo-terminal program:
 # it answers ESC.B/ESC.L/OI as the 7475A does, and ESC.O with 40 (buffer empty, paper lever
-# raised) while the file $T/lever exists, else 8; it records the HP-GL it gets (queries left out).
+# raised) while the file $T/lever exists, else 8, and ESC.B with 0 then (the 7475A holds its
+# buffer full while the lever is up); it records the HP-GL it gets (queries left out). Mid-plot:
+# the file $T/lever.after holding N makes it raise its own lever once it has N bytes (a person
+# lifting it mid-drawing), and $T/lever.reset starts a new recording.
 cat > "$T/lever.py" <<'PY'
 import os, select, sys, time, tty
 link, lever, rec, stop = sys.argv[1:5]
+after, reset = lever + '.after', lever + '.reset'
 master, slave = os.openpty()
 tty.setraw(slave)
 if os.path.lexists(link):
     os.unlink(link)
 os.symlink(os.ttyname(slave), link)
 out = open(rec, 'wb')
-end = time.time() + 60
+end = time.time() + 120
 esc = 0
 cmd = b''
 while time.time() < end and not os.path.exists(stop):
+    if os.path.exists(reset):
+        out.seek(0)
+        out.truncate()
+        os.unlink(reset)
     r, _, _ = select.select([master], [], [], 0.1)
     if not r:
         continue
@@ -582,7 +590,7 @@ while time.time() < end and not os.path.exists(stop):
         elif esc == 2:
             esc = 0
             raised = os.path.exists(lever)
-            answer = {b'B': b'1024', b'L': b'1024', b'O': b'40' if raised else b'8', b'E': b'0'}.get(b)
+            answer = {b'B': b'0' if raised else b'1024', b'L': b'1024', b'O': b'40' if raised else b'8', b'E': b'0'}.get(b)
             if answer is not None:
                 os.write(master, answer + b'\r')
             elif b not in b'R':
@@ -597,6 +605,9 @@ while time.time() < end and not os.path.exists(stop):
                 out.truncate()
                 os.write(master, {b'OS;': b'24', b'OE;': b'0', b'OI;': b'7475A'}[cmd] + b'\r')
             out.flush()
+            if os.path.exists(after) and out.tell() >= int(open(after).read() or 0):
+                os.unlink(after)
+                open(lever, 'w').close()
 PY
 if command -v python3 > /dev/null && [ -f "$T/submit.test" ]; then
 	touch "$T/lever"
@@ -627,6 +638,38 @@ if command -v python3 > /dev/null && [ -f "$T/submit.test" ]; then
 	[ "$(jobstate "$T/lever.wait")" = completed ] && cmp -s "$T/lever.rec" "$T/strokes.hpgl" && ! grep -q "media-needed" "$T/lever.gpa3" \
 		&& ok "lever lowered: the job completes, the plotter got locus-hpgl's bytes, the reason is cleared ($(sed -n 's/.*printer-state-reasons ([^)]*) = //p' "$T/lever.gpa3"))" \
 		|| notok "lever lowered: $(jobstate "$T/lever.wait"); $(cmp "$T/lever.rec" "$T/strokes.hpgl" 2>&1); $(grep printer-state-reasons "$T/lever.gpa3")"
+	# Mid-plot: the plotter's lever goes up after 1000 of the job's bytes; it holds ESC.B at 0, so
+	# the send waits; the state asked between ESC.B chunks (ESC.O at most every 2 s) shows it as
+	# media-needed while the job is processing; lowered, the rest follows, the reason is cleared.
+	sed -e '/EXPECT job-state/d' -e 's/^\tDISPLAY job-impressions-completed$/\tDISPLAY job-state-message/' \
+		"$T/wait.test" > "$T/jobnow.test"
+	printf 1000 > "$T/lever.after"
+	touch "$T/lever.reset"
+	n=0
+	while [ -e "$T/lever.reset" ] && [ $n -lt 50 ]; do sleep 0.1; n=$((n + 1)); done
+	ipptool -T 10 -t -v -f "$M" "$URI/lever" "$T/submit.test" > "$T/lever.sub2" 2>&1
+	jm=$(sed -n 's/.*job-id (integer) = //p' "$T/lever.sub2" | head -1)
+	n=0
+	while [ ! -e "$T/lever" ] && [ $n -lt 100 ]; do sleep 0.1; n=$((n + 1)); done
+	n=0
+	while [ $n -lt 20 ]; do
+		ipptool -T 10 -t "$URI/lever" "$T/formats.test" > "$T/lever.gpa4" 2>&1
+		grep -q "printer-state-reasons.*media-needed" "$T/lever.gpa4" && break
+		sleep 0.5
+		n=$((n + 1))
+	done
+	ipptool -T 10 -t -d jobid="$jm" "$URI/lever" "$T/jobnow.test" > "$T/lever.now" 2>&1
+	sent=$(wc -c < "$T/lever.rec")
+	[ -n "$jm" ] && [ -e "$T/lever" ] && grep -q "printer-state-reasons.*media-needed" "$T/lever.gpa4" \
+		&& [ "$(jobstate "$T/lever.now")" = processing ] && [ "$sent" -ge 1000 ] && [ "$sent" -lt "$(wc -c < "$T/strokes.hpgl")" ] \
+		&& ok "lever raised mid-plot: the job waits (processing, $sent of $(wc -c < "$T/strokes.hpgl") bytes sent), media-needed shown: $(sed -n 's/.*job-state-message (textWithoutLanguage) = //p' "$T/lever.now")" \
+		|| notok "lever raised mid-plot, job $jm: $(jobstate "$T/lever.now"); $(grep printer-state-reasons "$T/lever.gpa4"); $sent bytes sent; $(grep "Job $jm" "$T/log" | tail -2)"
+	rm -f "$T/lever"
+	timeout 60 ipptool -T 10 -t -d jobid="$jm" "$URI/lever" "$T/wait.test" > "$T/lever.wait2" 2>&1
+	ipptool -T 10 -t "$URI/lever" "$T/formats.test" > "$T/lever.gpa5" 2>&1
+	[ "$(jobstate "$T/lever.wait2")" = completed ] && cmp -s "$T/lever.rec" "$T/strokes.hpgl" && ! grep -q "media-needed" "$T/lever.gpa5" \
+		&& ok "lever lowered mid-plot: the job completes, the plotter got locus-hpgl's bytes, the reason is cleared ($(sed -n 's/.*printer-state-reasons ([^)]*) = //p' "$T/lever.gpa5"))" \
+		|| notok "lever lowered mid-plot: $(jobstate "$T/lever.wait2"); $(cmp "$T/lever.rec" "$T/strokes.hpgl" 2>&1); $(grep printer-state-reasons "$T/lever.gpa5")"
 	touch "$T/lever.stop"
 	n=0
 	while kill -0 "$LPID" 2> /dev/null && [ $n -lt 30 ]; do sleep 0.1; n=$((n + 1)); done

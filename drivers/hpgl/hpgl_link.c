@@ -1,5 +1,7 @@
 /* hpgl_link.c: HP-GL as the language of device links (hpgl_link.h): the journal's checkpoints
  * through the tracker of hpgl/read/, and the plotter's handshakes on links that read replies. */
+#include <stdio.h>
+#include <string.h>
 #include "hpgl/hpgl_link.h"
 #include "hpgl/read/hpgl_track.h"
 
@@ -77,6 +79,40 @@ static const char *status_words(long code)
 	return code > 0 && code < (long)(sizeof oe_words / sizeof oe_words[0]) ? oe_words[code] : "unknown";
 }
 
+/* The plotter's state for a display: ESC.O (bit 5, 32: the paper lever raised; bit 4, 16: VIEW
+ * pressed), asked out of band at any time; idle also OS (bit 5, 32: an error) and OE (its code;
+ * 8: a vector while the pinch wheels were raised), which enter the command stream. */
+static int state(const io_chan_t *c, int in_band, io_devstate_t *st)
+{
+	long o = 0, os = 0, oe = 0, ms = c->timeout_ms < 3000 ? c->timeout_ms : 3000;
+	size_t n = sizeof st->words;
+	char *w = st->words;
+	if (c->ask(c->t, "\033.O", "ESC.O (status)", ms, &o))
+		return -1;
+	if (in_band && (c->ask(c->t, "OS;", "OS (status)", ms, &os) || c->ask(c->t, "OE;", "OE (error)", ms, &oe)))
+		return -1;
+	st->flags = 0;
+	st->error = oe;
+	w[0] = 0;
+	if ((o & 32) || oe == 8) {
+		st->flags |= IO_DEV_NO_MEDIA;
+		snprintf(w, n, "the paper lever is raised (load paper and lower it)");
+	}
+	if (o & 16) {
+		st->flags |= IO_DEV_PAUSED;
+		snprintf(w + strlen(w), n - strlen(w), "%sVIEW is pressed (the plotter is paused)", w[0] ? "; " : "");
+	}
+	if (oe > 0 && oe != 8) {
+		st->flags |= IO_DEV_ERROR;
+		snprintf(w + strlen(w), n - strlen(w), "%sthe plotter reports error %ld: %s", w[0] ? "; " : "", oe,
+			status_words(oe));
+	} else if ((os & 32) && !oe && !st->flags) {
+		st->flags |= IO_DEV_ERROR;
+		snprintf(w, n, "the plotter reports an error (OS 32)");
+	}
+	return 0;
+}
+
 const io_lang_t hpgl_link_lang = {
 	.name = "HP-GL",
 	.sniff = hpgl_sniff,
@@ -92,6 +128,7 @@ const io_lang_t hpgl_link_lang = {
 	.room = room,
 	.status = status,
 	.status_words = status_words,
+	.state = state,
 };
 
 void hpgl_link_register(void)

@@ -9,6 +9,7 @@
 #define LOCUS_IO_LANG_H
 
 #include <stddef.h>
+#include "io/status.h"
 #include "io/transport.h"
 
 /* A link that reads the device's replies, as a language's handshakes use it. */
@@ -72,6 +73,10 @@ typedef struct io_lang {
 	int (*status)(const io_chan_t *c, long *code);
 	/* The words for an error code ("bad parameter"), or "unknown". */
 	const char *(*status_words)(long code);
+	/* The device's state now for a display (io/status.h): flags, error code, words. in_band 0
+	 * (between the chunks of a send): only queries outside the command stream; 1 (idle): any.
+	 * 0, or -1 (message set). NULL: the language cannot ask. */
+	int (*state)(const io_chan_t *c, int in_band, io_devstate_t *st);
 } io_lang_t;
 
 /* The language of the jobs this program sends to device links (NULL: none). */

@@ -2,6 +2,7 @@
  * can read the device's replies: the link waits and counts, the language asks. */
 #include <time.h>
 #include "io/link.h"
+#include "io/status.h"
 
 int tr_pace_hello(const io_chan_t *c, io_pace_t *p)
 {
@@ -22,8 +23,13 @@ long tr_pace_write(const io_chan_t *c, io_pace_t *p, const void *buf, size_t n)
 	long room = p->space;
 	p->space = -1;
 	for (;;) {
+		int hold;
 		if (room < 0 && l->room(c, &room))
 			return -1;
+		if (tr_state_tick(c, room < (long)want, &hold))
+			return -1;
+		if (hold)
+			start = tr_now_ms();   /* the device holds on purpose (paper lever up): no timeout */
 		if (room >= (long)want)
 			break;
 		room = -1;

@@ -16,6 +16,7 @@
 
 #include <pappl/pappl.h>
 #include "device/device.h"
+#include "io/status.h"
 
 /* The formats Locus reads (each a filter in lp_job.c, lp_filters_add; "Adding a format" in
  * docs/printer.md). */
@@ -87,12 +88,13 @@ int lp_link_trylock(void);
 void lp_link_unlock(void);
 /* The printer-state-reasons locus-printer keeps from a plotter's own answers. */
 #define LP_PLOT_REASONS (PAPPL_PREASON_MEDIA_NEEDED | PAPPL_PREASON_OTHER)
-/* The plotter's answers to ESC.O (32 paper lever raised, 16 VIEW pressed, 8 buffer empty), OS
- * (32 error) and OE (error code; 8 a vector while the pinch wheels were raised) as reasons:
- * media-needed for the lever, other for VIEW and errors; msg says it in words ("" if none). */
-pappl_preason_t lp_plot_reasons(long esc_o, long os, long oe, char *msg, size_t n);
-/* Ask the plotter on link (a Locus link name with flow=escb) for ESC.O, OS and OE, the link
- * opened with flow=none for those few bytes (the caller holds the link lock): 1 with *reasons and
+/* A device's state (io/status.h, filled by the registered language: HP-GL's ESC.O, OS, OE) as
+ * reasons: media-needed for no paper or the paper lever raised, other for a pause (VIEW) and
+ * errors; st->words says it in words. */
+pappl_preason_t lp_state_reasons(const io_devstate_t *st);
+/* Ask the plotter on link (a Locus link name with flow=escb) for its state through the registered
+ * language (io_device_state; HP-GL: ESC.O, OS, OE), the link opened with flow=none for those few
+ * bytes (the caller holds the link lock): 1 with *reasons and
  * msg, 0 when the link cannot answer (no flow=escb), -1 when the device is not there or did
  * not answer (msg says which). */
 int lp_link_probe(const char *link, pappl_preason_t *reasons, char *msg, size_t n);

@@ -172,6 +172,38 @@ static bool send_device(pappl_job_t *job, int fd, pappl_device_t *dev, int hpgl)
 	return k >= 0 || job_error(job, "cannot read the rendered job back from the spool directory");
 }
 
+/* The plotter's state between the chunks of a paced send (io_watch_state): its reasons on the
+ * printer, the job's message while it holds; a plotter that holds (paper lever up, VIEW) is waited
+ * for up to resume-wait seconds (its buffer stays full meanwhile), a canceled job stops the send. */
+typedef struct {
+	pappl_job_t *job;
+	time_t held_since;  /* 0: not held */
+} watch_t;
+
+static int watch_state(void *user, const io_devstate_t *st)
+{
+	watch_t *w = user;
+	pappl_printer_t *pr = papplJobGetPrinter(w->job);
+	pappl_preason_t r = lp_state_reasons(st);
+	papplPrinterSetReasons(pr, r, LP_PLOT_REASONS & ~r);
+	if (!(st->flags & (IO_DEV_NO_MEDIA | IO_DEV_PAUSED))) {
+		if (w->held_since) {
+			papplLogJob(w->job, PAPPL_LOGLEVEL_INFO, "the plotter is ready again");
+			papplJobSetMessage(w->job, "printing");
+		}
+		w->held_since = 0;
+		return 0;
+	}
+	if (!w->held_since) {
+		w->held_since = time(NULL);
+		papplLogJob(w->job, PAPPL_LOGLEVEL_WARN, "mid-job: %s; waiting up to %d s", st->words, resume_wait);
+		papplJobSetMessage(w->job, "waiting for the plotter: %s", st->words);
+	}
+	if (papplJobIsCanceled(w->job))
+		return -1;   /* (a plotter that takes bytes gets the canceled job's pen-up and park) */
+	return time(NULL) - w->held_since < resume_wait ? 1 : 0;
+}
+
 /* One try of a link job: the rendered bytes into the Locus link name with journal= (first try)
  * or resume= (after a failure): the journal skips what the device has. 0, 75 (the device went
  * away: try again), 74 (it could not be opened or failed otherwise), 1 canceled. */
@@ -189,6 +221,9 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 	char buf[1024];
 	ssize_t k;
 	int st = 0;
+	/* the plotter's state every 2 s during the send (flow=escb links: between ESC.B chunks) */
+	watch_t w = { job, 0 };
+	io_watch_state(watch_state, &w, 2000);
 	lseek(fd, 0, SEEK_SET);
 	while (!st && (k = read(fd, buf, sizeof buf)) > 0) {
 		size_t m = (size_t)k;
@@ -211,6 +246,7 @@ static int send_link(pappl_job_t *job, int fd, const char *link, const char *jnl
 	}
 	if (io_close_err(t, st && st != 1 ? IO_ABORT : IO_COMMIT, st ? NULL : err, n) && !st)
 		st = 74;
+	io_watch_state(NULL, NULL, 0);
 	lp_link_unlock();
 	return st;
 }

@@ -130,7 +130,7 @@ static ssize_t link_read(pappl_device_t *dev, void *buf, size_t n)
 	return k < 0 ? -1 : (ssize_t)k;
 }
 
-/* ---- status: ESC.O, OS and OE asked of a plotter that answers (flow=escb) ---- */
+/* ---- status: the language's state query (HP-GL ESC.O, OS, OE) asked of a plotter that answers (flow=escb) ---- */
 
 /* The probe's link name: the printer's, its flow, journal, resume and timeout replaced by
  * flow=none (the few query bytes need no pacing) and a one-second wait for each answer. 0 when
@@ -164,72 +164,13 @@ static int probe_name(const char *link, char *out, size_t n)
 	return snprintf(out + len, n - len, "%cflow=none&timeout=1", sep) < (int)(n - len);
 }
 
-/* Send query q and read its number answer (digits up to CR), within about 1.5 s. */
-static int ask(io_transport_t *t, const char *q, long *out)
-{
-	if (io_write(t, q, strlen(q)) < 0 || io_flush(t) < 0)
-		return -1;
-	char r[32];
-	size_t k = 0;
-	struct timespec now, end, nap = { 0, 10000000L };
-	clock_gettime(CLOCK_MONOTONIC, &end);
-	end.tv_nsec += 500000000L;
-	end.tv_sec += 1 + end.tv_nsec / 1000000000L;
-	end.tv_nsec %= 1000000000L;
-	for (;;) {
-		char c;
-		long g = io_read(t, &c, 1);
-		if (g < 0)
-			return -1;
-		clock_gettime(CLOCK_MONOTONIC, &now);
-		if (now.tv_sec > end.tv_sec || (now.tv_sec == end.tv_sec && now.tv_nsec > end.tv_nsec))
-			return -1;
-		if (g == 0) {
-			nanosleep(&nap, NULL);
-			continue;
-		}
-		if (c == '\r' || c == '\n') {
-			if (k)
-				break;
-			continue;
-		}
-		if (k + 1 < sizeof r)
-			r[k++] = c;
-	}
-	r[k] = 0;
-	char *e;
-	*out = strtol(r, &e, 10);
-	return e == r ? -1 : 0;
-}
-
-/* OE's codes in words (the HP 7475A's; 4 and 7 are not used). */
-static const char *oe_word(long code)
-{
-	static const char *const w[] = { "no error", "command not recognised", "wrong number of parameters",
-		"parameter out of range", "error 4", "unknown character set", "position overflow", "error 7",
-		"vector received while the pinch wheels were raised" };
-	return code >= 0 && code < (long)(sizeof w / sizeof w[0]) ? w[code] : "unknown error";
-}
-
-pappl_preason_t lp_plot_reasons(long esc_o, long os, long oe, char *msg, size_t n)
+pappl_preason_t lp_state_reasons(const io_devstate_t *st)
 {
 	pappl_preason_t r = PAPPL_PREASON_NONE;
-	msg[0] = 0;
-	if ((esc_o & 32) || oe == 8) {
+	if (st->flags & IO_DEV_NO_MEDIA)
 		r |= PAPPL_PREASON_MEDIA_NEEDED;
-		snprintf(msg, n, "the paper lever is raised (load paper and lower it)");
-	}
-	if (esc_o & 16) {
+	if (st->flags & (IO_DEV_PAUSED | IO_DEV_ERROR))
 		r |= PAPPL_PREASON_OTHER;
-		snprintf(msg + strlen(msg), n - strlen(msg), "%sVIEW is pressed (the plotter is paused)", msg[0] ? "; " : "");
-	}
-	if (oe > 0 && oe != 8) {
-		r |= PAPPL_PREASON_OTHER;
-		snprintf(msg + strlen(msg), n - strlen(msg), "%sthe plotter reports error %ld: %s", msg[0] ? "; " : "", oe, oe_word(oe));
-	} else if ((os & 32) && !oe && !r) {
-		r |= PAPPL_PREASON_OTHER;
-		snprintf(msg, n, "the plotter reports an error (OS 32)");
-	}
 	return r;
 }
 
@@ -245,13 +186,13 @@ int lp_link_probe(const char *link, pappl_preason_t *reasons, char *msg, size_t 
 		snprintf(msg, n, "%s", err);
 		return -1;
 	}
-	long esc_o = 0, os = 0, oe = 0;
-	int rc = ask(t, "\033.O", &esc_o) || ask(t, "OS;", &os) || ask(t, "OE;", &oe) ? -1 : 1;
-	if (rc < 0)
-		snprintf(msg, n, "%s: no answer to ESC.O, OS or OE", link);
+	/* the registered language's state query (HP-GL: ESC.O, OS, OE), each answer within 1.5 s */
+	io_devstate_t st;
+	int rc = io_device_state(t, 1500, &st);
 	io_close(t, IO_ABORT);
+	snprintf(msg, n, "%s", st.words);
 	if (rc > 0)
-		*reasons = lp_plot_reasons(esc_o, os, oe, msg, n);
+		*reasons = lp_state_reasons(&st);
 	return rc;
 }
 
