@@ -45,6 +45,20 @@ static inline int hpgl_lex_numchar(unsigned char c)
 	return hpgl_lex_digit(c) || c == '-' || c == '+' || c == '.';
 }
 
+/* The coordinate commands: 0 PU, 1 PD, 2 PA, 3 PR; -1 any other mnemonic (mn upper case). */
+static inline int hpgl_lex_coord(const char *mn)
+{
+	if (mn[0] != 'P')
+		return -1;
+	switch (mn[1]) {
+	case 'U': return mn[2] ? -1 : 0;
+	case 'D': return mn[2] ? -1 : 1;
+	case 'A': return mn[2] ? -1 : 2;
+	case 'R': return mn[2] ? -1 : 3;
+	default: return -1;
+	}
+}
+
 /* The number that begins at s[i] (s[i] a hpgl_lex_numchar; n bytes in all): an optional sign,
  * digits, an optional '.' and digits, and an exponent when a writer printed one (no HP-GL, but an
  * 'e' or 'E' followed by a digit or a sign is taken as one). Returns the end; *digits: how many

@@ -292,10 +292,9 @@ static int command(hpgl_rd_t *r, const char mn[3])
 {
 	double v[MAX_PARAMS];
 	int nv = 0;
-	const char *coord_cmds[] = { "PU", "PD", "PA", "PR", NULL };
-	for (int k = 0; coord_cmds[k]; k++)
-		if (!strcmp(mn, coord_cmds[k]))
-			return coords(r, mn, k == 0 ? 0 : k == 1 ? 1 : -1, k == 2 ? 0 : k == 3 ? 1 : -1);
+	int k = hpgl_lex_coord(mn);
+	if (k >= 0)
+		return coords(r, mn, k == 0 ? 0 : k == 1 ? 1 : -1, k == 2 ? 0 : k == 3 ? 1 : -1);
 	if (!strcmp(mn, "PE"))
 		return pe(r);
 	if (!strcmp(mn, "LB") || !strcmp(mn, "BL"))

@@ -36,7 +36,7 @@ enum { RESTORE_MAX = 768 };
 
 static int positional(const char *m)
 {
-	return !strcmp(m, "PU") || !strcmp(m, "PD") || !strcmp(m, "PA") || !strcmp(m, "PR");
+	return hpgl_lex_coord(m) >= 0;
 }
 
 hpgl_track_t *hpgl_track_new(void)
