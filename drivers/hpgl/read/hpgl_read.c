@@ -1,5 +1,4 @@
 /* hpgl_read.c: HP-GL / HP-GL/2 reader: commands, parameters, PE data and escapes into strokes. */
-#include <ctype.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -12,7 +11,7 @@
 
 static int is_sep(unsigned char c)
 {
-	return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',';
+	return hpgl_lex_sep(c);
 }
 
 /* Read the numeric parameters of a command up to ';', a letter, ESC or the end. */
@@ -29,7 +28,7 @@ static int params(hpgl_rd_t *r, const char *mn, double *v, int *nv)
 			r->i++;
 			return 0;
 		}
-		if (isalpha(c) || c == 0x1b)
+		if (hpgl_lex_letter(c) || c == 0x1b)
 			return 0;
 		if (c == '"') {   /* a quoted string parameter (CO, DL labels): skipped */
 			size_t e = r->i + 1;
@@ -40,35 +39,13 @@ static int params(hpgl_rd_t *r, const char *mn, double *v, int *nv)
 			r->i = e + 1;
 			continue;
 		}
-		if (!(isdigit(c) || c == '-' || c == '+' || c == '.'))
+		if (!hpgl_lex_numchar(c))
 			return hpgl_rd_fail(r, r->i, "unexpected byte 0x%02x in the parameters of %s (expected a number, ',' or ';')", c, mn);
-		size_t st = r->i;
-		if (c == '-' || c == '+')
-			r->i++;
-		size_t digits = 0;
-		while (r->i < r->n && isdigit(r->s[r->i]))
-			r->i++, digits++;
-		if (r->i < r->n && r->s[r->i] == '.') {
-			r->i++;
-			while (r->i < r->n && isdigit(r->s[r->i]))
-				r->i++, digits++;
-		}
+		size_t st = r->i, digits;
+		r->i = hpgl_lex_number(r->s, r->n, st, &digits);
 		if (!digits)
 			return hpgl_rd_fail(r, st, "malformed number in the parameters of %s", mn);
-		if (r->i < r->n && (r->s[r->i] == 'e' || r->s[r->i] == 'E') && r->i + 1 < r->n &&
-				(isdigit(r->s[r->i + 1]) || r->s[r->i + 1] == '-' || r->s[r->i + 1] == '+')) {
-			/* an exponent is no HP-GL, but some writers print one */
-			r->i++;
-			if (r->s[r->i] == '-' || r->s[r->i] == '+')
-				r->i++;
-			while (r->i < r->n && isdigit(r->s[r->i]))
-				r->i++;
-		}
-		char buf[64];
-		size_t len = r->i - st < sizeof buf - 1 ? r->i - st : sizeof buf - 1;
-		memcpy(buf, r->s + st, len);
-		buf[len] = 0;
-		double x = strtod(buf, NULL);
+		double x = hpgl_lex_value(r->s + st, r->i - st);
 		if (!isfinite(x) || fabs(x) > 1e12)
 			return hpgl_rd_fail(r, st, "number out of range in %s", mn);
 		if (*nv < MAX_PARAMS)
@@ -222,7 +199,7 @@ static int escape(hpgl_rd_t *r)
 		r->i++;   /* the function letter or character */
 		/* parameters: digits and ';' up to ':' (optional), within a short stretch */
 		size_t e = r->i;
-		while (e < r->n && e - r->i < 80 && (isdigit(r->s[e]) || r->s[e] == ';'))
+		while (e < r->n && e - r->i < 80 && (hpgl_lex_digit(r->s[e]) || r->s[e] == ';'))
 			e++;
 		r->i = e;
 		if (r->i < r->n && r->s[r->i] == ':')
@@ -233,9 +210,9 @@ static int escape(hpgl_rd_t *r)
 		r->i++;
 		if (r->i < r->n && (r->s[r->i] == '-' || r->s[r->i] == '+'))
 			r->i++;
-		while (r->i < r->n && isdigit(r->s[r->i]))
+		while (r->i < r->n && hpgl_lex_digit(r->s[r->i]))
 			r->i++;
-		if (r->i >= r->n || !isalpha(r->s[r->i]))
+		if (r->i >= r->n || !hpgl_lex_letter(r->s[r->i]))
 			return hpgl_rd_fail(r, st, "malformed PCL escape (ESC %% number letter)");
 		r->i++;
 		/* after a universal exit (ESC%-12345X) PJL lines may follow */
@@ -256,7 +233,7 @@ static int escape(hpgl_rd_t *r)
 		if (r->i < r->n)
 			r->i++;   /* group character */
 		for (;;) {
-			while (r->i < r->n && (isdigit(r->s[r->i]) || r->s[r->i] == '.' || r->s[r->i] == '+' || r->s[r->i] == '-'))
+			while (r->i < r->n && (hpgl_lex_digit(r->s[r->i]) || r->s[r->i] == '.' || r->s[r->i] == '+' || r->s[r->i] == '-'))
 				r->i++;
 			if (r->i >= r->n)
 				return 0;
@@ -315,10 +292,9 @@ static int command(hpgl_rd_t *r, const char mn[3])
 {
 	double v[MAX_PARAMS];
 	int nv = 0;
-	const char *coord_cmds[] = { "PU", "PD", "PA", "PR", NULL };
-	for (int k = 0; coord_cmds[k]; k++)
-		if (!strcmp(mn, coord_cmds[k]))
-			return coords(r, mn, k == 0 ? 0 : k == 1 ? 1 : -1, k == 2 ? 0 : k == 3 ? 1 : -1);
+	int k = hpgl_lex_coord(mn);
+	if (k >= 0)
+		return coords(r, mn, k == 0 ? 0 : k == 1 ? 1 : -1, k == 2 ? 0 : k == 3 ? 1 : -1);
 	if (!strcmp(mn, "PE"))
 		return pe(r);
 	if (!strcmp(mn, "LB") || !strcmp(mn, "BL"))
@@ -329,7 +305,7 @@ static int command(hpgl_rd_t *r, const char mn[3])
 			if (params(r, mn, v, &nv) < 0)
 				return -1;
 		} else {
-			r->term = 3;
+			r->term = HPGL_LEX_TERM_DEFAULT;
 			if (r->i < r->n)
 				r->i++;
 		}
@@ -567,7 +543,7 @@ int hpgl_read_mem_flags(const void *buf, size_t len, const char *name, int flags
 			r.i++;
 			continue;
 		}
-		if (!isalpha(c) || r.i + 1 >= r.n || !isalpha(r.s[r.i + 1])) {
+		if (!hpgl_lex_letter(c) || r.i + 1 >= r.n || !hpgl_lex_letter(r.s[r.i + 1])) {
 			if (stray == SIZE_MAX)
 				stray = r.i;
 			r.i++;
@@ -583,7 +559,7 @@ int hpgl_read_mem_flags(const void *buf, size_t len, const char *name, int flags
 			hpgl_rd_warn(&r, stray, "skipped %zu bytes that are no HP-GL command (%s)", r.i - stray, q);
 			stray = SIZE_MAX;
 		}
-		char mn[3] = { (char)toupper(c), (char)toupper(r.s[r.i + 1]), 0 };
+		char mn[3] = { hpgl_lex_upper(c), hpgl_lex_upper(r.s[r.i + 1]), 0 };
 		r.cmd = doc->ncmds++;
 		r.cmd_off = r.i;
 		r.i += 2;

@@ -227,7 +227,7 @@ void hpgl_rd_defaults(hpgl_rd_t *r, int in)
 	r->rel = 0;
 	r->sc = 0;
 	r->poly = 0;
-	r->term = 3;
+	r->term = HPGL_LEX_TERM_DEFAULT;
 	if (in) {
 		r->down = 0;
 		r->ip_set = 0;

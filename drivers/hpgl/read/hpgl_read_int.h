@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 #include "util/grow.h"
+#include "hpgl/read/hpgl_lex.h"
 #include "hpgl/read/hpgl_read.h"
 
 /* The parser's state: input, place, and the plotter state it tracks. */

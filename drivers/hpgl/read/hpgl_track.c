@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include "hpgl/read/hpgl_lex.h"
 #include "hpgl/read/hpgl_track.h"
 
 /* Modal commands replayed on resume, in the order they are sent (IP before SC). */
@@ -35,7 +36,7 @@ enum { RESTORE_MAX = 768 };
 
 static int positional(const char *m)
 {
-	return !strcmp(m, "PU") || !strcmp(m, "PD") || !strcmp(m, "PA") || !strcmp(m, "PR");
+	return hpgl_lex_coord(m) >= 0;
 }
 
 hpgl_track_t *hpgl_track_new(void)
@@ -69,8 +70,7 @@ static int end_number(hpgl_track_t *j)
 {
 	if (!j->nnum)
 		return 0;
-	j->num[j->nnum] = 0;
-	double v = strtod(j->num, NULL);
+	double v = hpgl_lex_value((const unsigned char *)j->num, (size_t)j->nnum);
 	j->nnum = 0;
 	if (!strcmp(j->mn, "SP")) {
 		j->st.pen = v;   /* no cast: an SP parameter out of int's range was undefined behaviour */
@@ -98,7 +98,7 @@ static void end_command(hpgl_track_t *j)
 	end_number(j);
 	if (j->nmn == 2) {
 		size_t n = j->ntext < sizeof j->text ? j->ntext : sizeof j->text - 1;
-		while (n > 2 && !((j->text[n - 1] >= '0' && j->text[n - 1] <= '9') || j->text[n - 1] == '.'))
+		while (n > 2 && !(hpgl_lex_digit((unsigned char)j->text[n - 1]) || j->text[n - 1] == '.'))
 			n--;   /* the terminator, or the next command's first letter */
 		j->text[n] = 0;
 		for (size_t k = 0; k < NMODAL; k++)
@@ -144,25 +144,25 @@ int hpgl_track_byte(hpgl_track_t *j, unsigned char c)
 	if (j->ntext < sizeof j->text)
 		j->text[j->ntext++] = (char)c;
 	if (j->in_label) {
-		if (c == 3) {
+		if (c == HPGL_LEX_TERM_DEFAULT) {   /* (DT is not followed here) */
 			j->in_label = 0;
 			end_command(j);
 		}
 		return 0;
 	}
-	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) {
+	if (hpgl_lex_letter(c)) {
 		if (j->nmn == 2) {
 			end_command(j);
 			j->text[0] = (char)c;
 			j->ntext = 1;
 		}
-		j->mn[j->nmn++] = (char)(c & ~0x20);
+		j->mn[j->nmn++] = hpgl_lex_upper(c);
 		j->mn[j->nmn] = 0;
 		if (j->nmn == 2)
 			start_command(j);
 		return 0;
 	}
-	if ((c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.') {
+	if (hpgl_lex_numchar(c)) {
 		if (j->nnum + 1 < (int)sizeof j->num)
 			j->num[j->nnum++] = (char)c;
 		return 0;
@@ -239,7 +239,7 @@ void hpgl_track_resume(const hpgl_track_t *j, const unsigned char *rest, size_t 
 		for (k = 0; k < held; k++)
 			hpgl_track_byte(c, rest[k]);
 		for (; k <= len && k < held + 4096; k++) {
-			int letter = k < len && ((rest[k] >= 'A' && rest[k] <= 'Z') || (rest[k] >= 'a' && rest[k] <= 'z'));
+			int letter = k < len && hpgl_lex_letter(rest[k]);
 			/* the command may end here: nothing half-read, a positional command's pairs whole */
 			if (!c->in_label && c->nnum == 0
 				&& (c->nmn == 0 || (c->nmn == 2 && (letter || (positional(c->mn) && c->nargs == 0
@@ -281,7 +281,7 @@ int hpgl_sniff(const unsigned char *b, size_t n, const char **what)
 		return 0;   /* nothing but blanks yet */
 	unsigned c = b[k], d = k + 1 < n ? b[k + 1] : 0;
 	/* HP-GL begins with a mnemonic, a ';', or a device-control escape ESC . */
-	if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || c == ';' || (c == 27 && (d == '.' || d == 0)))
+	if (hpgl_lex_letter((unsigned char)c) || c == ';' || (c == 27 && (d == '.' || d == 0)))
 		return 1;
 	*what = n - k >= 5 && !memcmp(b + k, "%PDF-", 5) ? "a PDF document"
 		: n - k >= 2 && !memcmp(b + k, "%!", 2) ? "a PostScript document"
