@@ -90,7 +90,7 @@ static int pause_before(dev_device_t *d, int slot)
 	if (at <= io_resume_held(d->out))
 		return 0;
 	hpgl_pause_t q = { slot, h->layer[slot], d->page ? d->page->index : 0 };
-	char why[200] = "nothing asks for pens here (no pauser)", msg[400], layer[240] = "";
+	char why[200] = "nothing asks for pens here (no pauser)", msg[600], layer[240] = "";
 	if (pauser && !pauser(pauser_user, &q, why, sizeof why))
 		return 0;
 	if (q.layer)
