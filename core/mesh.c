@@ -215,19 +215,6 @@ static void triangle_rc(ext_t *x, int r)
 		x->oom = 1;
 }
 
-long mesh_vertex_slot(mesh_t *m)
-{
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q)
-			return -1;
-		m->v = q;
-		m->vcap = cap;
-	}
-	return (long)m->nv;
-}
-
 long mesh_vertex_at(mesh_t *m, mesh_table_t *t, uint64_t k, double **p)
 {
 	uint64_t v;

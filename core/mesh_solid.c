@@ -14,6 +14,21 @@ static double vol6(const mesh_t *m, uint32_t a, uint32_t b, uint32_t c, uint32_t
 	return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]);
 }
 
+/* Room for one more vertex; its index, or -1 out of memory. Here, beside mesh_tet, so that the
+ * surface (mesh.c, mesh_mc.c) and the solid's prisms share it without a circle. */
+long mesh_vertex_slot(mesh_t *m)
+{
+	if (m->nv == m->vcap) {
+		size_t cap = m->vcap ? 2 * m->vcap : 4096;
+		double *q = realloc(m->v, 3 * cap * sizeof *q);
+		if (!q)
+			return -1;
+		m->v = q;
+		m->vcap = cap;
+	}
+	return (long)m->nv;
+}
+
 int mesh_tet(mesh_t *m, uint32_t a, uint32_t b, uint32_t c, uint32_t d)
 {
 	if (m->ntet == MESH_MAX_TETS)
@@ -102,16 +117,8 @@ static int prism_cut(mesh_t *m, const uint32_t p[6], uint32_t f0, uint32_t f1)
 			rc = mesh_tet(m, V[0], V[1], V[2], V[4]) | mesh_tet(m, V[0], V[4], V[2], V[5]);
 		return rc | mesh_tet(m, V[0], V[4], V[5], V[3]);
 	}
-	/* room for the point (mesh.c's mesh_vertex_slot would make mesh.c and this file need each
-	 * other: it calls mesh_cut_tet) */
-	if (m->nv == m->vcap) {
-		size_t cap = m->vcap ? 2 * m->vcap : 4096;
-		double *q = realloc(m->v, 3 * cap * sizeof *q);
-		if (!q)
-			return -1;
-		m->v = q;
-		m->vcap = cap;
-	}
+	if (mesh_vertex_slot(m) < 0)
+		return -1;
 	size_t c = m->nv;
 	double *P = m->v + 3 * c;
 	for (int i = 0; i < 3; i++) {
