@@ -363,6 +363,33 @@ load_grp(grp_t *G, const rt_packet_t *pk, int g, const int *mode, const float *t
 	G->dz = ldf(pk->dz + g);
 }
 
+/* Both groups stepped together while both are live, then the one left alone; inlined once for
+ * shadow rays and once for primary ones, so that step_fast sees shadow as a constant. */
+static inline __attribute__((always_inline)) void
+step_pair(const model_shape_t *s, grp_t *A, grp_t *B, unsigned la, unsigned lb, float L, float invL, float acc,
+          int shadow, uint64_t *evp, uint64_t *lnp)
+{
+	int iter = 0;
+	uint64_t ev = 0, ln = 0;
+	while (la && lb && iter < 4000) {
+		iter++;
+		ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
+		ln += 16;
+		la = step_fast(s, A, L, invL, acc, shadow);
+		lb = step_fast(s, B, L, invL, acc, shadow);
+	}
+	for (; la && iter < 4000; iter++, ln += 8) {
+		ev += (unsigned)__builtin_popcount(la);
+		la = step_fast(s, A, L, invL, acc, shadow);
+	}
+	for (; lb && iter < 4000; iter++, ln += 8) {
+		ev += (unsigned)__builtin_popcount(lb);
+		lb = step_fast(s, B, L, invL, acc, shadow);
+	}
+	*evp += ev;
+	*lnp += ln;
+}
+
 /* The march loop of rt_march8 for such a shape: both groups stepped together while both are live
  * (their dependency chains overlap), then the one left alone; the same steps, the same count. */
 static void march_fast(const model_shape_t *s, rt_packet_t *pk, int shadow, const int *mode, const float *t,
@@ -376,41 +403,11 @@ static void march_fast(const model_shape_t *s, rt_packet_t *pk, int shadow, cons
 	load_grp(&B, pk, 8, mode, t, f, st, t1, sgn);
 	unsigned la = (unsigned)_mm256_movemask_ps((__m256)(A.md != M_DONE));
 	unsigned lb = (unsigned)_mm256_movemask_ps((__m256)(B.md != M_DONE));
-	int iter = 0;
 	uint64_t ev = 0, ln = 0;
-	if (shadow) {
-		while (la && lb && iter < 4000) {
-			iter++;
-			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
-			ln += 16;
-			la = step_fast(s, &A, L, invL, acc, 1);
-			lb = step_fast(s, &B, L, invL, acc, 1);
-		}
-		for (; la && iter < 4000; iter++, ln += 8) {
-			ev += (unsigned)__builtin_popcount(la);
-			la = step_fast(s, &A, L, invL, acc, 1);
-		}
-		for (; lb && iter < 4000; iter++, ln += 8) {
-			ev += (unsigned)__builtin_popcount(lb);
-			lb = step_fast(s, &B, L, invL, acc, 1);
-		}
-	} else {
-		while (la && lb && iter < 4000) {
-			iter++;
-			ev += (unsigned)__builtin_popcount(la) + (unsigned)__builtin_popcount(lb);
-			ln += 16;
-			la = step_fast(s, &A, L, invL, acc, 0);
-			lb = step_fast(s, &B, L, invL, acc, 0);
-		}
-		for (; la && iter < 4000; iter++, ln += 8) {
-			ev += (unsigned)__builtin_popcount(la);
-			la = step_fast(s, &A, L, invL, acc, 0);
-		}
-		for (; lb && iter < 4000; iter++, ln += 8) {
-			ev += (unsigned)__builtin_popcount(lb);
-			lb = step_fast(s, &B, L, invL, acc, 0);
-		}
-	}
+	if (shadow)
+		step_pair(s, &A, &B, la, lb, L, invL, acc, 1, &ev, &ln);
+	else
+		step_pair(s, &A, &B, la, lb, L, invL, acc, 0, &ev, &ln);
 	*evals += ev;
 	*lanes += ln;
 	stf(pk->thit, A.hit);
